@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages glint needs to build, test and benchmark.
+# Idempotent: packages already present are skipped, and apt-get runs only when
+# something is missing. Needs root (or sudo) only in that case.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libyaml-cpp-dev          # scene files
+  libopenimageio-dev       # image output (PNG, EXR, PPM)
+  openimageio-tools        # idiff / oiiotool, used by tests and docs
+  libtbb-dev               # parallel tile loop
+  libcli11-dev             # command line
+  libfmt-dev               # formatting
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+)
+# Peers for benchmarks only (`make bench`), not needed to build or test.
+if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
+  packages+=(povray hyperfine)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

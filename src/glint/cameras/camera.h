@@ -1,0 +1,64 @@
+#pragma once
+// The article's camera ("The Math of Ray Tracing", section 2), exactly:
+//   P position, V unit view direction, w x h viewport at distance z along V.
+//   H = normalize(up x V)  (the image's right)
+//   U = V x H              (the image's up)
+// CORRECTION: the article writes U = H x V, which points *down* (for V=(0,0,1): H=(1,0,0) and
+// H x V = (0,-1,0)); its own worked example says U=(0,1,0), which is V x H. glint uses V x H.
+// When V is parallel to `up` the cross product vanishes; glint then uses +z (or +x if V is along
+// z) as the reference axis instead of dividing by zero.
+//
+//   B = -(w/2) H - (h/2) U              (bottom-left corner, relative to P + zV)
+//   A = B + (w x/Sw) H + (h y/Sh) U + z V,   D = A/|A|
+// with (x, y) measured from the bottom-left corner, y growing upward. Film positions in glint
+// are (col, row) with row 0 at the top and pixel centres at +0.5, so x = col, y = Sh - row.
+//
+// The look_at + vertical-field-of-view form builds the same camera: V = normalize(to - from),
+// z = 1, h = 2 tan(fov/2), w = h * Sw/Sh (square pixels).
+#include "glint/ray.h"
+
+namespace glint {
+
+struct CameraBasis {
+    Vector3 h;  ///< right
+    Vector3 u;  ///< up
+};
+
+/// H and U for a unit view direction v and a world up vector, with the fallback above.
+CameraBasis camera_basis(Vector3 v, Vector3 up);
+
+class Camera {
+public:
+    Camera() = default;
+    /// The article's parameters. `direction` and `up` need not be unit length (they are
+    /// normalized here) but must be non-zero; the film size sets the pixel mapping.
+    Camera(Point3 position, Vector3 direction, Vector3 up, Float viewport_width,
+           Float viewport_height, Float near_distance, int film_width, int film_height);
+
+    static Camera look_at(Point3 from, Point3 to, Vector3 up, Float vertical_fov_degrees,
+                          int film_width, int film_height);
+
+    /// The camera ray through continuous film position (fx, fy): fx in [0, Sw) to the right,
+    /// fy in [0, Sh) downward from the top edge. The pixel centre of (col, row) is
+    /// (col + 0.5, row + 0.5).
+    Ray generate_ray(Float fx, Float fy) const {
+        const Float x = fx;
+        const Float y = film_height_ - fy;
+        const Vector3 a = corner_ + h_step_ * x + u_step_ * y;
+        return Ray{position_, normalize(a)};
+    }
+
+    const CameraBasis& basis() const { return basis_; }
+    Vector3 view_direction() const { return v_; }
+
+private:
+    Point3 position_;
+    Vector3 v_{0, 0, 1};
+    CameraBasis basis_{{1, 0, 0}, {0, 1, 0}};
+    Vector3 corner_;  ///< B + zV
+    Vector3 h_step_;  ///< (w/Sw) H
+    Vector3 u_step_;  ///< (h/Sh) U
+    Float film_height_ = 1;
+};
+
+}  // namespace glint

@@ -1,0 +1,57 @@
+#pragma once
+// Integrators answer "what colour arrives along this camera ray". A virtual interface is right
+// here: the choice is made once per render, not per ray.
+#include <cstdint>
+#include <memory>
+
+#include "glint/math/color.h"
+#include "glint/ray.h"
+#include "glint/scene.h"
+
+namespace glint {
+
+/// Per-thread counters an integrator updates; summed per tile, never shared per ray.
+struct RayCounter {
+    std::uint64_t rays = 0;
+};
+
+class Integrator {
+public:
+    virtual ~Integrator() = default;
+    virtual Color li(const Scene& scene, const Ray& camera_ray, RayCounter& counter) const = 0;
+};
+
+/// Figure 7: the object's colour where the ray hits, the background elsewhere.
+class FlatIntegrator final : public Integrator {
+public:
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+};
+
+/// Figure 9: (N + 1)/2 of the outward geometric normal, the background elsewhere.
+class NormalsIntegrator final : public Integrator {
+public:
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+};
+
+struct WhittedSettings {
+    float ambient = 0.1f;  ///< the article's a
+    bool shadows = true;
+    int max_depth = 5;     ///< the camera ray is depth 0
+};
+
+/// The article's shading, section 4:
+///   d = K a + sum over unshadowed lights of K * I * max(0, -L.N)
+///   colour = (1 - s) d + s (d * r),  r = colour seen along R = D - 2(N.D)N,
+/// traced recursively while depth < max_depth; at the limit r is the background along R.
+class WhittedIntegrator final : public Integrator {
+public:
+    explicit WhittedIntegrator(WhittedSettings settings) : settings_(settings) {}
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+    /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
+    Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const;
+
+private:
+    WhittedSettings settings_;
+};
+
+}  // namespace glint

@@ -1,0 +1,54 @@
+#include <algorithm>
+
+#include "glint/integrators/integrator.h"
+
+namespace glint {
+
+Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Color k,
+                                RayCounter& counter) const {
+    Color d = k * settings_.ambient;
+    for (const Light& light : scene.lights) {
+        const LightSample ls = sample_light(light, p);
+        const Float cos_theta = dot(n, ls.to_light);  // the article's -L.N
+        if (cos_theta <= 0) continue;
+        if (settings_.shadows) {
+            ++counter.rays;
+            if (scene.occluded(spawn_ray(p, n, ls.to_light, ls.distance))) continue;
+        }
+        d += k * ls.intensity * cos_theta;
+    }
+    return d;
+}
+
+// The recursion colour = (1-s) d + s (d * r) is affine in r, so it unrolls into a loop:
+// colour = a0 + b0 * (a1 + b1 * (a2 + ...)) with a = (1-s) d and b = s d. `weight` is the
+// product of the b's so far. No recursion, so no stack depth limit on max_depth.
+Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounter& counter) const {
+    Color result{0};
+    Color weight{1};
+    Ray ray = camera_ray;
+    for (int depth = 0;; ++depth) {
+        ++counter.rays;
+        const auto hit = scene.intersect(ray);
+        if (!hit) return result + weight * evaluate(scene.background, ray.direction);
+        const SurfaceInteraction si = scene.interaction(ray, *hit);
+        // Shade with the normal facing the viewer. For every surface seen from its front (all of
+        // the article's figures) this is the article's N; it keeps the back of a plane and the
+        // inside of a sphere lit correctly instead of black.
+        const Normal3 n = face_forward(si.n, ray.direction);
+        const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
+        const Color k = evaluate(scene.textures[m.color], si.p);
+        const Color d = direct(scene, si.p, n, k, counter);
+        const float s = m.shininess;
+        if (s <= 0) return result + weight * d;
+        result += weight * d * (1 - s);
+        weight *= d * s;
+        const Vector3 r = normalize(reflect(ray.direction, n));
+        if (depth >= settings_.max_depth) {
+            return result + weight * evaluate(scene.background, r);
+        }
+        ray = spawn_ray(si.p, n, r);
+    }
+}
+
+}  // namespace glint

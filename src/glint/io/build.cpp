@@ -1,0 +1,138 @@
+#include "glint/io/build.h"
+
+#include <fmt/core.h>
+
+#include "glint/io/limits.h"
+
+namespace glint {
+
+namespace {
+
+const SourceLoc kCommandLine{"<command line>", 0, 0};
+
+TextureId add_texture(Scene& scene, const Texture& t) {
+    scene.textures.push_back(t);
+    return static_cast<TextureId>(scene.textures.size() - 1);
+}
+
+MaterialId add_material(Scene& scene, const MaterialDesc& d) {
+    scene.materials.push_back(ArticleMaterial{add_texture(scene, d.color), d.shininess});
+    return static_cast<MaterialId>(scene.materials.size() - 1);
+}
+
+// A command-line value wins over the file's; range errors point at whichever was used.
+int pick(const Located<int>& from_file, const std::optional<long long>& flag, const char* what,
+         long long lo, long long hi, Diagnostics& diagnostics) {
+    if (!flag) return from_file.value;
+    if (*flag < lo || *flag > hi) {
+        diagnostics.error(kCommandLine,
+                          fmt::format("--{} must be in [{}, {}], got {}", what, lo, hi, *flag));
+        return from_file.value;
+    }
+    return static_cast<int>(*flag);
+}
+
+}  // namespace
+
+RenderJob build(const SceneDescription& d, const Overrides& overrides,
+                std::shared_ptr<SourceFiles> sources) {
+    Diagnostics diagnostics(std::move(sources));
+    RenderJob job;
+
+    // Film and sampling limits come first: nothing below allocates per pixel, but the render does.
+    job.width = pick(d.film.width, overrides.width, "width", 1, kMaxFilmSide, diagnostics);
+    job.height = pick(d.film.height, overrides.height, "height", 1, kMaxFilmSide, diagnostics);
+    const long long pixels = static_cast<long long>(job.width) * job.height;
+    if (pixels > kMaxFilmPixels) {
+        const SourceLoc loc = overrides.width || overrides.height ? kCommandLine : d.film.width.loc;
+        diagnostics.error(loc, fmt::format("a film of {} x {} = {} pixels is larger than the limit "
+                                           "of {} pixels",
+                                           job.width, job.height, pixels, kMaxFilmPixels));
+    }
+    job.options.spp = pick(d.sampler.spp, overrides.spp, "spp", 1, kMaxSpp, diagnostics);
+    job.options.seed = overrides.seed.value_or(d.sampler.seed);
+    if (overrides.threads) {
+        if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
+            diagnostics.error(kCommandLine, fmt::format("--threads must be in [0, {}], got {}",
+                                                        kMaxThreads, *overrides.threads));
+        } else {
+            job.options.threads = static_cast<int>(*overrides.threads);
+        }
+    }
+    job.encoding = d.film.encoding;
+    job.filename = d.film.filename.value;
+
+    // Camera.
+    if (const auto* a = std::get_if<ArticleCameraDesc>(&d.camera)) {
+        const Float vw = a->viewport_width.value_or(a->viewport_height *
+                                                    static_cast<Float>(job.width) /
+                                                    static_cast<Float>(job.height));
+        job.camera = Camera(a->position, a->direction, a->up, vw, a->viewport_height, a->near,
+                            job.width, job.height);
+    } else {
+        const auto& l = std::get<LookAtCameraDesc>(d.camera);
+        job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
+    }
+
+    // Integrator.
+    switch (d.integrator.kind) {
+        case IntegratorKind::kFlat: job.integrator = std::make_unique<FlatIntegrator>(); break;
+        case IntegratorKind::kNormals: job.integrator = std::make_unique<NormalsIntegrator>(); break;
+        case IntegratorKind::kWhitted: {
+            WhittedSettings s;
+            s.ambient = d.integrator.ambient;
+            s.shadows = d.integrator.shadows;
+            s.max_depth =
+                pick(d.integrator.max_depth, overrides.max_depth, "max-depth", 0, kMaxDepth,
+                     diagnostics);
+            job.integrator = std::make_unique<WhittedIntegrator>(s);
+            break;
+        }
+    }
+
+    // Scene contents: named materials first (ids in file order), then objects.
+    Scene& scene = job.scene;
+    scene.background = d.background;
+    scene.lights = d.lights;
+    std::vector<std::string> names;
+    for (const NamedMaterial& m : d.materials) {
+        names.push_back(m.name);
+        add_material(scene, m.material);
+    }
+    for (const ObjectDesc& o : d.objects) {
+        MaterialId id = 0;
+        if (const auto* name = std::get_if<std::string>(&o.material.value)) {
+            const auto it = std::find(names.begin(), names.end(), *name);
+            if (it == names.end()) {
+                std::string known;
+                for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+                const std::string guess = closest_match(*name, names);
+                diagnostics.error(
+                    o.material.loc,
+                    fmt::format("unknown material '{}'{} ({})", *name,
+                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                known.empty() ? "no materials are defined"
+                                              : fmt::format("known: {}", known)));
+                continue;
+            }
+            id = static_cast<MaterialId>(it - names.begin());
+        } else {
+            id = add_material(scene, std::get<MaterialDesc>(o.material.value));
+        }
+        std::visit(
+            [&](auto shape) {
+                shape.material = id;
+                if constexpr (std::is_same_v<decltype(shape), Sphere>) {
+                    scene.spheres.push_back(shape);
+                } else {
+                    scene.planes.push_back(shape);
+                }
+            },
+            o.shape);
+    }
+
+    diagnostics.throw_if_errors();
+    return job;
+}
+
+}  // namespace glint

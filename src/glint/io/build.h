@@ -1,0 +1,38 @@
+#pragma once
+// build: SceneDescription (+ command-line overrides) -> everything a render needs. Resolves
+// material names to ids, applies defaults, and checks limits (film size, spp, depth) before
+// anything large is allocated. All errors are collected and thrown as one SceneError.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "glint/cameras/camera.h"
+#include "glint/film/tonemap.h"
+#include "glint/integrators/integrator.h"
+#include "glint/io/diagnostics.h"
+#include "glint/io/scene_description.h"
+#include "glint/render/render.h"
+#include "glint/scene.h"
+
+namespace glint {
+
+/// Values from the command line that override the scene file.
+struct Overrides {
+    std::optional<long long> width, height, spp, max_depth, threads;
+    std::optional<std::uint64_t> seed;
+};
+
+struct RenderJob {
+    Scene scene;
+    Camera camera;
+    std::unique_ptr<Integrator> integrator;
+    RenderOptions options;
+    int width = 0, height = 0;
+    Encoding encoding = Encoding::kSrgb;
+    std::string filename;  ///< the scene's film.filename, or empty
+};
+
+RenderJob build(const SceneDescription& description, const Overrides& overrides,
+                std::shared_ptr<SourceFiles> sources);
+
+}  // namespace glint

@@ -1,0 +1,121 @@
+#include "glint/io/diagnostics.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace glint {
+
+void SourceFiles::add(const std::string& path, std::string text) { texts_[path] = std::move(text); }
+
+std::string SourceFiles::line(const std::string& path, int line) const {
+    const auto it = texts_.find(path);
+    if (it == texts_.end() || line < 1) return {};
+    const std::string& text = it->second;
+    std::size_t start = 0;
+    for (int i = 1; i < line; ++i) {
+        start = text.find('\n', start);
+        if (start == std::string::npos) return {};
+        ++start;
+    }
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (end > start && text[end - 1] == '\r') --end;
+    return text.substr(start, end - start);
+}
+
+void Diagnostics::error(const SourceLoc& loc, std::string message) {
+    errors_.push_back({loc, std::move(message)});
+}
+
+void Diagnostics::throw_if_errors() const {
+    if (!errors_.empty()) throw SceneError(errors_, *sources_);
+}
+
+namespace {
+
+// How many characters the token starting at `col` (0-based) spans: a quoted string, a flow
+// list or map up to its matching bracket, or a plain scalar up to a separator.
+std::size_t token_length(const std::string& line, std::size_t col) {
+    if (col >= line.size()) return 1;
+    const char c = line[col];
+    if (c == '"' || c == '\'') {
+        const auto end = line.find(c, col + 1);
+        return end == std::string::npos ? line.size() - col : end - col + 1;
+    }
+    if (c == '[' || c == '{') {
+        const char close = c == '[' ? ']' : '}';
+        int depth = 0;
+        for (std::size_t i = col; i < line.size(); ++i) {
+            if (line[i] == c) ++depth;
+            if (line[i] == close && --depth == 0) return i - col + 1;
+        }
+        return line.size() - col;
+    }
+    std::size_t end = col;
+    while (end < line.size() && line[end] != ',' && line[end] != ']' && line[end] != '}' &&
+           line[end] != '#' && !(line[end] == ':' && (end + 1 == line.size() || line[end + 1] == ' ')))
+        ++end;
+    while (end > col && line[end - 1] == ' ') --end;
+    return std::max<std::size_t>(1, end - col);
+}
+
+}  // namespace
+
+std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources) {
+    std::string out;
+    if (d.loc.line > 0) {
+        out = fmt::format("{}:{}:{}: error: {}\n", d.loc.file, d.loc.line, d.loc.column, d.message);
+        const std::string text = sources.line(d.loc.file, d.loc.line);
+        if (!text.empty()) {
+            const auto col = static_cast<std::size_t>(std::max(0, d.loc.column - 1));
+            std::string caret;
+            for (std::size_t i = 0; i < col && i < text.size(); ++i)
+                caret += text[i] == '\t' ? '\t' : ' ';
+            caret += '^';
+            caret += std::string(token_length(text, col) - 1, '~');
+            out += fmt::format("    {}\n    {}\n", text, caret);
+        }
+    } else if (!d.loc.file.empty()) {
+        out = fmt::format("{}: error: {}\n", d.loc.file, d.message);
+    } else {
+        out = fmt::format("error: {}\n", d.message);
+    }
+    return out;
+}
+
+SceneError::SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& sources)
+    : std::runtime_error([&] {
+          std::string all;
+          for (const auto& d : diagnostics) all += format_diagnostic(d, sources);
+          return all;
+      }()),
+      diagnostics_(std::move(diagnostics)) {}
+
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+    std::string best;
+    std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+    for (const std::string& c : candidates) {
+        // Levenshtein distance, one row at a time.
+        std::vector<std::size_t> row(c.size() + 1);
+        std::iota(row.begin(), row.end(), 0);
+        for (std::size_t i = 1; i <= word.size(); ++i) {
+            std::size_t diagonal = row[0];
+            row[0] = i;
+            for (std::size_t j = 1; j <= c.size(); ++j) {
+                const std::size_t above = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1,
+                                   diagonal + (word[i - 1] == c[j - 1] ? 0 : 1)});
+                diagonal = above;
+            }
+        }
+        if (row[c.size()] < best_distance) {
+            best_distance = row[c.size()];
+            best = c;
+        }
+    }
+    return best;
+}
+
+}  // namespace glint

@@ -1,0 +1,72 @@
+#pragma once
+// Errors in user input, compiler-style (pbrt-v4's FileLoc, Tungsten's caret):
+//
+//   scenes/demo.yaml:12:17: error: unknown material 'chrome' (known: red, floor)
+//       material: chrome
+//                 ^~~~~~
+//
+// Every value parsed from a file carries a SourceLoc. Errors are collected, not thrown one at a
+// time; when a stage ends with errors it throws one SceneError holding all of them.
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct SourceLoc {
+    std::string file;  ///< path as the user gave it, or "<command line>"
+    int line = 0;      ///< 1-based; 0 when the error is about the whole file or a flag
+    int column = 0;    ///< 1-based
+};
+
+struct Diagnostic {
+    SourceLoc loc;
+    std::string message;
+};
+
+/// The text of the files diagnostics point into, so that messages can quote the line.
+class SourceFiles {
+public:
+    void add(const std::string& path, std::string text);
+    /// Line `line` (1-based) of `path`, without its newline; empty if unknown.
+    std::string line(const std::string& path, int line) const;
+
+private:
+    std::map<std::string, std::string> texts_;
+};
+
+class Diagnostics {
+public:
+    explicit Diagnostics(std::shared_ptr<SourceFiles> sources = std::make_shared<SourceFiles>())
+        : sources_(std::move(sources)) {}
+    void error(const SourceLoc& loc, std::string message);
+    bool empty() const { return errors_.empty(); }
+    const std::vector<Diagnostic>& errors() const { return errors_; }
+    SourceFiles& sources() { return *sources_; }
+    /// Throws SceneError if any error was recorded.
+    void throw_if_errors() const;
+
+private:
+    std::shared_ptr<SourceFiles> sources_;
+    std::vector<Diagnostic> errors_;
+};
+
+/// One diagnostic as text: "file:line:col: error: message", then the source line and a caret
+/// under the offending token (~ under the rest of it).
+std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources);
+
+class SceneError : public std::runtime_error {
+public:
+    SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& sources);
+    const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+private:
+    std::vector<Diagnostic> diagnostics_;
+};
+
+/// The closest of `candidates` to `word` by edit distance, if close enough to be a likely typo.
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace glint

@@ -1,0 +1,101 @@
+#include "glint/io/image_io.h"
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+#include <vector>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+ImageFormat image_format_for(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".png") return ImageFormat::kPng;
+    if (ext == ".exr") return ImageFormat::kExr;
+    if (ext == ".ppm") return ImageFormat::kPpm;
+    throw IoError(fmt::format("{}: unsupported output format '{}' (supported: .png, .exr, .ppm)",
+                              path.string(), ext.empty() ? std::string("no extension") : ext));
+}
+
+void check_writable(const fs::path& path) {
+    image_format_for(path);
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+        throw IoError(fmt::format("{}: cannot write: folder '{}' does not exist", path.string(),
+                                  dir.string()));
+    }
+    if (fs::is_directory(path, ec)) {
+        throw IoError(fmt::format("{}: cannot write: it is a folder", path.string()));
+    }
+    if (::access(dir.c_str(), W_OK) != 0) {
+        throw IoError(fmt::format("{}: cannot write to folder '{}': {}", path.string(),
+                                  dir.string(), std::strerror(errno)));
+    }
+}
+
+void write_image(const fs::path& path, const Film& film, Encoding encoding) {
+    const ImageFormat format = image_format_for(path);
+    const int w = film.width(), h = film.height();
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    const fs::path tmp =
+        dir / fmt::format(".{}.glint-{}.tmp", path.filename().string(), ::getpid());
+
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) {
+        throw IoError(fmt::format("{}: cannot create an image writer: {}", path.string(),
+                                  OIIO::geterror()));
+    }
+    bool ok = false;
+    std::vector<float> floats;
+    std::vector<std::uint8_t> bytes;
+    const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    if (format == ImageFormat::kExr) {
+        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+        spec.attribute("compression", "zip");
+        floats.resize(n * 3);
+        for (std::size_t i = 0; i < n; ++i) {
+            const Color c = film.pixels()[i];
+            floats[3 * i] = c.r, floats[3 * i + 1] = c.g, floats[3 * i + 2] = c.b;
+        }
+        ok = out->open(tmp.string(), spec) &&
+             out->write_image(OIIO::TypeDesc::FLOAT, floats.data());
+    } else {
+        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", encoding == Encoding::kSrgb ? "sRGB" : "Linear");
+        bytes.resize(n * 3);
+        for (std::size_t i = 0; i < n; ++i) {
+            const Color c = film.pixels()[i];
+            for (int k = 0; k < 3; ++k) bytes[3 * i + k] = encode_8bit(c[k], encoding);
+        }
+        ok = out->open(tmp.string(), spec) &&
+             out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    }
+    ok = out->close() && ok;
+    if (!ok) {
+        const std::string why = out->geterror();
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), why));
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw IoError(fmt::format("{}: cannot move the finished image into place: {}",
+                                  path.string(), ec.message()));
+    }
+}
+
+}  // namespace glint

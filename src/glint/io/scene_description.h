@@ -1,0 +1,101 @@
+#pragma once
+// SceneDescription: what a scene file says, as plain data, every value that can be wrong later
+// carrying the SourceLoc it came from. The parser fills it; io/build.h turns it into a render-time
+// Scene. Defaults here are the documented defaults of docs/scene-format.md.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "glint/background.h"
+#include "glint/film/tonemap.h"
+#include "glint/io/diagnostics.h"
+#include "glint/lights/light.h"
+#include "glint/shapes/plane.h"
+#include "glint/shapes/sphere.h"
+#include "glint/textures/texture.h"
+
+namespace glint {
+
+template <typename T>
+struct Located {
+    T value{};
+    SourceLoc loc;
+};
+
+struct ArticleCameraDesc {
+    Point3 position{0, 0, -1};
+    Vector3 direction{0, 0, 1};
+    Vector3 up{0, 1, 0};
+    std::optional<Float> viewport_width;  ///< default: viewport_height x film aspect
+    Float viewport_height = 2;
+    Float near = 1;  ///< the article's z
+};
+
+struct LookAtCameraDesc {
+    Point3 from{0, 0, -1};
+    Point3 to{0, 0, 0};
+    Vector3 up{0, 1, 0};
+    Float fov = 45;  ///< vertical, degrees
+};
+
+using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;
+
+struct FilmDesc {
+    Located<int> width{640, {}};
+    Located<int> height{360, {}};
+    Encoding encoding = Encoding::kSrgb;
+    Located<std::string> filename;  ///< empty: the CLI chooses
+};
+
+enum class IntegratorKind { kFlat, kNormals, kWhitted };
+
+struct IntegratorDesc {
+    IntegratorKind kind = IntegratorKind::kWhitted;
+    float ambient = 0.1f;
+    bool shadows = true;
+    Located<int> max_depth{5, {}};
+};
+
+struct SamplerDesc {
+    Located<int> spp{1, {}};
+    std::uint64_t seed = 0;
+};
+
+struct MaterialDesc {
+    Texture color = ConstantTexture{Color{0.8f}};
+    float shininess = 0;
+};
+
+/// An object's material: a name to resolve, or an inline description.
+struct MaterialRef {
+    std::variant<std::string, MaterialDesc> value;
+    SourceLoc loc;
+};
+
+struct ObjectDesc {
+    std::variant<Sphere, Plane> shape;  ///< material ids filled in by build
+    MaterialRef material;
+    SourceLoc loc;
+};
+
+struct NamedMaterial {
+    std::string name;
+    MaterialDesc material;
+    SourceLoc loc;
+};
+
+struct SceneDescription {
+    std::string path;
+    CameraDesc camera = ArticleCameraDesc{};
+    FilmDesc film;
+    IntegratorDesc integrator;
+    SamplerDesc sampler;
+    Background background = SkyBackground{};
+    std::vector<Light> lights;
+    std::vector<NamedMaterial> materials;
+    std::vector<ObjectDesc> objects;
+};
+
+}  // namespace glint

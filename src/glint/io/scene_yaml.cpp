@@ -1,0 +1,373 @@
+#include "glint/io/scene_yaml.h"
+
+#include <fmt/core.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "glint/io/limits.h"
+#include "glint/io/yaml_reader.h"
+
+namespace glint {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string join(const std::vector<std::string>& names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+template <typename T, typename Read>
+void assign(const std::optional<YAML::Node>& node, T& field, Read read) {
+    if (!node) return;
+    if (auto v = read(*node)) field = static_cast<T>(*v);
+}
+
+class SceneParser {
+public:
+    SceneParser(Diagnostics& diagnostics, const std::string& path)
+        : r_(diagnostics, path) {}
+
+    void parse_root(const YAML::Node& root, SceneDescription& scene) {
+        if (root.IsNull()) {
+            r_.diagnostics().error({scene.path, 0, 0}, "the scene file is empty");
+            return;
+        }
+        MapReader m(r_, root, "scene",
+                    {"camera", "film", "sampler", "integrator", "background", "lights",
+                     "materials", "objects"});
+        if (!m.valid()) return;
+        if (auto n = m.get("camera")) scene.camera = camera(*n);
+        if (auto n = m.get("film")) film(*n, scene.film);
+        if (auto n = m.get("sampler")) sampler(*n, scene.sampler);
+        if (auto n = m.get("integrator")) integrator(*n, scene.integrator);
+        if (auto n = m.get("background")) {
+            if (auto bg = background(*n)) scene.background = *bg;
+        }
+        if (auto n = m.get("lights")) lights(*n, scene.lights);
+        if (auto n = m.get("materials")) materials(*n, scene.materials);
+        if (auto n = m.get("objects")) objects(*n, scene.objects);
+    }
+
+private:
+    // The value of a polymorphic map's `type` key, checked against `types`.
+    std::optional<std::string> type_of(const YAML::Node& node, const std::string& context,
+                                       const std::vector<std::string>& types,
+                                       std::optional<std::string> fallback = std::nullopt) {
+        if (!node.IsMap()) {
+            r_.error(node, fmt::format("{}: expected a map of keys, got {}", context, describe(node)));
+            return std::nullopt;
+        }
+        const YAML::Node& map = node;
+        const YAML::Node t = map["type"];
+        if (!t.IsDefined()) {
+            if (fallback) return fallback;
+            r_.error(node, fmt::format("{}: missing required key 'type' (one of: {})", context,
+                                       join(types)));
+            return std::nullopt;
+        }
+        const auto name = r_.string(t);
+        if (!name) return std::nullopt;
+        if (std::find(types.begin(), types.end(), *name) == types.end()) {
+            const std::string guess = closest_match(*name, types);
+            r_.error(t, fmt::format("unknown {} type '{}'{} (known: {})", context, *name,
+                                    guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                    join(types)));
+            return std::nullopt;
+        }
+        return name;
+    }
+
+    auto positive(const char* what) {
+        return [this, what](const YAML::Node& n) { return r_.number_in(n, what, 0, kInf, true); };
+    }
+    auto point() {
+        return [this](const YAML::Node& n) { return r_.point(n); };
+    }
+    auto direction(const char* what) {
+        return [this, what](const YAML::Node& n) { return r_.direction(n, what); };
+    }
+    auto color() {
+        return [this](const YAML::Node& n) { return r_.color(n); };
+    }
+
+    CameraDesc camera(const YAML::Node& node) {
+        const auto type = type_of(node, "camera", {"article", "look_at"}, "article");
+        if (type == "look_at") {
+            LookAtCameraDesc c;
+            MapReader m(r_, node, "look_at camera", {"type", "from", "to", "up", "fov"});
+            assign(m.require("from"), c.from, point());
+            assign(m.require("to"), c.to, point());
+            assign(m.get("up"), c.up, direction("up"));
+            assign(m.get("fov"), c.fov, [this](const YAML::Node& n) {
+                return r_.number_in(n, "fov", 0, 180, true);
+            });
+            if (c.from == c.to && m.has("from") && m.has("to")) {
+                r_.error(*m.get("to"), "look_at camera: 'to' must differ from 'from'");
+            }
+            return c;
+        }
+        ArticleCameraDesc c;
+        if (!type) return c;
+        MapReader m(r_, node, "camera",
+                    {"type", "position", "direction", "up", "viewport_width", "viewport_height",
+                     "near"});
+        assign(m.get("position"), c.position, point());
+        assign(m.get("direction"), c.direction, direction("direction"));
+        assign(m.get("up"), c.up, direction("up"));
+        if (auto n = m.get("viewport_width")) {
+            if (auto v = positive("viewport_width")(*n)) c.viewport_width = static_cast<Float>(*v);
+        }
+        assign(m.get("viewport_height"), c.viewport_height, positive("viewport_height"));
+        assign(m.get("near"), c.near, positive("near"));
+        return c;
+    }
+
+    void film(const YAML::Node& node, FilmDesc& f) {
+        MapReader m(r_, node, "film", {"width", "height", "encoding", "filename"});
+        auto size = [this, &m](const char* key, Located<int>& out) {
+            if (auto n = m.get(key)) {
+                out.loc = r_.loc(*n);
+                assign(n, out.value, [this, key](const YAML::Node& v) {
+                    return r_.integer_in(v, key, 1, kMaxFilmSide);
+                });
+            }
+        };
+        size("width", f.width);
+        size("height", f.height);
+        if (auto n = m.get("encoding")) {
+            if (auto e = r_.string(*n)) {
+                if (*e == "srgb") {
+                    f.encoding = Encoding::kSrgb;
+                } else if (*e == "raw") {
+                    f.encoding = Encoding::kRaw;
+                } else {
+                    r_.error(*n, fmt::format("unknown encoding '{}' (known: srgb, raw)", *e));
+                }
+            }
+        }
+        if (auto n = m.get("filename")) {
+            f.filename.loc = r_.loc(*n);
+            assign(n, f.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
+        }
+    }
+
+    void sampler(const YAML::Node& node, SamplerDesc& s) {
+        MapReader m(r_, node, "sampler", {"spp", "seed"});
+        if (auto n = m.get("spp")) {
+            s.spp.loc = r_.loc(*n);
+            assign(n, s.spp.value,
+                   [this](const YAML::Node& v) { return r_.integer_in(v, "spp", 1, kMaxSpp); });
+        }
+        assign(m.get("seed"), s.seed, [this](const YAML::Node& v) {
+            return r_.integer_in(v, "seed", 0, std::numeric_limits<long long>::max());
+        });
+    }
+
+    void integrator(const YAML::Node& node, IntegratorDesc& d) {
+        const auto type = type_of(node, "integrator", {"flat", "normals", "whitted"});
+        if (!type) return;
+        if (*type != "whitted") {
+            d.kind = *type == "flat" ? IntegratorKind::kFlat : IntegratorKind::kNormals;
+            MapReader m(r_, node, fmt::format("{} integrator", *type), {"type"});
+            return;
+        }
+        d.kind = IntegratorKind::kWhitted;
+        MapReader m(r_, node, "whitted integrator", {"type", "max_depth", "ambient", "shadows"});
+        if (auto n = m.get("max_depth")) {
+            d.max_depth.loc = r_.loc(*n);
+            assign(n, d.max_depth.value, [this](const YAML::Node& v) {
+                return r_.integer_in(v, "max_depth", 0, kMaxDepth);
+            });
+        }
+        assign(m.get("ambient"), d.ambient,
+               [this](const YAML::Node& v) { return r_.number_in(v, "ambient", 0, 1); });
+        assign(m.get("shadows"), d.shadows, [this](const YAML::Node& v) { return r_.boolean(v); });
+    }
+
+    std::optional<Background> background(const YAML::Node& node) {
+        const auto type = type_of(node, "background", {"sky", "constant"});
+        if (!type) return std::nullopt;
+        if (*type == "sky") {
+            SkyBackground sky;
+            MapReader m(r_, node, "sky background", {"type", "horizon", "zenith"});
+            assign(m.get("horizon"), sky.horizon, color());
+            assign(m.get("zenith"), sky.zenith, color());
+            return sky;
+        }
+        ConstantBackground c;
+        MapReader m(r_, node, "constant background", {"type", "color"});
+        assign(m.require("color"), c.color, color());
+        return c;
+    }
+
+    void lights(const YAML::Node& node, std::vector<Light>& out) {
+        if (!node.IsSequence()) {
+            r_.error(node, fmt::format("lights: expected a list, got {}", describe(node)));
+            return;
+        }
+        for (const YAML::Node& item : node) {
+            const auto type = type_of(item, "light", {"directional", "point"});
+            if (!type) continue;
+            if (*type == "directional") {
+                DirectionalLight l{{0, -1, 0}, Color{1}};
+                MapReader m(r_, item, "directional light", {"type", "direction", "intensity"});
+                assign(m.require("direction"), l.direction, direction("direction"));
+                l.direction = normalize(l.direction);
+                assign(m.get("intensity"), l.intensity, color());
+                out.emplace_back(l);
+            } else {
+                PointLight l{{0, 0, 0}, Color{1}};
+                MapReader m(r_, item, "point light", {"type", "position", "intensity"});
+                assign(m.require("position"), l.position, point());
+                assign(m.get("intensity"), l.intensity, color());
+                out.emplace_back(l);
+            }
+        }
+    }
+
+    std::optional<Texture> texture(const YAML::Node& node) {
+        if (node.IsSequence() || node.IsScalar()) {
+            if (auto c = r_.color(node)) return ConstantTexture{*c};
+            return std::nullopt;
+        }
+        const auto type = type_of(node, "texture", {"constant", "checker"});
+        if (!type) return std::nullopt;
+        if (*type == "constant") {
+            ConstantTexture t;
+            MapReader m(r_, node, "constant texture", {"type", "color"});
+            assign(m.require("color"), t.value, color());
+            return t;
+        }
+        CheckerTexture t{1, Color{1}, Color{0}};
+        MapReader m(r_, node, "checker texture", {"type", "size", "even", "odd"});
+        assign(m.get("size"), t.size, positive("size"));
+        assign(m.require("even"), t.even, color());
+        assign(m.require("odd"), t.odd, color());
+        return t;
+    }
+
+    MaterialDesc material(const YAML::Node& node, const std::string& context) {
+        MaterialDesc d;
+        MapReader m(r_, node, context, {"color", "shininess"});
+        if (auto n = m.get("color")) {
+            if (auto t = texture(*n)) d.color = *t;
+        }
+        assign(m.get("shininess"), d.shininess,
+               [this](const YAML::Node& v) { return r_.number_in(v, "shininess", 0, 1); });
+        return d;
+    }
+
+    void materials(const YAML::Node& node, std::vector<NamedMaterial>& out) {
+        if (!node.IsMap()) {
+            r_.error(node, fmt::format("materials: expected a map from names to materials, got {}",
+                                       describe(node)));
+            return;
+        }
+        for (auto it = node.begin(); it != node.end(); ++it) {
+            const auto name = r_.string(it->first);
+            if (!name) continue;
+            const bool duplicate = std::any_of(out.begin(), out.end(), [&](const NamedMaterial& m) {
+                return m.name == *name;
+            });
+            if (duplicate) {
+                r_.error(it->first, fmt::format("materials: duplicate material name '{}'", *name));
+                continue;
+            }
+            out.push_back({*name, material(it->second, fmt::format("material '{}'", *name)),
+                           r_.loc(it->first)});
+        }
+    }
+
+    MaterialRef material_ref(const YAML::Node& node) {
+        if (node.IsScalar()) return {node.Scalar(), r_.loc(node)};
+        return {material(node, "material"), r_.loc(node)};
+    }
+
+    void objects(const YAML::Node& node, std::vector<ObjectDesc>& out) {
+        if (!node.IsSequence()) {
+            r_.error(node, fmt::format("objects: expected a list, got {}", describe(node)));
+            return;
+        }
+        for (const YAML::Node& item : node) {
+            const auto type = type_of(item, "object", {"sphere", "plane"});
+            if (!type) continue;
+            ObjectDesc o{Sphere{{0, 0, 0}, 1}, {std::string(), {}}, r_.loc(item)};
+            std::optional<YAML::Node> mat;
+            if (*type == "sphere") {
+                Sphere s{{0, 0, 0}, 1};
+                MapReader m(r_, item, "sphere", {"type", "center", "radius", "material"});
+                assign(m.require("center"), s.center, point());
+                assign(m.require("radius"), s.radius, positive("radius"));
+                o.shape = s;
+                mat = m.get("material");
+            } else {
+                Plane p{{0, 0, 0}, {0, 1, 0}};
+                MapReader m(r_, item, "plane", {"type", "point", "normal", "material"});
+                assign(m.require("point"), p.point, point());
+                Vector3 n{0, 1, 0};
+                assign(m.require("normal"), n, direction("normal"));
+                p.normal = Normal3(normalize(n));
+                o.shape = p;
+                mat = m.get("material");
+            }
+            if (mat) {
+                o.material = material_ref(*mat);
+            } else {
+                o.material = {MaterialDesc{}, o.loc};  // the default grey
+            }
+            out.push_back(std::move(o));
+        }
+    }
+
+    YamlReader r_;
+};
+
+}  // namespace
+
+SceneDescription parse_scene(const std::string& text, const std::string& path,
+                             std::shared_ptr<SourceFiles> sources) {
+    sources->add(path, text);
+    Diagnostics diagnostics(sources);
+    SceneDescription scene;
+    scene.path = path;
+    YAML::Node root;
+    try {
+        root = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+        diagnostics.error({path, e.mark.is_null() ? 0 : e.mark.line + 1,
+                           e.mark.is_null() ? 0 : e.mark.column + 1},
+                          fmt::format("invalid YAML: {}", e.msg));
+        diagnostics.throw_if_errors();
+    }
+    SceneParser(diagnostics, path).parse_root(root, scene);
+    diagnostics.throw_if_errors();
+    return scene;
+}
+
+SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        Diagnostics d(sources);
+        d.error({path, 0, 0}, fmt::format("cannot open scene file: {}", std::strerror(errno)));
+        d.throw_if_errors();
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) {
+        Diagnostics d(sources);
+        d.error({path, 0, 0}, "cannot read scene file");
+        d.throw_if_errors();
+    }
+    return parse_scene(text.str(), path, std::move(sources));
+}
+
+}  // namespace glint

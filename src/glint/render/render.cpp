@@ -1,0 +1,69 @@
+#include "glint/render/render.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "glint/samplers/stratified.h"
+
+namespace glint {
+
+RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                   const RenderOptions& options, Film& film, Progress* progress) {
+    const auto start = std::chrono::steady_clock::now();
+    const int w = film.width(), h = film.height();
+    const int spp = std::max(1, options.spp);
+    const int tile = std::max(1, options.tile_size);
+    const float inv_spp = 1.0f / static_cast<float>(spp);
+    std::atomic<std::uint64_t> total_rays{0};
+
+    auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
+        RayCounter counter;
+        for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
+            for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
+                Color sum{0};
+                if (spp == 1) {
+                    sum = integrator.li(scene, camera.generate_ray(col + 0.5f, row + 0.5f),
+                                        counter);
+                } else {
+                    const std::uint32_t seed = pixel_seed(options.seed, static_cast<std::uint32_t>(col),
+                                                          static_cast<std::uint32_t>(row));
+                    for (int i = 0; i < spp; ++i) {
+                        const Sample2 u = stratified_sample(static_cast<std::uint32_t>(i),
+                                                            static_cast<std::uint32_t>(spp), seed);
+                        sum += integrator.li(
+                            scene, camera.generate_ray(static_cast<float>(col) + u.x,
+                                                       static_cast<float>(row) + u.y),
+                            counter);
+                    }
+                }
+                film.at(col, row) = sum * inv_spp;
+            }
+        }
+        total_rays.fetch_add(counter.rays, std::memory_order_relaxed);
+        if (progress) {
+            progress->tile_done(static_cast<std::uint64_t>(r.rows().size()) * r.cols().size(),
+                                counter.rays);
+        }
+    };
+
+    const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, h, tile, 0, w, tile), render_tile,
+                          tbb::simple_partitioner());
+    });
+
+    RenderStats stats;
+    stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.rays = total_rays.load();
+    stats.samples = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
+                    static_cast<std::uint64_t>(spp);
+    return stats;
+}
+
+}  // namespace glint

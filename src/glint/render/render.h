@@ -1,0 +1,25 @@
+#pragma once
+// The parallel render loop: oneTBB over 16x16 tiles. Each pixel is computed entirely by one task
+// from its own deterministic samples and summed in a fixed order, so the image is bit-identical
+// for any thread count and any tile schedule.
+#include <cstdint>
+
+#include "glint/cameras/camera.h"
+#include "glint/film/film.h"
+#include "glint/integrators/integrator.h"
+#include "glint/render/progress.h"
+#include "glint/scene.h"
+
+namespace glint {
+
+struct RenderOptions {
+    int threads = 0;  ///< 0: all cores
+    int spp = 1;      ///< 1: the pixel centre; >1: stratified jittered samples, box filter
+    std::uint64_t seed = 0;
+    int tile_size = 16;
+};
+
+RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                   const RenderOptions& options, Film& film, Progress* progress = nullptr);
+
+}  // namespace glint

@@ -1,0 +1,46 @@
+#include "glint/scene.h"
+
+namespace glint {
+
+std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
+    Ray ray = ray_in;
+    std::optional<Hit> best;
+    for (std::uint32_t i = 0; i < spheres.size(); ++i) {
+        if (auto t = spheres[i].intersect(ray)) {
+            ray.t_max = *t;
+            best = Hit{*t, ShapeKind::kSphere, i};
+        }
+    }
+    for (std::uint32_t i = 0; i < planes.size(); ++i) {
+        if (auto t = planes[i].intersect(ray)) {
+            ray.t_max = *t;
+            best = Hit{*t, ShapeKind::kPlane, i};
+        }
+    }
+    return best;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+    for (const Sphere& s : spheres)
+        if (s.intersect(ray)) return true;
+    for (const Plane& p : planes)
+        if (p.intersect(ray)) return true;
+    return false;
+}
+
+SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
+    const Point3 p = ray.at(hit.t);
+    switch (hit.kind) {
+        case ShapeKind::kSphere: {
+            const Sphere& s = spheres[hit.index];
+            return {p, s.normal_at(p), s.material};
+        }
+        case ShapeKind::kPlane: {
+            const Plane& pl = planes[hit.index];
+            return {pl.project(p), pl.normal, pl.material};
+        }
+    }
+    return {p, Normal3{0, 1, 0}, 0};  // unreachable: the switch covers every ShapeKind
+}
+
+}  // namespace glint

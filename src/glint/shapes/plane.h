@@ -1,0 +1,25 @@
+#pragma once
+#include <optional>
+
+#include "glint/interaction.h"
+#include "glint/ray.h"
+
+namespace glint {
+
+/// An infinite plane through `point` with unit normal `normal` (which also fixes its
+/// orientation: the side the normal points to is the front).
+struct Plane {
+    Point3 point;
+    Normal3 normal;
+    MaterialId material = 0;
+
+    /// t = (P0 - O).N / (D.N); rays parallel to the plane (|D.N| tiny) miss.
+    std::optional<Float> intersect(const Ray& ray) const;
+
+    /// The hit point moved exactly onto the plane. O + tD lands within round-off of the plane,
+    /// on either side; a 3D checkerboard evaluated on a plane y = k would otherwise flicker
+    /// between floor(k) and floor(k) - 1 from pixel to pixel.
+    Point3 project(Point3 p) const;
+};
+
+}  // namespace glint
