@@ -75,7 +75,7 @@ struct MaterialRef {
 };
 
 struct ObjectDesc {
-    std::variant<Sphere, Plane> shape;  ///< material ids filled in by build
+    std::variant<Sphere, Plane> shape = Sphere{{0, 0, 0}, 1};  ///< material ids set by build
     MaterialRef material;
     SourceLoc loc;
 };

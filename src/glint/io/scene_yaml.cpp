@@ -300,7 +300,8 @@ private:
         for (const YAML::Node& item : node) {
             const auto type = type_of(item, "object", {"sphere", "plane"});
             if (!type) continue;
-            ObjectDesc o{Sphere{{0, 0, 0}, 1}, {std::string(), {}}, r_.loc(item)};
+            ObjectDesc o;
+            o.loc = r_.loc(item);
             std::optional<YAML::Node> mat;
             if (*type == "sphere") {
                 Sphere s{{0, 0, 0}, 1};

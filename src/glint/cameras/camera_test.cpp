@@ -1,0 +1,71 @@
+#include "glint/cameras/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace glint {
+namespace {
+
+void expect_vec(Vector3 a, Vector3 b, float tol = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+TEST(Camera, ArticleExampleGivesRightAndUp) {
+    // The article: V = (0,0,1) gives H = (1,0,0) and U = (0,1,0).
+    const CameraBasis b = camera_basis({0, 0, 1}, {0, 1, 0});
+    expect_vec(b.h, {1, 0, 0}, 0);
+    expect_vec(b.u, {0, 1, 0}, 0);
+}
+
+TEST(Camera, BasisIsOrthonormalForATiltedView) {
+    const Vector3 v = normalize(Vector3{0, -0.25f, 1});
+    const CameraBasis b = camera_basis(v, {0, 1, 0});
+    EXPECT_NEAR(length(b.h), 1, 1e-6);
+    EXPECT_NEAR(length(b.u), 1, 1e-6);
+    EXPECT_NEAR(dot(b.h, b.u), 0, 1e-6);
+    EXPECT_NEAR(dot(b.h, v), 0, 1e-6);
+    EXPECT_GT(b.u.y, 0);  // up stays up
+    // By hand: H = (1,0,0), U = V x H = (0, 1, 0.25)/|(0,1,0.25)|.
+    expect_vec(b.h, {1, 0, 0});
+    expect_vec(b.u, Vector3{0, 1, 0.25f} / std::sqrt(1.0625f));
+}
+
+TEST(Camera, ViewParallelToUpUsesAnotherAxis) {
+    for (Vector3 v : {Vector3{0, 1, 0}, Vector3{0, -1, 0}}) {
+        const CameraBasis b = camera_basis(v, {0, 1, 0});
+        EXPECT_TRUE(is_finite(b.h) && is_finite(b.u));
+        EXPECT_NEAR(length(b.h), 1, 1e-6);
+        EXPECT_NEAR(length(b.u), 1, 1e-6);
+        EXPECT_NEAR(dot(b.h, v), 0, 1e-6);
+        EXPECT_NEAR(dot(b.u, v), 0, 1e-6);
+    }
+}
+
+TEST(Camera, PixelCentresMapToTheArticlesViewport) {
+    // Sw=4, Sh=2, w=4, h=2, z=1 at the origin: B = (-2,-1), pixel (col,row) centre is
+    // x = col + 0.5, y = Sh - (row + 0.5), A = (-2 + x, -1 + y, 1).
+    const Camera cam({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, 2, 1, 4, 2);
+    expect_vec(cam.generate_ray(0.5f, 0.5f).direction, normalize(Vector3{-1.5f, 0.5f, 1}));
+    expect_vec(cam.generate_ray(3.5f, 1.5f).direction, normalize(Vector3{1.5f, -0.5f, 1}));
+    // Row 0 is the top of the image: its rays point up; column 0 is the left: rays point to -x.
+    EXPECT_GT(cam.generate_ray(2, 0.5f).direction.y, 0);
+    EXPECT_LT(cam.generate_ray(0.5f, 1).direction.x, 0);
+    // The image centre looks straight along V.
+    expect_vec(cam.generate_ray(2, 1).direction, {0, 0, 1});
+    EXPECT_EQ(cam.generate_ray(2, 1).origin, (Point3{0, 0, 0}));
+}
+
+TEST(Camera, LookAtBuildsTheSameCameraAsTheArticleForm) {
+    // fov 90 degrees gives h = 2 tan(45) = 2 at z = 1, w = h * 16/9.
+    const Camera a({0, 0, -1}, {0, 0, 1}, {0, 1, 0}, 2.0f * 16 / 9, 2, 1, 160, 90);
+    const Camera b = Camera::look_at({0, 0, -1}, {0, 0, 1}, {0, 1, 0}, 90, 160, 90);
+    for (float fx : {0.5f, 37.25f, 159.5f})
+        for (float fy : {0.5f, 45.0f, 89.5f})
+            expect_vec(a.generate_ray(fx, fy).direction, b.generate_ray(fx, fy).direction, 1e-6f);
+}
+
+}  // namespace
+}  // namespace glint

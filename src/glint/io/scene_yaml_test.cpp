@@ -1,0 +1,195 @@
+#include "glint/io/scene_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include "glint/io/build.h"
+
+namespace glint {
+namespace {
+
+// Parses and builds `text` as scene.yaml; returns the full error text ("" if it succeeded).
+std::string errors_of(const std::string& text, const Overrides& overrides = {}) {
+    auto sources = std::make_shared<SourceFiles>();
+    try {
+        const SceneDescription d = parse_scene(text, "scene.yaml", sources);
+        build(d, overrides, sources);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The caret line under a token of `length` characters at 1-based `column` (source lines are
+// quoted with a 4-space indent).
+std::string caret(int column, int length) {
+    return std::string(static_cast<std::size_t>(4 + column - 1), ' ') + "^" +
+           std::string(static_cast<std::size_t>(length - 1), '~') + "\n";
+}
+
+TEST(SceneYaml, MisspeltKeyReportsLineColumnAndSuggestion) {
+    const std::string text =
+        "objects:\n"
+        "  - type: sphere\n"
+        "    center: [0, 0, 1]\n"
+        "    radiuss: 1\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:4:5: error: sphere: unknown key 'radiuss'; did you mean 'radius'? "
+              "(known: type, center, radius, material)\n"
+              "        radiuss: 1\n" +
+                  caret(5, 7) +
+                  "scene.yaml:2:5: error: sphere: missing required key 'radius'\n"
+                  "      - type: sphere\n" +
+                  caret(5, 4));
+}
+
+TEST(SceneYaml, UnknownMaterialReportsLineAndColumn) {
+    const std::string text =
+        "materials:\n"
+        "  red: {color: [1, 0, 0]}\n"
+        "  chrome2: {color: [1, 1, 1], shininess: 1}\n"
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: 1, material: chrome}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:5:60: error: unknown material 'chrome'; did you mean 'chrome2'? "
+              "(known: red, chrome2)\n"
+              "      - {type: sphere, center: [0, 0, 1], radius: 1, material: chrome}\n" +
+                  caret(60, 6));
+}
+
+TEST(SceneYaml, WrongTypesAreReported) {
+    const std::string text =
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0], radius: big}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:28: error: expected a list of 3 numbers [x, y, z], got a list of 2\n"
+              "      - {type: sphere, center: [0, 0], radius: big}\n" +
+                  caret(28, 6) +
+                  "scene.yaml:2:44: error: expected a number, got 'big'\n"
+                  "      - {type: sphere, center: [0, 0], radius: big}\n" +
+                  caret(44, 3));
+}
+
+TEST(SceneYaml, OutOfRangeValuesAreReported) {
+    const std::string text =
+        "film: {width: -5, height: 10}\n"
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: 0}\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: -1}\n"
+        "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 0]}\n"
+        "materials:\n"
+        "  m: {color: {type: checker, size: -1, even: [1, 1, 1], odd: [0, 0, 0]}, shininess: 2}\n";
+    const std::string e = errors_of(text);
+    EXPECT_NE(e.find("scene.yaml:1:15: error: width must be in [1, 65536], got -5\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:47: error: radius must be > 0, got 0\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:4:47: error: radius must be > 0, got -1\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:5:45: error: normal must not be zero-length\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:7:36: error: size must be > 0, got -1\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:7:85: error: shininess must be in [0, 1], got 2\n"), std::string::npos) << e;
+}
+
+TEST(SceneYaml, NonFiniteNumbersAreReported) {
+    const std::string text =
+        "lights:\n"
+        "  - {type: directional, direction: [.nan, -1, 1]}\n"
+        "  - {type: point, position: [0, .inf, 0]}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:37: error: expected a finite number, got '.nan'\n"
+              "      - {type: directional, direction: [.nan, -1, 1]}\n" +
+                  caret(37, 4) +
+                  "scene.yaml:3:33: error: expected a finite number, got '.inf'\n"
+                  "      - {type: point, position: [0, .inf, 0]}\n" +
+                  caret(33, 4));
+}
+
+TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
+    const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:12: error: unknown object type 'sphre'; did you mean 'sphere'? "
+              "(known: sphere, plane)\n"
+              "      - {type: sphre, center: [0, 0, 1], radius: 1}\n" +
+                  caret(12, 5));
+}
+
+TEST(SceneYaml, YamlSyntaxErrorPointsAtTheSpot) {
+    const std::string e = errors_of("camera:\n  position: [0, 0, -1\n");
+    EXPECT_EQ(e.rfind("scene.yaml:", 0), 0u) << e;
+    EXPECT_NE(e.find("error: invalid YAML: "), std::string::npos) << e;
+}
+
+TEST(SceneYaml, DuplicateKeysAreErrors) {
+    const std::string text = "film: {width: 10, width: 20}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:19: error: film: duplicate key 'width'\n"
+              "    film: {width: 10, width: 20}\n" +
+                  caret(19, 5));
+}
+
+TEST(SceneYaml, UnknownTopLevelKeyIsAnError) {
+    EXPECT_EQ(errors_of("objets: []\n"),
+              "scene.yaml:1:1: error: scene: unknown key 'objets'; did you mean 'objects'? "
+              "(known: camera, film, sampler, integrator, background, lights, materials, "
+              "objects)\n"
+              "    objets: []\n" +
+                  caret(1, 6));
+}
+
+TEST(SceneYaml, AbsurdFilmIsRefusedBeforeAllocation) {
+    EXPECT_EQ(errors_of("film: {width: 60000, height: 60000}\n"),
+              "scene.yaml:1:15: error: a film of 60000 x 60000 = 3600000000 pixels is larger "
+              "than the limit of 134217728 pixels\n"
+              "    film: {width: 60000, height: 60000}\n" +
+                  caret(15, 5));
+    Overrides huge;
+    huge.width = 1000000;
+    huge.height = 1000000;
+    EXPECT_EQ(errors_of("{}\n", huge),
+              "<command line>: error: --width must be in [1, 65536], got 1000000\n"
+              "<command line>: error: --height must be in [1, 65536], got 1000000\n");
+}
+
+TEST(SceneYaml, MissingFileIsAnError) {
+    auto sources = std::make_shared<SourceFiles>();
+    try {
+        load_scene_file("/nonexistent/scene.yaml", sources);
+        FAIL() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_STREQ(e.what(),
+                     "/nonexistent/scene.yaml: error: cannot open scene file: No such file or "
+                     "directory\n");
+    }
+}
+
+TEST(SceneYaml, JsonIsAccepted) {
+    const std::string json = R"({
+  "camera": {"type": "look_at", "from": [0, 1, -5], "to": [0, 0, 0], "fov": 40},
+  "film": {"width": 32, "height": 16},
+  "integrator": {"type": "whitted", "max_depth": 2},
+  "materials": {"red": {"color": [1, 0, 0], "shininess": 0.5}},
+  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "red"}]
+})";
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(json, "scene.json", sources);
+    const RenderJob job = build(d, {}, sources);
+    EXPECT_EQ(job.width, 32);
+    ASSERT_EQ(job.scene.spheres.size(), 1u);
+    EXPECT_EQ(job.scene.spheres[0].radius, 1);
+    const auto& m = std::get<ArticleMaterial>(job.scene.materials[job.scene.spheres[0].material]);
+    EXPECT_EQ(m.shininess, 0.5f);
+}
+
+TEST(SceneYaml, DefaultsAndOverridesApply) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene("sampler: {spp: 4, seed: 9}\n", "s.yaml", sources);
+    Overrides o;
+    o.spp = 2;
+    o.width = 20;
+    const RenderJob job = build(d, o, sources);
+    EXPECT_EQ(job.options.spp, 2);
+    EXPECT_EQ(job.options.seed, 9u);
+    EXPECT_EQ(job.width, 20);
+    EXPECT_EQ(job.height, 360);
+    EXPECT_EQ(job.encoding, Encoding::kSrgb);
+}
+
+}  // namespace
+}  // namespace glint

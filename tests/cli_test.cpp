@@ -1,0 +1,175 @@
+// End-to-end tests of the glint command: exit status, messages, and that nothing is lost.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int status;
+    std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("glint_cli_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    static std::string read(const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    Result run(const std::string& args) {
+        const std::string cmd = std::string("cd '") + dir_.string() + "' && '" + GLINT_CLI + "' " +
+                                args + " >out.txt 2>err.txt </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "out.txt"),
+                 read(dir_ / "err.txt")};
+        fs::remove(dir_ / "out.txt");
+        fs::remove(dir_ / "err.txt");
+        return r;
+    }
+    void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+    static std::string seed(const std::string& name) {
+        return std::string(GLINT_SOURCE_DIR) + "/scenes/seed/" + name;
+    }
+    fs::path dir_;
+};
+
+TEST_F(Cli, VersionAndHelp) {
+    Result r = run("--version");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, std::string("glint ") + GLINT_VERSION + "\n");
+    r = run("render --help");
+    EXPECT_EQ(r.status, 0);
+    for (const char* flag : {"--output", "--width", "--height", "--spp", "--threads", "--seed",
+                             "--max-depth", "--quiet"})
+        EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+TEST_F(Cli, BadSceneFailsAndLeavesTheExistingImageUntouched) {
+    write("old.png", "precious bytes");
+    write("bad.yaml", "objects:\n  - {type: sphere, center: [0, 0, 1], radius: -2}\n");
+    const Result r = run("render bad.yaml -o old.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err,
+              "bad.yaml:2:47: error: radius must be > 0, got -2\n"
+              "      - {type: sphere, center: [0, 0, 1], radius: -2}\n"
+              "                                                  ^~\n"
+              "glint: 1 error; no image written\n");
+    EXPECT_EQ(read(dir_ / "old.png"), "precious bytes");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 2);  // nothing else appeared
+}
+
+TEST_F(Cli, MissingSceneFileIsAnError) {
+    const Result r = run("render nowhere.yaml");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err,
+              "nowhere.yaml: error: cannot open scene file: No such file or directory\n"
+              "glint: 1 error; no image written\n");
+}
+
+TEST_F(Cli, AbsurdFilmIsRefusedWithoutAllocating) {
+    const Result r = run("render " + seed("fig07-sphere.yaml") +
+                         " --width 1000000 --height 1000000 -o big.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--width must be in [1, 65536], got 1000000"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "big.png"));
+    const Result r2 = run("render " + seed("fig07-sphere.yaml") + " --spp 0");
+    EXPECT_EQ(r2.status, 1);
+    EXPECT_NE(r2.err.find("--spp must be in [1, 1048576], got 0"), std::string::npos) << r2.err;
+}
+
+TEST_F(Cli, UnwritableOutputIsRefusedBeforeRendering) {
+    Result r = run("render " + seed("fig07-sphere.yaml") + " -o picture.gif");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("unsupported output format '.gif'"), std::string::npos) << r.err;
+    r = run("render " + seed("fig07-sphere.yaml") + " -o missing/dir/a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("rendered"), std::string::npos);  // refused before the render
+}
+
+TEST_F(Cli, NonNumericFlagIsAnError) {
+    const Result r = run("render " + seed("fig07-sphere.yaml") + " --width abc");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("--width"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, RendersExrWithLinearValuesAndPrintsASummary) {
+    const Result r = run("render " + seed("fig10-diffuse.yaml") +
+                         " --width 161 --height 91 -o fig10.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    // Not a terminal: one summary line, then where the image went.
+    EXPECT_NE(r.err.find("rendered 161x91 at 1 spp in "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Mrays/s\nwrote fig10.exr\n"), std::string::npos) << r.err;
+    auto in = OIIO::ImageInput::open((dir_ / "fig10.exr").string());
+    ASSERT_TRUE(in);
+    std::vector<float> px(161 * 91 * 3);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
+    EXPECT_NEAR(px[(45 * 161 + 80) * 3], 0.1 + 1 / std::sqrt(3.0), 2e-6);
+}
+
+TEST_F(Cli, QuietPrintsNothing) {
+    const Result r = run("render " + seed("fig07-sphere.yaml") + " --width 32 --height 18 -q -o a.png");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(fs::exists(dir_ / "a.png"));
+}
+
+TEST_F(Cli, DemoRendersTheBuiltInFigure14) {
+    const Result r = run("render --width 64 --height 36 -q");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "glint.png"));
+    // The demo is the fig14 file: same pixels.
+    ASSERT_EQ(run("render " + seed("fig14-reflections.yaml") + " --width 64 --height 36 -q -o f.png").status, 0);
+    EXPECT_EQ(read(dir_ / "glint.png"), read(dir_ / "f.png"));
+}
+
+TEST_F(Cli, OutputDefaultsToTheSceneName) {
+    write("tiny.yaml", "film: {width: 8, height: 4}\n");
+    const Result r = run("render tiny.yaml -q");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "tiny.png"));
+}
+
+TEST_F(Cli, KilledRenderLeavesTheExistingImageUntouched) {
+    write("old.png", "precious bytes");
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        // A render far too long to finish before the kill: 4096x4096 at 64 spp.
+        ::chdir(dir_.c_str());
+        ::execl(GLINT_CLI, GLINT_CLI, "render", "--width", "4096", "--height", "4096", "--spp",
+                "64", "-q", "-o", "old.png", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status));
+    EXPECT_EQ(read(dir_ / "old.png"), "precious bytes");
+}
+
+}  // namespace
