@@ -13,7 +13,7 @@ std::uint8_t encode_8bit(float v, Encoding encoding) {
     if (!(v > 0)) return 0;  // also catches NaN
     v = std::min(v, 1.0f);
     if (encoding == Encoding::kSrgb) v = srgb_encode(v);
-    return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+    return static_cast<std::uint8_t>(v * 255.0f + 0.5f);  // v in [0, 1]: round half up
 }
 
 }  // namespace glint

@@ -4,14 +4,6 @@
 
 namespace glint {
 
-std::optional<Float> Plane::intersect(const Ray& ray) const {
-    const Float denom = dot(normal, ray.direction);
-    if (std::abs(denom) < Float(1e-9)) return std::nullopt;
-    const Float t = dot(normal, point - ray.origin) / denom;
-    if (t >= kRayTMin && t < ray.t_max) return t;
-    return std::nullopt;
-}
-
 Point3 Plane::project(Point3 p) const {
     // For an axis-aligned normal this sets that coordinate to the plane's exactly: p.y + (k - p.y)
     // is exact when p.y is within a factor of two of k (Sterbenz).

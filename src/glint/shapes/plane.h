@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <optional>
 
 #include "glint/interaction.h"
@@ -14,7 +15,13 @@ struct Plane {
     MaterialId material = 0;
 
     /// t = (P0 - O).N / (D.N); rays parallel to the plane (|D.N| tiny) miss.
-    std::optional<Float> intersect(const Ray& ray) const;
+    std::optional<Float> intersect(const Ray& ray) const {
+        const Float denom = dot(normal, ray.direction);
+        if (std::abs(denom) < Float(1e-9)) return std::nullopt;
+        const Float t = dot(normal, point - ray.origin) / denom;
+        if (t >= kRayTMin && t < ray.t_max) return t;
+        return std::nullopt;
+    }
 
     /// The hit point moved exactly onto the plane. O + tD lands within round-off of the plane,
     /// on either side; a 3D checkerboard evaluated on a plane y = k would otherwise flicker

@@ -1,5 +1,7 @@
 #pragma once
+#include <cmath>
 #include <optional>
+#include <utility>
 
 #include "glint/interaction.h"
 #include "glint/ray.h"
@@ -25,7 +27,29 @@ struct Sphere {
     ///  - the two roots are q and c/q with q = -b - sign(b) sqrt(disc), so neither is the
     ///    difference of two nearly equal numbers.
     /// From inside (c < 0) the roots have opposite signs and the far one is returned.
-    std::optional<Float> intersect(const Ray& ray) const;
+    std::optional<Float> intersect(const Ray& ray) const {
+        const Vector3 f = ray.origin - center;
+        const Float b = dot(f, ray.direction);
+        const Float r2 = radius * radius;
+        // Outside and moving away: both roots are negative. (Near the surface the sign test
+        // may go either way; both roots are then below kRayTMin, a miss either way.)
+        if (b > 0 && dot(f, f) > r2) return std::nullopt;
+        const Vector3 perp = f - ray.direction * b;  // f minus its projection on D
+        const Float disc = r2 - dot(perp, perp);
+        if (disc < 0) return std::nullopt;
+        const Float root = std::sqrt(disc);
+        const Float q = b > 0 ? -b - root : -b + root;
+        // The near root is at least -b - root; skip the rest when even that is beyond t_max.
+        if (-b - root >= ray.t_max) return std::nullopt;
+        const Float dist = std::sqrt(dot(f, f));
+        const Float c = (dist - radius) * (dist + radius);
+        Float t0 = q != 0 ? c / q : 0;  // q == 0 only for a tangent ray starting at the contact
+        Float t1 = q;
+        if (t0 > t1) std::swap(t0, t1);
+        if (t0 >= kRayTMin && t0 < ray.t_max) return t0;
+        if (t1 >= kRayTMin && t1 < ray.t_max) return t1;
+        return std::nullopt;
+    }
 
     Normal3 normal_at(Point3 p) const { return Normal3((p - center) / radius); }
 };
