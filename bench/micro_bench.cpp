@@ -1,0 +1,100 @@
+// Micro-benchmarks: the ray-shape tests, camera rays, and the Whitted integrator on Figure 14.
+// Run: build/bench/glint_bench [--benchmark_repetitions=5 --benchmark_report_aggregates_only]
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "glint/io/build.h"
+#include "glint/io/scene_yaml.h"
+#include "glint/render/render.h"
+#include "glint/samplers/hash.h"
+
+namespace glint {
+namespace {
+
+std::vector<Ray> random_rays(std::size_t n, Point3 origin) {
+    std::vector<Ray> rays;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const Vector3 d{to_unit_float(mix32(3 * i)) - 0.5f, to_unit_float(mix32(3 * i + 1)) - 0.5f,
+                        1};
+        rays.push_back(Ray{origin, normalize(d)});
+    }
+    return rays;
+}
+
+void BM_SphereIntersect(benchmark::State& state) {
+    const Sphere s{{0, 0, 4}, 1};
+    const auto rays = random_rays(4096, {0, 0, 0});  // about a third hit
+    std::size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(s.intersect(rays[i++ & 4095]));
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SphereIntersect);
+
+void BM_PlaneIntersect(benchmark::State& state) {
+    const Plane p{{0, -1, 0}, {0, 1, 0}};
+    const auto rays = random_rays(4096, {0, 0, 0});
+    std::size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(p.intersect(rays[i++ & 4095]));
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_PlaneIntersect);
+
+RenderJob fig14(int w, int h) {
+    auto sources = std::make_shared<SourceFiles>();
+    Overrides o;
+    o.width = w;
+    o.height = h;
+    return build(load_scene_file(std::string(GLINT_SOURCE_DIR) +
+                                     "/scenes/seed/fig14-reflections.yaml",
+                                 sources),
+                 o, sources);
+}
+
+void BM_CameraRay(benchmark::State& state) {
+    const RenderJob job = fig14(1920, 1080);
+    float x = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(job.camera.generate_ray(x, 540.5f));
+        x = x > 1919 ? 0 : x + 1;
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_CameraRay);
+
+void BM_SceneIntersectFig14(benchmark::State& state) {
+    const RenderJob job = fig14(1920, 1080);
+    std::vector<Ray> rays;
+    for (int row = 0; row < 1080; row += 8)
+        for (int col = 0; col < 1920; col += 8) rays.push_back(job.camera.generate_ray(col + 0.5f, row + 0.5f));
+    std::size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(job.scene.intersect(rays[i]));
+        i = i + 1 == rays.size() ? 0 : i + 1;
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SceneIntersectFig14);
+
+// The whole Whitted render of Figure 14 at 480x270, 1 spp, on one thread; counters give rays/s.
+void BM_WhittedFig14(benchmark::State& state) {
+    const RenderJob job = fig14(480, 270);
+    Film film(job.width, job.height);
+    RenderOptions o = job.options;
+    o.threads = 1;
+    std::uint64_t rays = 0;
+    for (auto _ : state) {
+        rays += render(job.scene, job.camera, *job.integrator, o, film).rays;
+    }
+    state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_WhittedFig14)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace glint
+
+BENCHMARK_MAIN();
