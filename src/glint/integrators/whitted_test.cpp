@@ -23,6 +23,7 @@ Scene shadow_scene(Light light) {
     s.spheres.push_back(Sphere{{0, 2, 0}, 1, 0});
     s.lights.push_back(light);
     s.background = ConstantBackground{Color{0}};
+    s.commit();
     return s;
 }
 
@@ -96,6 +97,7 @@ TEST(Whitted, AtTheDepthLimitReflectionSeesTheBackground) {
     s.materials = {ArticleMaterial{0, 1}};
     s.spheres.push_back(Sphere{{0, 0, 5}, 1, 0});
     s.background = ConstantBackground{Color{0.5f}};
+    s.commit();
     const WhittedIntegrator w({0.2f, true, 0});
     RayCounter counter;
     // No lights: d = K a = (0.2, 0.1, 0.05); r = 0.5.
@@ -112,6 +114,7 @@ TEST(Whitted, ShininessBlendsDiffuseAndReflection) {
     s.spheres.push_back(Sphere{{0, 0, 5}, 1, 0});
     s.spheres.push_back(Sphere{{0, 0, -5}, 1, 1});
     s.background = ConstantBackground{Color{0}};
+    s.commit();
     const WhittedIntegrator w({0.5f, true, 5});
     RayCounter counter;
     // d_A = 1 * 0.5 = 0.5; r = d_B = 0.4 * 0.5 = 0.2; colour = 0.5 * 0.5 + 0.5 * 0.5 * 0.2.
@@ -126,6 +129,7 @@ TEST(Whitted, FacingMirrorsStopAtMaxDepth) {
     s.spheres.push_back(Sphere{{0, 0, 5}, 1, 0});
     s.spheres.push_back(Sphere{{0, 0, -5}, 1, 0});
     s.background = ConstantBackground{Color{1}};
+    s.commit();
     for (int depth : {0, 1, 5, 100}) {
         const WhittedIntegrator w({0.5f, true, depth});
         RayCounter counter;

@@ -132,6 +132,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     }
 
     diagnostics.throw_if_errors();
+    scene.commit();
     return job;
 }
 
