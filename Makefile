@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench gallery clean
+.PHONY: all deps configure build demo test bench gallery sanitize clean
 
 all: build
 
@@ -30,8 +30,15 @@ bench:
 	$(MAKE) build
 	bench/compare_povray.sh $(BUILD)
 
+# Every test under AddressSanitizer + UndefinedBehaviorSanitizer (clang), in build-asan/.
+sanitize: deps
+	CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DGLINT_SANITIZE=address,undefined -DGLINT_IPO=OFF -DGLINT_BUILD_BENCH=OFF
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
 gallery: build
 	scripts/render-gallery.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) build-asan

@@ -14,6 +14,7 @@ packages=(
   libfmt-dev               # formatting
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  clang                    # `make sanitize` (AddressSanitizer + UBSan builds)
 )
 # Peers for benchmarks only (`make bench`), not needed to build or test.
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then

@@ -101,6 +101,15 @@ TEST(SceneYaml, NonFiniteNumbersAreReported) {
                   caret(33, 4));
 }
 
+TEST(SceneYaml, NumbersBeyondFloatRangeAreReported) {
+    const std::string text = "background: {type: constant, color: [1e39, 0, 0]}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:38: error: number '1e39' is out of range (largest magnitude: "
+              "3.4e+38)\n"
+              "    background: {type: constant, color: [1e39, 0, 0]}\n" +
+                  caret(38, 4));
+}
+
 TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
     const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
     EXPECT_EQ(errors_of(text),

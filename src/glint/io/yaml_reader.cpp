@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace glint {
@@ -31,6 +32,12 @@ std::optional<double> YamlReader::number(const YAML::Node& node) {
     }
     if (!std::isfinite(v)) {
         error(node, fmt::format("expected a finite number, got {}", describe(node)));
+        return std::nullopt;
+    }
+    // glint computes in float: a larger magnitude would silently become infinity.
+    if (std::abs(v) > std::numeric_limits<float>::max()) {
+        error(node, fmt::format("number {} is out of range (largest magnitude: {:.3g})",
+                                describe(node), std::numeric_limits<float>::max()));
         return std::nullopt;
     }
     return v;

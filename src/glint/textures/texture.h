@@ -33,7 +33,12 @@ struct CheckerTexture {
     Color odd;
     Color eval(Point3 p) const {
         const Float inv = 1 / size;
-        const auto cell = [inv](Float v) { return static_cast<std::int64_t>(std::floor(v * inv)); };
+        const auto cell = [inv](Float v) {
+            const Float f = std::floor(v * inv);
+            // Past 2^62 (or infinite or NaN, from an absurdly small size) the cell index is
+            // meaningless and converting it would be undefined behaviour: use cell 0.
+            return std::abs(f) < 0x1p62f ? static_cast<std::int64_t>(f) : std::int64_t{0};
+        };
         const std::int64_t sum = cell(p.x) + cell(p.y) + cell(p.z);
         return (sum & 1) == 0 ? even : odd;
     }
