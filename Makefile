@@ -31,7 +31,8 @@ bench:
 	bench/compare_povray.sh $(BUILD)
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer (clang), in build-asan/.
-sanitize: deps
+sanitize:
+	GLINT_SANITIZE_DEPS=1 scripts/install-deps.sh
 	CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DGLINT_SANITIZE=address,undefined -DGLINT_IPO=OFF -DGLINT_BUILD_BENCH=OFF
 	cmake --build build-asan -j $(JOBS)

@@ -14,11 +14,15 @@ packages=(
   libfmt-dev               # formatting
   libgtest-dev libgmock-dev
   libbenchmark-dev
-  clang                    # `make sanitize` (AddressSanitizer + UBSan builds)
 )
-# Peers for benchmarks only (`make bench`), not needed to build or test.
+# Optional groups, not needed to build or test:
+# peers and timer for `make bench`,
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
   packages+=(povray hyperfine)
+fi
+# clang and its sanitizer runtimes for `make sanitize`.
+if [[ "${GLINT_SANITIZE_DEPS:-0}" == 1 ]]; then
+  packages+=(clang libclang-rt-14-dev)
 fi
 
 missing=()
