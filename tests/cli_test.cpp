@@ -9,8 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <thread>
+
+#include "testing.h"
 
 namespace {
 
@@ -23,23 +24,9 @@ struct Result {
 
 class Cli : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("glint_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    static std::string read(const fs::path& p) {
-        std::ifstream in(p, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    static std::string read(const fs::path& p) { return glint::testing::read_file(p); }
     Result run(const std::string& args) {
-        const std::string cmd = std::string("cd '") + dir_.string() + "' && '" + GLINT_CLI + "' " +
+        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && '" + GLINT_CLI + "' " +
                                 args + " >out.txt 2>err.txt </dev/null";
         const int raw = std::system(cmd.c_str());
         Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "out.txt"),
@@ -52,7 +39,7 @@ protected:
     static std::string seed(const std::string& name) {
         return std::string(GLINT_SOURCE_DIR) + "/scenes/seed/" + name;
     }
-    fs::path dir_;
+    glint::testing::TempDir dir_;
 };
 
 TEST_F(Cli, VersionAndHelp) {
@@ -77,7 +64,7 @@ TEST_F(Cli, BadSceneFailsAndLeavesTheExistingImageUntouched) {
               "                                                  ^~\n"
               "glint: 1 error; no image written\n");
     EXPECT_EQ(read(dir_ / "old.png"), "precious bytes");
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 2);  // nothing else appeared
+    EXPECT_EQ(dir_.file_count(), 2u);  // nothing else appeared
 }
 
 TEST_F(Cli, MissingSceneFileIsAnError) {
@@ -159,7 +146,7 @@ TEST_F(Cli, KilledRenderLeavesTheExistingImageUntouched) {
     ASSERT_GE(pid, 0);
     if (pid == 0) {
         // A render far too long to finish before the kill: 4096x4096 at 64 spp.
-        ::chdir(dir_.c_str());
+        if (::chdir(dir_.path().c_str()) != 0) ::_exit(126);
         ::execl(GLINT_CLI, GLINT_CLI, "render", "--width", "4096", "--height", "4096", "--spp",
                 "64", "-q", "-o", "old.png", static_cast<char*>(nullptr));
         ::_exit(127);

@@ -11,6 +11,7 @@
 #include "glint/io/scene_yaml.h"
 #include "glint/render/render.h"
 #include "reference.h"
+#include "testing.h"
 
 namespace glint {
 namespace {
@@ -107,15 +108,14 @@ TEST(Figures, Fig10RawPngHoldsTheArticlesDisplayValues) {
     ASSERT_EQ(job.encoding, Encoding::kRaw);
     Film film(job.width, job.height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("glint_fig10_" + std::to_string(::getpid()) + ".png");
+    const testing::TempDir dir;
+    const auto path = dir / "fig10.png";
     write_image(path, film, job.encoding);
     auto in = OIIO::ImageInput::open(path.string());
     ASSERT_TRUE(in);
     std::vector<unsigned char> px(static_cast<std::size_t>(kW) * kH * 3);
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
     in->close();
-    std::filesystem::remove(path);
     const std::size_t centre = (45 * kW + 80) * 3;
     EXPECT_EQ(px[centre], 173);  // round(0.67735 * 255) = round(172.72)
 }

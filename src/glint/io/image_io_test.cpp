@@ -2,27 +2,20 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
-#include <sstream>
+
+#include "testing.h"
 
 namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
 
+using testing::read_file;
+
 class ImageIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("glint_image_io_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
     static Film sample_film() {
         Film film(3, 2);
         film.at(0, 0) = {0, 0.5f, 1};
@@ -30,16 +23,8 @@ protected:
         film.at(2, 1) = {1, 1, 1};
         return film;
     }
-    static std::string read_text(const fs::path& p) {
-        std::ifstream in(p, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-    std::size_t file_count() const {
-        return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), {}));
-    }
-    fs::path dir_;
+    std::size_t file_count() const { return dir_.file_count(); }
+    testing::TempDir dir_;
 };
 
 TEST_F(ImageIo, PngRawRoundTripsThroughOpenImageIO) {
@@ -76,7 +61,7 @@ TEST_F(ImageIo, ExrIsLinearAndUnclamped) {
 TEST_F(ImageIo, PpmIsWritten) {
     const fs::path p = dir_ / "a.ppm";
     write_image(p, sample_film(), Encoding::kSrgb);
-    EXPECT_EQ(read_text(p).rfind("P6", 0), 0u);
+    EXPECT_EQ(read_file(p).rfind("P6", 0), 0u);
 }
 
 TEST_F(ImageIo, UnsupportedExtensionIsRefusedAndNothingIsWritten) {
@@ -98,7 +83,7 @@ TEST_F(ImageIo, SuccessfulWriteReplacesTheFileAndLeavesNoTemporary) {
     const fs::path p = dir_ / "a.png";
     std::ofstream(p) << "old";
     write_image(p, sample_film(), Encoding::kSrgb);
-    EXPECT_NE(read_text(p), "old");
+    EXPECT_NE(read_file(p), "old");
     EXPECT_EQ(file_count(), 1u);
 }
 
@@ -110,7 +95,7 @@ TEST_F(ImageIo, FailedWriteLeavesTheExistingTargetUntouched) {
     fs::create_directory(p);
     std::ofstream(p / "keep.txt") << "precious";
     EXPECT_THROW(write_image(p, sample_film(), Encoding::kSrgb), IoError);
-    EXPECT_EQ(read_text(p / "keep.txt"), "precious");
+    EXPECT_EQ(read_file(p / "keep.txt"), "precious");
     EXPECT_EQ(file_count(), 1u);
 }
 
