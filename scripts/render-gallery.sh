@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the article's figures (scenes/seed/*.yaml) into docs/images/ for the README and docs.
+# Renders the article's figures (scenes/seed/*.yaml) and scenes/shapes.yaml into docs/images/.
 #   scripts/render-gallery.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,3 +13,5 @@ done
 # Anti-aliased Figure 14 (16 stratified samples per pixel) beside the article's 1-sample one.
 "$glint" render scenes/seed/fig14-reflections.yaml --spp 16 -q -o docs/images/fig14-reflections-16spp.png
 echo docs/images/fig14-reflections-16spp.png
+"$glint" render scenes/shapes.yaml -q -o docs/images/shapes.png
+echo docs/images/shapes.png

@@ -51,7 +51,8 @@ std::string mutate(std::string text, std::uint32_t seed) {
 
 TEST(Robustness, MutatedScenesBuildOrFailCleanly) {
     std::vector<std::string> originals;
-    for (const auto& entry : fs::directory_iterator(fs::path(GLINT_SOURCE_DIR) / "scenes/seed")) {
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(GLINT_SOURCE_DIR) / "scenes")) {
+        if (entry.path().extension() != ".yaml") continue;
         std::ifstream in(entry.path());
         std::ostringstream s;
         s << in.rdbuf();

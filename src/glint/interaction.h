@@ -9,7 +9,7 @@ namespace glint {
 
 using MaterialId = std::uint32_t;
 
-enum class ShapeKind : std::uint8_t { kSphere, kPlane };
+enum class ShapeKind : std::uint8_t { kSphere, kPlane, kQuad, kDisk, kTriangle };
 
 struct Hit {
     Float t;

@@ -4,46 +4,76 @@
 
 namespace glint {
 
+namespace {
+
+// The typed loops: one per shape kind, no per-primitive dispatch.
+template <ShapeKind kKind, typename Shape>
+void closest_hit(const std::vector<Shape>& shapes, Ray& ray, std::optional<Hit>& best) {
+    for (std::uint32_t i = 0; i < shapes.size(); ++i) {
+        if (auto t = shapes[i].intersect(ray)) {
+            ray.t_max = *t;
+            best = Hit{*t, kKind, i};
+        }
+    }
+}
+
+template <typename Shape>
+bool any_hit(const std::vector<Shape>& shapes, const Ray& ray) {
+    for (const Shape& s : shapes)
+        if (s.intersect(ray)) return true;
+    return false;
+}
+
+}  // namespace
+
 void Scene::commit() {
-    sphere_bounds_ = Bounds3{};
+    bounds_ = Bounds3{};
     for (const Sphere& s : spheres) {
         const Vector3 r{s.radius, s.radius, s.radius};
-        sphere_bounds_.extend(s.center - r);
-        sphere_bounds_.extend(s.center + r);
+        bounds_.extend(s.center - r);
+        bounds_.extend(s.center + r);
     }
-    committed_spheres_ = spheres.size();
+    for (const Quad& q : quads) {
+        bounds_.extend(q.corner);
+        bounds_.extend(q.corner + q.edge1);
+        bounds_.extend(q.corner + q.edge2);
+        bounds_.extend(q.corner + q.edge1 + q.edge2);
+    }
+    for (const Disk& d : disks) {
+        // The disk lies in the sphere of its radius.
+        const Vector3 r{d.radius, d.radius, d.radius};
+        bounds_.extend(d.center - r);
+        bounds_.extend(d.center + r);
+    }
+    for (const Triangle& t : triangles) {
+        bounds_.extend(t.p0);
+        bounds_.extend(t.p1);
+        bounds_.extend(t.p2);
+    }
+    committed_count_ = bounded_count();
 }
 
 std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
-    assert(committed_spheres_ == spheres.size() && "Scene::commit() not called");
+    assert(committed_count_ == bounded_count() && "Scene::commit() not called");
     Ray ray = ray_in;
     std::optional<Hit> best;
-    // Planes first: a plane hit shortens t_max, which the box test and the spheres then use.
-    for (std::uint32_t i = 0; i < planes.size(); ++i) {
-        if (auto t = planes[i].intersect(ray)) {
-            ray.t_max = *t;
-            best = Hit{*t, ShapeKind::kPlane, i};
-        }
-    }
-    if (!spheres.empty() && sphere_bounds_.hit(ray, reciprocal(ray.direction))) {
-        for (std::uint32_t i = 0; i < spheres.size(); ++i) {
-            if (auto t = spheres[i].intersect(ray)) {
-                ray.t_max = *t;
-                best = Hit{*t, ShapeKind::kSphere, i};
-            }
-        }
+    // Planes first: a plane hit shortens t_max, which the box test and the rest then use.
+    closest_hit<ShapeKind::kPlane>(planes, ray, best);
+    if (bounded_count() > 0 && bounds_.hit(ray, reciprocal(ray.direction))) {
+        closest_hit<ShapeKind::kSphere>(spheres, ray, best);
+        closest_hit<ShapeKind::kQuad>(quads, ray, best);
+        closest_hit<ShapeKind::kDisk>(disks, ray, best);
+        closest_hit<ShapeKind::kTriangle>(triangles, ray, best);
     }
     return best;
 }
 
 bool Scene::occluded(const Ray& ray) const {
-    assert(committed_spheres_ == spheres.size() && "Scene::commit() not called");
-    for (const Plane& p : planes)
-        if (p.intersect(ray)) return true;
-    if (spheres.empty() || !sphere_bounds_.hit(ray, reciprocal(ray.direction))) return false;
-    for (const Sphere& s : spheres)
-        if (s.intersect(ray)) return true;
-    return false;
+    assert(committed_count_ == bounded_count() && "Scene::commit() not called");
+    if (any_hit(planes, ray)) return true;
+    if (bounded_count() == 0 || !bounds_.hit(ray, reciprocal(ray.direction))) return false;
+    return any_hit(spheres, ray) || any_hit(quads, ray) || any_hit(disks, ray) ||
+           any_hit(triangles, ray);
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
@@ -57,6 +87,10 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
             const Plane& pl = planes[hit.index];
             return {pl.project(p), pl.normal, pl.material};
         }
+        case ShapeKind::kQuad: return {p, quads[hit.index].normal(), quads[hit.index].material};
+        case ShapeKind::kDisk: return {p, disks[hit.index].normal, disks[hit.index].material};
+        case ShapeKind::kTriangle:
+            return {p, triangles[hit.index].normal(), triangles[hit.index].material};
     }
     return {p, Normal3{0, 1, 0}, 0};  // unreachable: the switch covers every ShapeKind
 }

@@ -2,8 +2,8 @@
 // The render-time scene: flat arrays indexed by ids, no names, no maps, no owning pointers.
 // Shapes live in one array per kind so the intersection loops are typed (no per-primitive
 // dispatch). There is no acceleration structure yet: the article's scenes have a handful of
-// primitives, tested in a loop behind one bounding box around all the spheres (rays towards the
-// sky skip them all); the BVH issue replaces this.
+// primitives, tested in loops behind one bounding box around all the bounded shapes (rays towards
+// the sky skip them all; planes are unbounded and tested first); the BVH issue replaces this.
 //
 // After filling or changing the arrays, call commit() before tracing (as with Embree's
 // rtcCommitScene): it computes what the intersection loops derive from them.
@@ -15,8 +15,11 @@
 #include "glint/interaction.h"
 #include "glint/lights/light.h"
 #include "glint/materials/material.h"
+#include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
+#include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
+#include "glint/shapes/triangle.h"
 #include "glint/textures/texture.h"
 
 namespace glint {
@@ -24,12 +27,15 @@ namespace glint {
 struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
+    std::vector<Quad> quads;
+    std::vector<Disk> disks;
+    std::vector<Triangle> triangles;
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<Light> lights;
     Background background = SkyBackground{};
 
-    /// Computes the derived data (the spheres' bounds) from the arrays.
+    /// Computes the derived data (the bounds of the bounded shapes) from the arrays.
     void commit();
 
     /// Nearest hit in [kRayTMin, ray.t_max).
@@ -40,8 +46,11 @@ struct Scene {
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
 private:
-    Bounds3 sphere_bounds_;
-    std::size_t committed_spheres_ = 0;
+    std::size_t bounded_count() const {
+        return spheres.size() + quads.size() + disks.size() + triangles.size();
+    }
+    Bounds3 bounds_;  ///< around every sphere, quad, disk and triangle
+    std::size_t committed_count_ = 0;
 };
 
 }  // namespace glint

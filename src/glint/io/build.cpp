@@ -15,6 +15,13 @@ TextureId add_texture(Scene& scene, const Texture& t) {
     return static_cast<TextureId>(scene.textures.size() - 1);
 }
 
+// The scene's array for each shape type; a shape without one is a compile error.
+std::vector<Sphere>& shapes_of(Scene& s, const Sphere&) { return s.spheres; }
+std::vector<Plane>& shapes_of(Scene& s, const Plane&) { return s.planes; }
+std::vector<Quad>& shapes_of(Scene& s, const Quad&) { return s.quads; }
+std::vector<Disk>& shapes_of(Scene& s, const Disk&) { return s.disks; }
+std::vector<Triangle>& shapes_of(Scene& s, const Triangle&) { return s.triangles; }
+
 MaterialId add_material(Scene& scene, const MaterialDesc& d) {
     scene.materials.push_back(ArticleMaterial{add_texture(scene, d.color), d.shininess});
     return static_cast<MaterialId>(scene.materials.size() - 1);
@@ -122,11 +129,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::visit(
             [&](auto shape) {
                 shape.material = id;
-                if constexpr (std::is_same_v<decltype(shape), Sphere>) {
-                    scene.spheres.push_back(shape);
-                } else {
-                    scene.planes.push_back(shape);
-                }
+                shapes_of(scene, shape).push_back(shape);
             },
             o.shape);
     }

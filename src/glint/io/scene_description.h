@@ -12,8 +12,11 @@
 #include "glint/film/tonemap.h"
 #include "glint/io/diagnostics.h"
 #include "glint/lights/light.h"
+#include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
+#include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
+#include "glint/shapes/triangle.h"
 #include "glint/textures/texture.h"
 
 namespace glint {
@@ -75,7 +78,8 @@ struct MaterialRef {
 };
 
 struct ObjectDesc {
-    std::variant<Sphere, Plane> shape = Sphere{{0, 0, 0}, 1};  ///< material ids set by build
+    /// Material ids are set by build. A `box` in the file arrives here as six quads.
+    std::variant<Sphere, Plane, Quad, Disk, Triangle> shape = Sphere{{0, 0, 0}, 1};
     MaterialRef material;
     SourceLoc loc;
 };

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -298,35 +299,99 @@ private:
             return;
         }
         for (const YAML::Node& item : node) {
-            const auto type = type_of(item, "object", {"sphere", "plane"});
+            const auto type =
+                type_of(item, "object", {"sphere", "plane", "quad", "disk", "triangle", "box"});
             if (!type) continue;
-            ObjectDesc o;
-            o.loc = r_.loc(item);
+            const std::size_t first = out.size();
             std::optional<YAML::Node> mat;
             if (*type == "sphere") {
                 Sphere s{{0, 0, 0}, 1};
                 MapReader m(r_, item, "sphere", {"type", "center", "radius", "material"});
                 assign(m.require("center"), s.center, point());
                 assign(m.require("radius"), s.radius, positive("radius"));
-                o.shape = s;
+                out.push_back({s, {}, {}});
                 mat = m.get("material");
-            } else {
+            } else if (*type == "plane") {
                 Plane p{{0, 0, 0}, {0, 1, 0}};
                 MapReader m(r_, item, "plane", {"type", "point", "normal", "material"});
                 assign(m.require("point"), p.point, point());
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
                 p.normal = Normal3(normalize(n));
-                o.shape = p;
+                out.push_back({p, {}, {}});
+                mat = m.get("material");
+            } else if (*type == "quad") {
+                Point3 corner{0, 0, 0};
+                Vector3 e1{1, 0, 0}, e2{0, 1, 0};
+                MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material"});
+                assign(m.require("corner"), corner, point());
+                assign(m.require("edge1"), e1, direction("edge1"));
+                const auto edge2 = m.require("edge2");
+                assign(edge2, e2, direction("edge2"));
+                if (edge2 && !(length(cross(e1, e2)) > 0)) {
+                    r_.error(*edge2, "quad: edge1 and edge2 must not be parallel");
+                }
+                out.push_back({Quad::make(corner, e1, e2), {}, {}});
+                mat = m.get("material");
+            } else if (*type == "disk") {
+                Disk d{{0, 0, 0}, {0, 1, 0}, 1};
+                MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material"});
+                assign(m.require("center"), d.center, point());
+                Vector3 n{0, 1, 0};
+                assign(m.require("normal"), n, direction("normal"));
+                d.normal = Normal3(normalize(n));
+                assign(m.require("radius"), d.radius, positive("radius"));
+                out.push_back({d, {}, {}});
+                mat = m.get("material");
+            } else if (*type == "triangle") {
+                Triangle t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+                MapReader m(r_, item, "triangle", {"type", "vertices", "material"});
+                if (const auto v = m.require("vertices")) {
+                    if (!v->IsSequence() || v->size() != 3) {
+                        r_.error(*v, fmt::format("triangle: expected a list of 3 vertices, got {}",
+                                                 v->IsSequence() ? fmt::format("a list of {}", v->size())
+                                                                 : describe(*v)));
+                    } else {
+                        const auto a = r_.point((*v)[0]), b = r_.point((*v)[1]), c = r_.point((*v)[2]);
+                        if (a && b && c) {
+                            t = Triangle{*a, *b, *c};
+                            if (!(length(cross(*b - *a, *c - *a)) > 0)) {
+                                r_.error(*v, "triangle: the vertices are collinear (zero area)");
+                            }
+                        }
+                    }
+                }
+                out.push_back({t, {}, {}});
+                mat = m.get("material");
+            } else {
+                Point3 lo{0, 0, 0}, hi{1, 1, 1};
+                MapReader m(r_, item, "box", {"type", "min", "max", "material"});
+                assign(m.require("min"), lo, point());
+                const auto max_node = m.require("max");
+                assign(max_node, hi, point());
+                if (max_node && !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z)) {
+                    r_.error(*max_node, "box: max must exceed min on every axis");
+                }
+                for (const Quad& q : box_faces(lo, hi)) out.push_back({q, {}, {}});
                 mat = m.get("material");
             }
-            if (mat) {
-                o.material = material_ref(*mat);
-            } else {
-                o.material = {MaterialDesc{}, o.loc};  // the default grey
+            const MaterialRef ref = mat ? material_ref(*mat) : MaterialRef{MaterialDesc{}, r_.loc(item)};
+            for (std::size_t i = first; i < out.size(); ++i) {
+                out[i].material = ref;
+                out[i].loc = r_.loc(item);
             }
-            out.push_back(std::move(o));
         }
+    }
+
+    // The six faces of an axis-aligned box as quads whose normals (edge1 x edge2) point outward.
+    static std::array<Quad, 6> box_faces(Point3 lo, Point3 hi) {
+        const Vector3 dx{hi.x - lo.x, 0, 0}, dy{0, hi.y - lo.y, 0}, dz{0, 0, hi.z - lo.z};
+        return {Quad::make(lo, dz, dy),                       // x = min, facing -x
+                Quad::make({hi.x, lo.y, lo.z}, dy, dz),       // x = max, facing +x
+                Quad::make(lo, dx, dz),                       // y = min, facing -y
+                Quad::make({lo.x, hi.y, lo.z}, dz, dx),       // y = max, facing +y
+                Quad::make(lo, dy, dx),                       // z = min, facing -z
+                Quad::make({lo.x, lo.y, hi.z}, dx, dy)};      // z = max, facing +z
     }
 
     YamlReader r_;

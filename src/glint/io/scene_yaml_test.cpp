@@ -114,7 +114,7 @@ TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
     const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
     EXPECT_EQ(errors_of(text),
               "scene.yaml:2:12: error: unknown object type 'sphre'; did you mean 'sphere'? "
-              "(known: sphere, plane)\n"
+              "(known: sphere, plane, quad, disk, triangle, box)\n"
               "      - {type: sphre, center: [0, 0, 1], radius: 1}\n" +
                   caret(12, 5));
 }
@@ -166,6 +166,38 @@ TEST(SceneYaml, MissingFileIsAnError) {
                      "/nonexistent/scene.yaml: error: cannot open scene file: No such file or "
                      "directory\n");
     }
+}
+
+TEST(SceneYaml, BoxIsSixOutwardFacingQuads) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(
+        parse_scene("objects: [{type: box, min: [1, 2, 3], max: [4, 6, 8]}]\n", "s.yaml", sources),
+        {}, sources);
+    ASSERT_EQ(job.scene.quads.size(), 6u);
+    const Point3 centre{2.5f, 4, 5.5f};
+    Float area = 0;
+    for (const Quad& q : job.scene.quads) {
+        const Point3 face_centre = q.corner + (q.edge1 + q.edge2) * 0.5f;
+        EXPECT_GT(dot(q.normal(), face_centre - centre), 0);  // outward
+        area += q.area();
+    }
+    EXPECT_NEAR(area, 2 * (3 * 4 + 4 * 5 + 3 * 5), 1e-4);  // 2(ab + bc + ca)
+}
+
+TEST(SceneYaml, DegenerateShapesAreReported) {
+    const std::string text =
+        "objects:\n"
+        "  - {type: quad, corner: [0, 0, 0], edge1: [1, 0, 0], edge2: [2, 0, 0]}\n"
+        "  - {type: triangle, vertices: [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}\n"
+        "  - {type: box, min: [0, 0, 0], max: [1, 0, 1]}\n"
+        "  - {type: disk, center: [0, 0, 0], normal: [0, 1, 0], radius: 0}\n"
+        "  - {type: triangle, vertices: [[0, 0, 0], [1, 1, 1]]}\n";
+    const std::string e = errors_of(text);
+    EXPECT_NE(e.find("scene.yaml:2:62: error: quad: edge1 and edge2 must not be parallel\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:32: error: triangle: the vertices are collinear (zero area)\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:4:38: error: box: max must exceed min on every axis\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:5:64: error: radius must be > 0, got 0\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:6:32: error: triangle: expected a list of 3 vertices, got a list of 2\n"), std::string::npos) << e;
 }
 
 TEST(SceneYaml, JsonIsAccepted) {

@@ -1,10 +1,13 @@
 #pragma once
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <utility>
 
 #include "glint/interaction.h"
 #include "glint/ray.h"
+#include "glint/samplers/stratified.h"
+#include "glint/shapes/area_sample.h"
 
 namespace glint {
 
@@ -52,6 +55,16 @@ struct Sphere {
     }
 
     Normal3 normal_at(Point3 p) const { return Normal3((p - center) / radius); }
+
+    Float area() const { return 4 * std::numbers::pi_v<Float> * radius * radius; }
+    /// Uniform by area: z = 1 - 2 u1 is uniform on [-1, 1] (Archimedes), phi = 2 pi u2.
+    AreaSample sample_area(Sample2 u) const {
+        const Float z = 1 - 2 * u.x;
+        const Float r = std::sqrt(std::max(Float(0), 1 - z * z));
+        const Float phi = 2 * std::numbers::pi_v<Float> * u.y;
+        const Normal3 n{r * std::cos(phi), r * std::sin(phi), z};
+        return {center + to_vector(n) * radius, n};
+    }
 };
 
 }  // namespace glint

@@ -1,0 +1,40 @@
+#pragma once
+#include <numbers>
+#include <optional>
+
+#include "glint/interaction.h"
+#include "glint/math/frame.h"
+#include "glint/ray.h"
+#include "glint/samplers/warp.h"
+#include "glint/shapes/area_sample.h"
+
+namespace glint {
+
+/// A flat disk of `radius` around `center`, facing along the unit `normal`.
+struct Disk {
+    Point3 center;
+    Normal3 normal;
+    Float radius;
+    MaterialId material = 0;
+
+    std::optional<Float> intersect(const Ray& ray) const {
+        const Float denom = dot(normal, ray.direction);
+        if (std::abs(denom) < Float(1e-12)) return std::nullopt;
+        const Float t = dot(normal, center - ray.origin) / denom;
+        if (!(t >= kRayTMin && t < ray.t_max)) return std::nullopt;
+        const Vector3 w = ray.at(t) - center;
+        if (dot(w, w) > radius * radius) return std::nullopt;
+        return t;
+    }
+
+    Float area() const { return std::numbers::pi_v<Float> * radius * radius; }
+    /// Concentric mapping onto the disk's plane.
+    AreaSample sample_area(Sample2 u) const {
+        Vector3 t, b;
+        orthonormal_basis(to_vector(normal), t, b);
+        const Point2 d = sample_uniform_disk_concentric(u);
+        return {center + (t * d.x + b * d.y) * radius, normal};
+    }
+};
+
+}  // namespace glint

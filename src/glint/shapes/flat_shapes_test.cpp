@@ -1,0 +1,212 @@
+// Quads, disks and triangles: hand-computed hits and misses, watertightness, and area sampling
+// (points on the shape, uniform by area, density 1/area).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "glint/samplers/hash.h"
+#include "glint/shapes/disk.h"
+#include "glint/shapes/quad.h"
+#include "glint/shapes/sphere.h"
+#include "glint/shapes/triangle.h"
+#include "stats.h"
+
+namespace glint {
+namespace {
+
+Ray ray(Point3 o, Vector3 d) { return Ray{o, normalize(d)}; }
+Sample2 uniform(std::uint32_t i) {
+    return {to_unit_float(mix32(2 * i + 77)), to_unit_float(mix32(2 * i + 78))};
+}
+
+// The Cornell box light: 343..213 in x, 227..332 in z at y = 548.7. Edge order (z, then -x):
+// (0,0,105) x (-130,0,0) = (0*0 - 105*0, 105*(-130) - 0*0, 0*0 - 0*(-130)) = (0, -13650, 0),
+// so it faces down, into the box.
+const Quad kLight = Quad::make({343, 548.7f, 227}, {0, 0, 105}, {-130, 0, 0});
+
+TEST(Quad, HitsInsideMissesOutside) {
+    auto t = kLight.intersect(ray({278, 0, 280}, {0, 1, 0}));
+    ASSERT_TRUE(t);
+    EXPECT_NEAR(*t, 548.7f, 1e-3);
+    EXPECT_FALSE(kLight.intersect(ray({200, 0, 280}, {0, 1, 0})));  // x outside 213..343
+    EXPECT_FALSE(kLight.intersect(ray({278, 0, 340}, {0, 1, 0})));  // z outside 227..332
+    EXPECT_FALSE(kLight.intersect(ray({278, 0, 280}, {1, 0, 0})));  // parallel
+    EXPECT_FALSE(kLight.intersect(ray({278, 600, 280}, {0, 1, 0})));  // behind
+}
+
+TEST(Quad, NormalIsEdge1CrossEdge2AndAreaIsTheParallelogram) {
+    EXPECT_NEAR(kLight.normal().y, -1, 1e-6);
+    EXPECT_NEAR(kLight.area(), 130.0f * 105.0f, 1e-2);
+    const Quad skew = Quad::make({0, 0, 0}, {2, 0, 0}, {1, 3, 0});
+    EXPECT_NEAR(skew.area(), 6, 1e-5);  // base 2, height 3
+    EXPECT_TRUE(skew.intersect(ray({2.9f, 2.9f, -1}, {0, 0, 1})));   // inside the slanted side
+    EXPECT_FALSE(skew.intersect(ray({0.5f, 2.9f, -1}, {0, 0, 1})));  // left of it
+}
+
+TEST(Disk, HitsWithinTheRadius) {
+    const Disk d{{0, 0, 5}, {0, 0, -1}, 2};
+    auto t = d.intersect(ray({1.9f, 0, 0}, {0, 0, 1}));
+    ASSERT_TRUE(t);
+    EXPECT_FLOAT_EQ(*t, 5);
+    EXPECT_FALSE(d.intersect(ray({1.5f, 1.5f, 0}, {0, 0, 1})));  // |(1.5,1.5)| = 2.12 > 2
+    EXPECT_NEAR(d.area(), 4 * std::numbers::pi, 1e-5);
+}
+
+TEST(Triangle, HitsAtHandValuesAndMissesOutside) {
+    const Triangle tri{{0, 0, 5}, {2, 0, 5}, {0, 2, 5}};
+    auto t = tri.intersect(ray({0.5f, 0.5f, 0}, {0, 0, 1}));
+    ASSERT_TRUE(t);
+    EXPECT_FLOAT_EQ(*t, 5);
+    EXPECT_FALSE(tri.intersect(ray({1.5f, 1.5f, 0}, {0, 0, 1})));  // beyond the hypotenuse
+    EXPECT_FALSE(tri.intersect(ray({0.5f, 0.5f, 6}, {0, 0, 1})));  // behind
+    // Slanted ray: from (0,0,0) towards (1, 0.5, 5), t = |(1, 0.5, 5)|.
+    t = tri.intersect(ray({0, 0, 0}, {1, 0.5f, 5}));
+    ASSERT_TRUE(t);
+    EXPECT_NEAR(*t, std::sqrt(1 + 0.25 + 25), 1e-5);
+    EXPECT_NEAR(tri.area(), 2, 1e-6);
+    EXPECT_NEAR(tri.normal().z, 1, 1e-6);  // (2,0,0) x (0,2,0) = (0,0,4)
+}
+
+TEST(Triangle, RaysThroughSharedEdgesAndVerticesNeverSlipThrough) {
+    // A fan of 8 triangles around a centre vertex, all in the plane z = 3 with awkward
+    // coordinates. Rays aimed exactly at the shared vertex, at points on the shared edges and at
+    // the fan's edge midpoints must hit at least one triangle.
+    const Point3 c{0.1f, -0.3f, 3};
+    std::vector<Point3> rim;
+    for (int i = 0; i < 8; ++i) {
+        const float a = static_cast<float>(i) * std::numbers::pi_v<float> / 4 + 0.1f;
+        rim.push_back({c.x + 1.7f * std::cos(a), c.y + 1.3f * std::sin(a), 3});
+    }
+    std::vector<Triangle> fan;
+    for (int i = 0; i < 8; ++i) fan.push_back({c, rim[static_cast<std::size_t>(i)], rim[static_cast<std::size_t>((i + 1) % 8)]});
+    auto hit_any = [&](Point3 origin, Point3 target) {
+        const Ray r = ray(origin, target - origin);
+        for (const Triangle& t : fan)
+            if (t.intersect(r)) return true;
+        return false;
+    };
+    int aimed = 0;
+    for (Point3 origin : {Point3{0, 0, 0}, Point3{-2.3f, 1.1f, -4}, Point3{0.37f, 5, 0.5f}}) {
+        EXPECT_TRUE(hit_any(origin, c));
+        ++aimed;
+        for (int i = 0; i < 8; ++i) {
+            const Point3 v = rim[static_cast<std::size_t>(i)];
+            for (float f : {0.1f, 0.333f, 0.5f, 0.77f, 0.999f}) {
+                EXPECT_TRUE(hit_any(origin, c + (v - c) * f)) << i << " " << f;
+                ++aimed;
+            }
+        }
+    }
+    EXPECT_EQ(aimed, 3 * (1 + 8 * 5));
+}
+
+// The textbook Moller-Trumbore test, in float: the control that shows the watertightness test
+// below can fail.
+bool moller_trumbore(const Triangle& tr, const Ray& r) {
+    const Vector3 e1 = tr.p1 - tr.p0, e2 = tr.p2 - tr.p0, p = cross(r.direction, e2);
+    const float det = dot(e1, p);
+    if (std::abs(det) < 1e-12f) return false;
+    const float inv = 1 / det;
+    const Vector3 s = r.origin - tr.p0;
+    const float u = dot(s, p) * inv;
+    if (u < 0 || u > 1) return false;
+    const Vector3 q = cross(s, e1);
+    const float v = dot(r.direction, q) * inv;
+    if (v < 0 || u + v > 1) return false;
+    return dot(e2, q) * inv > kRayTMin;
+}
+
+TEST(Triangle, RaysAtRandomSharedEdgesNeverSlipThrough) {
+    // Pairs of triangles sharing a random edge a-b, and rays from random origins aimed at random
+    // points of that edge: at least one of the two must report a hit. Moller-Trumbore, run on
+    // the same rays, lets a few percent through (it computes each triangle's edge test
+    // differently); the watertight test must let none through.
+    int mt_cracks = 0, cracks = 0;
+    const int n = 50000;
+    for (std::uint32_t k = 0; k < n; ++k) {
+        auto u = [k](std::uint32_t j) { return to_unit_float(mix32(k * 16 + j)); };
+        const Point3 a{u(0) * 4 - 2, u(1) * 4 - 2, 3 + u(2)}, b{u(3) * 4 - 2, u(4) * 4 - 2, 3 + u(5)};
+        const Point3 c{u(6) * 4 - 2, u(7) * 4 - 2, 3};
+        const Point3 mid = a + (b - a) * 0.5f;
+        const Point3 d = mid + (mid - c);  // across the edge from c
+        const Triangle t1{a, b, c}, t2{b, a, d};
+        const Point3 target = a + (b - a) * u(8);
+        const Point3 o{u(9) * 10 - 5, u(10) * 10 - 5, -5 - u(11) * 5};
+        const Ray r = ray(o, target - o);
+        cracks += !t1.intersect(r) && !t2.intersect(r);
+        mt_cracks += !moller_trumbore(t1, r) && !moller_trumbore(t2, r);
+    }
+    EXPECT_EQ(cracks, 0);
+    EXPECT_GT(mt_cracks, n / 100);  // the rays really are hard
+}
+
+// Samples must lie on the shape, and their mean must be its centroid (a uniform density by
+// area). For the disk and triangle the warps' uniformity is checked by chi-square in
+// warp_test.cpp; here we check the placement in space.
+template <typename Shape>
+void check_area_samples(const Shape& shape, Point3 centroid, auto on_shape) {
+    double sx = 0, sy = 0, sz = 0;
+    const int n = 40000;
+    for (int i = 0; i < n; ++i) {
+        const AreaSample s = shape.sample_area(uniform(static_cast<std::uint32_t>(i)));
+        ASSERT_TRUE(on_shape(s.p)) << s.p.x << "," << s.p.y << "," << s.p.z;
+        sx += s.p.x, sy += s.p.y, sz += s.p.z;
+    }
+    const double scale = std::sqrt(shape.area());
+    EXPECT_NEAR(sx / n, centroid.x, 0.01 * scale);
+    EXPECT_NEAR(sy / n, centroid.y, 0.01 * scale);
+    EXPECT_NEAR(sz / n, centroid.z, 0.01 * scale);
+}
+
+TEST(AreaSampling, QuadSamplesLieOnTheQuadAroundItsCentroid) {
+    const Quad q = Quad::make({1, 2, 3}, {2, 0, 1}, {0, 3, 0});
+    check_area_samples(q, Point3{2, 3.5f, 3.5f}, [&](Point3 p) {
+        const Vector3 w = p - q.corner;
+        const double a = dot(cross(w, q.edge2), q.n_raw) * q.inv_len2;
+        const double b = dot(cross(q.edge1, w), q.n_raw) * q.inv_len2;
+        return std::abs(dot(q.normal(), w)) < 1e-4 && a > -1e-5 && a < 1 + 1e-5 && b > -1e-5 &&
+               b < 1 + 1e-5;
+    });
+}
+
+TEST(AreaSampling, DiskSamplesLieOnTheDisk) {
+    const Disk d{{1, -2, 0.5f}, Normal3(normalize(Vector3{1, 2, -2})), 1.5f};
+    check_area_samples(d, d.center, [&](Point3 p) {
+        const Vector3 w = p - d.center;
+        return std::abs(dot(d.normal, w)) < 1e-4 && dot(w, w) <= 1.5 * 1.5 + 1e-4;
+    });
+}
+
+TEST(AreaSampling, TriangleSamplesLieOnTheTriangleAroundItsCentroid) {
+    const Triangle t{{0, 0, 0}, {3, 0, 1}, {0, 2, 2}};
+    check_area_samples(t, Point3{1, 2.0f / 3, 1}, [&](Point3 p) {
+        return static_cast<bool>(
+            t.intersect(Ray{p + to_vector(t.normal()) * 0.01f, -to_vector(t.normal())}));
+    });
+}
+
+TEST(AreaSampling, SphereSamplesAreUniformOverTheSphere) {
+    // Archimedes: equal-height slabs of a sphere have equal area. 16 slabs x 16 sectors.
+    const Sphere s{{1, 2, 3}, 2};
+    const int slabs = 16, sectors = 16, n = 128000;
+    std::vector<double> observed(slabs * sectors, 0), expected(slabs * sectors, double(n) / (slabs * sectors));
+    for (int i = 0; i < n; ++i) {
+        const AreaSample a = s.sample_area(uniform(static_cast<std::uint32_t>(i)));
+        ASSERT_NEAR(length(a.p - s.center), 2, 1e-5);
+        ASSERT_NEAR(dot(a.n, (a.p - s.center) / 2), 1, 1e-5);
+        const double z = (a.p.z - s.center.z) / 2;
+        const int slab = std::min(slabs - 1, static_cast<int>((z + 1) / 2 * slabs));
+        double phi = std::atan2(a.p.y - s.center.y, a.p.x - s.center.x);
+        if (phi < 0) phi += 2 * std::numbers::pi;
+        const int sector = std::min(sectors - 1, static_cast<int>(phi / (2 * std::numbers::pi) * sectors));
+        observed[static_cast<std::size_t>(slab * sectors + sector)] += 1;
+    }
+    EXPECT_LT(testing::chi_square(observed, expected),
+              testing::chi_square_critical_1e4(slabs * sectors - 1));
+    EXPECT_NEAR(s.area(), 16 * std::numbers::pi, 1e-4);
+}
+
+}  // namespace
+}  // namespace glint
