@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the article's figures (scenes/seed/*.yaml) and scenes/shapes.yaml into docs/images/.
+# Renders the article's figures (scenes/seed/*.yaml) and the examples in scenes/ into docs/images/.
 #   scripts/render-gallery.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,5 +13,7 @@ done
 # Anti-aliased Figure 14 (16 stratified samples per pixel) beside the article's 1-sample one.
 "$glint" render scenes/seed/fig14-reflections.yaml --spp 16 -q -o docs/images/fig14-reflections-16spp.png
 echo docs/images/fig14-reflections-16spp.png
-"$glint" render scenes/shapes.yaml -q -o docs/images/shapes.png
-echo docs/images/shapes.png
+for name in shapes fig14-dof; do
+  "$glint" render "scenes/$name.yaml" -q -o "docs/images/$name.png"
+  echo "docs/images/$name.png"
+done

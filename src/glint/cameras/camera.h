@@ -15,7 +15,13 @@
 //
 // The look_at + vertical-field-of-view form builds the same camera: V = normalize(to - from),
 // z = 1, h = 2 tan(fov/2), w = h * Sw/Sh (square pixels).
+//
+// Thin lens (depth of field), on either form: with an aperture radius a > 0, the ray for a film
+// point starts at a point of the lens disk P + a (lx H + ly U) and passes through the point where
+// the pinhole ray meets the focus plane (the plane perpendicular to V at the focus distance), so
+// everything on that plane is sharp. With a = 0 the ray is exactly the pinhole ray.
 #include "glint/ray.h"
+#include "glint/samplers/warp.h"
 
 namespace glint {
 
@@ -38,6 +44,14 @@ public:
     static Camera look_at(Point3 from, Point3 to, Vector3 up, Float vertical_fov_degrees,
                           int film_width, int film_height);
 
+    /// Turns the camera into a thin lens of `aperture_radius` focused at `focus_distance` along
+    /// V (both > 0 to have an effect; aperture 0 keeps the pinhole).
+    void set_lens(Float aperture_radius, Float focus_distance) {
+        aperture_radius_ = aperture_radius;
+        focus_distance_ = focus_distance;
+    }
+    Float aperture_radius() const { return aperture_radius_; }
+
     /// The camera ray through continuous film position (fx, fy): fx in [0, Sw) to the right,
     /// fy in [0, Sh) downward from the top edge. The pixel centre of (col, row) is
     /// (col + 0.5, row + 0.5).
@@ -46,6 +60,19 @@ public:
         const Float y = film_height_ - fy;
         const Vector3 a = corner_ + h_step_ * x + u_step_ * y;
         return Ray{position_, normalize(a)};
+    }
+
+    /// The same through a thin lens: `lens` in [0,1)^2 picks the point on the aperture
+    /// (concentric disk map). Identical to generate_ray(fx, fy) when the aperture is 0.
+    Ray generate_ray(Float fx, Float fy, Sample2 lens) const {
+        const Ray pinhole = generate_ray(fx, fy);
+        if (aperture_radius_ <= 0) return pinhole;
+        const Point3 focus =
+            pinhole.at(focus_distance_ / dot(pinhole.direction, v_));  // on the focus plane
+        const Point2 d = sample_uniform_disk_concentric(lens);
+        const Point3 origin =
+            position_ + (basis_.h * d.x + basis_.u * d.y) * aperture_radius_;
+        return Ray{origin, normalize(focus - origin)};
     }
 
     const CameraBasis& basis() const { return basis_; }
@@ -59,6 +86,8 @@ private:
     Vector3 h_step_;  ///< (w/Sw) H
     Vector3 u_step_;  ///< (h/Sh) U
     Float film_height_ = 1;
+    Float aperture_radius_ = 0;
+    Float focus_distance_ = 1;
 };
 
 }  // namespace glint

@@ -67,5 +67,56 @@ TEST(Camera, LookAtBuildsTheSameCameraAsTheArticleForm) {
             expect_vec(a.generate_ray(fx, fy).direction, b.generate_ray(fx, fy).direction, 1e-6f);
 }
 
+Sample2 lens_sample(std::uint32_t i) {
+    return {static_cast<float>((i * 7919u) % 1000u) / 1000.0f,
+            static_cast<float>((i * 104729u) % 997u) / 997.0f};
+}
+
+TEST(ThinLens, ZeroApertureIsExactlyThePinhole) {
+    const Camera cam({0, 1, -3}, {0, -0.2f, 1}, {0, 1, 0}, 3, 2, 1, 300, 200);
+    for (std::uint32_t i = 0; i < 50; ++i) {
+        const Ray a = cam.generate_ray(17.3f + i, 99.5f);
+        const Ray b = cam.generate_ray(17.3f + i, 99.5f, lens_sample(i));
+        EXPECT_EQ(a.origin, b.origin);
+        EXPECT_EQ(a.direction, b.direction);
+    }
+}
+
+TEST(ThinLens, RaysThroughOneFilmPointMeetOnTheFocusPlane) {
+    Camera cam = Camera::look_at({1, 2, -5}, {0, 0.5f, 2}, {0, 1, 0}, 40, 320, 180);
+    const Float focus = 6.5f, aperture = 0.3f;
+    cam.set_lens(aperture, focus);
+    const Vector3 v = cam.view_direction();
+    const Point3 p{1, 2, -5};
+    for (auto [fx, fy] : {std::pair{160.0f, 90.0f}, std::pair{3.5f, 170.25f}}) {
+        // The pinhole ray's point on the plane {x : (x - P).V = focus}.
+        const Ray pin = cam.generate_ray(fx, fy);
+        const Point3 target = pin.at(focus / dot(pin.direction, v));
+        for (std::uint32_t i = 0; i < 64; ++i) {
+            const Ray r = cam.generate_ray(fx, fy, lens_sample(i));
+            // Origins lie on the aperture disk, in the lens plane.
+            EXPECT_LE(length(r.origin - p), aperture * (1 + 1e-5f));
+            EXPECT_NEAR(dot(r.origin - p, v), 0, 1e-5);
+            EXPECT_NEAR(length(r.direction), 1, 1e-6);
+            // ...and every ray passes through the same point of the focus plane.
+            const Float t = (focus - dot(r.origin - p, v)) / dot(r.direction, v);
+            EXPECT_NEAR(length(r.at(t) - target), 0, 2e-5f * focus) << i;
+        }
+    }
+}
+
+TEST(ThinLens, LensSamplesCoverTheAperture) {
+    Camera cam({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 2, 2, 1, 10, 10);
+    cam.set_lens(1, 5);
+    double mean_x = 0, max_r = 0;
+    for (std::uint32_t i = 0; i < 1000; ++i) {
+        const Ray r = cam.generate_ray(5, 5, lens_sample(i));
+        mean_x += r.origin.x;
+        max_r = std::max(max_r, static_cast<double>(length(r.origin - Point3{0, 0, 0})));
+    }
+    EXPECT_NEAR(mean_x / 1000, 0, 0.05);
+    EXPECT_GT(max_r, 0.95);  // reaches the rim
+}
+
 }  // namespace
 }  // namespace glint

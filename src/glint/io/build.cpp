@@ -76,9 +76,11 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                                                     static_cast<Float>(job.height));
         job.camera = Camera(a->position, a->direction, a->up, vw, a->viewport_height, a->near,
                             job.width, job.height);
+        job.camera.set_lens(a->aperture_radius, a->focus_distance.value_or(a->near));
     } else {
         const auto& l = std::get<LookAtCameraDesc>(d.camera);
         job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
+        job.camera.set_lens(l.aperture_radius, l.focus_distance.value_or(length(l.to - l.from)));
     }
 
     // Integrator.

@@ -34,6 +34,8 @@ struct ArticleCameraDesc {
     std::optional<Float> viewport_width;  ///< default: viewport_height x film aspect
     Float viewport_height = 2;
     Float near = 1;  ///< the article's z
+    Float aperture_radius = 0;
+    std::optional<Float> focus_distance;  ///< default: near
 };
 
 struct LookAtCameraDesc {
@@ -41,6 +43,8 @@ struct LookAtCameraDesc {
     Point3 to{0, 0, 0};
     Vector3 up{0, 1, 0};
     Float fov = 45;  ///< vertical, degrees
+    Float aperture_radius = 0;
+    std::optional<Float> focus_distance;  ///< default: |to - from|
 };
 
 using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;

@@ -104,7 +104,9 @@ private:
         const auto type = type_of(node, "camera", {"article", "look_at"}, "article");
         if (type == "look_at") {
             LookAtCameraDesc c;
-            MapReader m(r_, node, "look_at camera", {"type", "from", "to", "up", "fov"});
+            MapReader m(r_, node, "look_at camera",
+                        {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance"});
+            lens(m, c.aperture_radius, c.focus_distance);
             assign(m.require("from"), c.from, point());
             assign(m.require("to"), c.to, point());
             assign(m.get("up"), c.up, direction("up"));
@@ -120,7 +122,8 @@ private:
         if (!type) return c;
         MapReader m(r_, node, "camera",
                     {"type", "position", "direction", "up", "viewport_width", "viewport_height",
-                     "near"});
+                     "near", "aperture_radius", "focus_distance"});
+        lens(m, c.aperture_radius, c.focus_distance);
         assign(m.get("position"), c.position, point());
         assign(m.get("direction"), c.direction, direction("direction"));
         assign(m.get("up"), c.up, direction("up"));
@@ -130,6 +133,15 @@ private:
         assign(m.get("viewport_height"), c.viewport_height, positive("viewport_height"));
         assign(m.get("near"), c.near, positive("near"));
         return c;
+    }
+
+    void lens(MapReader& m, Float& aperture, std::optional<Float>& focus) {
+        assign(m.get("aperture_radius"), aperture, [this](const YAML::Node& n) {
+            return r_.number_in(n, "aperture_radius", 0, kInf);
+        });
+        if (auto n = m.get("focus_distance")) {
+            if (auto v = positive("focus_distance")(*n)) focus = static_cast<Float>(*v);
+        }
     }
 
     void film(const YAML::Node& node, FilmDesc& f) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "glint/samplers/hash.h"
 #include "glint/samplers/stratified.h"
 
 namespace glint {
@@ -25,18 +26,23 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
                 Color sum{0};
-                if (spp == 1) {
-                    sum = integrator.li(scene, camera.generate_ray(col + 0.5f, row + 0.5f),
-                                        counter);
+                if (spp == 1) {  // the pixel centre, through the lens centre
+                    sum = integrator.li(
+                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter);
                 } else {
                     const std::uint32_t seed = pixel_seed(options.seed, static_cast<std::uint32_t>(col),
                                                           static_cast<std::uint32_t>(row));
+                    // The lens gets its own stratified pattern, decorrelated from the pixel's
+                    // by a different seed.
+                    const std::uint32_t lens_seed = hash_combine(seed, 0x1e25u);
                     for (int i = 0; i < spp; ++i) {
-                        const Sample2 u = stratified_sample(static_cast<std::uint32_t>(i),
-                                                            static_cast<std::uint32_t>(spp), seed);
+                        const auto index = static_cast<std::uint32_t>(i);
+                        const auto count = static_cast<std::uint32_t>(spp);
+                        const Sample2 u = stratified_sample(index, count, seed);
+                        const Sample2 lens = stratified_sample(index, count, lens_seed);
                         sum += integrator.li(
                             scene, camera.generate_ray(static_cast<float>(col) + u.x,
-                                                       static_cast<float>(row) + u.y),
+                                                       static_cast<float>(row) + u.y, lens),
                             counter);
                     }
                 }

@@ -84,6 +84,32 @@ TEST(Render, StratifiedSamplesSplitAnEdgePixelInHalf) {
     EXPECT_EQ(aa.at(2, 0).r, 1);
 }
 
+TEST(Render, ThinLensBlursOnlyWhatIsOutOfFocus) {
+    // A white sphere (flat integrator) on a black background, radius 1 at distance 10. Rendered
+    // with a wide aperture, focused on the sphere its silhouette stays crisp (few grey pixels);
+    // focused far behind it, the edge spreads over many grey pixels.
+    auto grey_pixels = [](Float focus) {
+        auto sources = std::make_shared<SourceFiles>();
+        const SceneDescription d = parse_scene(
+            "camera: {type: look_at, from: [0, 0, -10], to: [0, 0, 0], fov: 20, "
+            "aperture_radius: 0.4, focus_distance: " + std::to_string(focus) + "}\n"
+            "film: {width: 64, height: 64}\n"
+            "integrator: {type: flat}\n"
+            "background: {type: constant, color: [0, 0, 0]}\n"
+            "objects: [{type: sphere, center: [0, 0, 0], radius: 1, material: {color: [1, 1, 1]}}]\n",
+            "dof.yaml", sources);
+        const RenderJob job = build(d, {}, sources);
+        const Film film = render_with(job, 2, 16, 64);
+        int grey = 0;
+        for (const Color& c : film.pixels()) grey += c.r > 0.05f && c.r < 0.95f;
+        return grey;
+    };
+    const int sharp = grey_pixels(9);  // the sphere's front is at distance 9
+    const int blurred = grey_pixels(40);
+    EXPECT_GT(sharp, 0);              // anti-aliased edge pixels
+    EXPECT_GT(blurred, 3 * sharp);    // the defocused edge is much wider
+}
+
 TEST(Render, StatsCountEveryRay) {
     Overrides o;
     o.width = 16;
