@@ -105,12 +105,12 @@ TEST(Figures, Fig10RawPngHoldsTheArticlesDisplayValues) {
     const RenderJob job = build(
         load_scene_file(std::string(GLINT_SOURCE_DIR) + "/scenes/seed/fig10-diffuse.yaml", sources),
         o, sources);
-    ASSERT_EQ(job.encoding, Encoding::kRaw);
+    ASSERT_EQ(job.display.encoding, Encoding::kRaw);
     Film film(job.width, job.height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
     const testing::TempDir dir;
     const auto path = dir / "fig10.png";
-    write_image(path, film, job.encoding);
+    write_image(path, film, job.display);
     auto in = OIIO::ImageInput::open(path.string());
     ASSERT_TRUE(in);
     std::vector<unsigned char> px(static_cast<std::size_t>(kW) * kH * 3);

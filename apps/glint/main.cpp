@@ -56,7 +56,7 @@ int run_render(const RenderArgs& args) {
                              static_cast<std::uint64_t>(job.width) * static_cast<std::uint64_t>(job.height));
     const glint::RenderStats stats =
         glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress);
-    glint::write_image(out, film, job.encoding);
+    glint::write_image(out, film, job.display);
     progress.finish(stats, job.width, job.height, job.options.spp);
     if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
     return 0;

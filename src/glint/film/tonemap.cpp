@@ -9,10 +9,24 @@ float srgb_encode(float v) {
     return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
-std::uint8_t encode_8bit(float v, Encoding encoding) {
+float tone_curve(float v, ToneCurve curve) {
+    switch (curve) {
+        case ToneCurve::kClamp: return v;
+        case ToneCurve::kReinhard: return v / (1 + v);
+        case ToneCurve::kAces: {
+            // Narkowicz 2015: x (a x + b) / (x (c x + d) + e), fitted to ODT(RRT(x)).
+            constexpr float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
+            return std::clamp(v * (a * v + b) / (v * (c * v + d) + e), 0.0f, 1.0f);
+        }
+    }
+    return v;
+}
+
+std::uint8_t encode_8bit(float v, const DisplaySettings& display) {
     if (!(v > 0)) return 0;  // also catches NaN
-    v = std::min(v, 1.0f);
-    if (encoding == Encoding::kSrgb) v = srgb_encode(v);
+    if (display.exposure != 0) v *= std::exp2(display.exposure);
+    v = std::min(tone_curve(v, display.curve), 1.0f);
+    if (display.encoding == Encoding::kSrgb) v = srgb_encode(v);
     return static_cast<std::uint8_t>(v * 255.0f + 0.5f);  // v in [0, 1]: round half up
 }
 

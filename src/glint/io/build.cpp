@@ -66,7 +66,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             job.options.threads = static_cast<int>(*overrides.threads);
         }
     }
-    job.encoding = d.film.encoding;
+    job.display = d.film.display;
     job.filename = d.film.filename.value;
 
     // Camera.

@@ -28,7 +28,7 @@ struct RenderJob {
     std::unique_ptr<Integrator> integrator;
     RenderOptions options;
     int width = 0, height = 0;
-    Encoding encoding = Encoding::kSrgb;
+    DisplaySettings display;
     std::string filename;  ///< the scene's film.filename, or empty
 };
 

@@ -44,7 +44,7 @@ void check_writable(const fs::path& path) {
     }
 }
 
-void write_image(const fs::path& path, const Film& film, Encoding encoding) {
+void write_image(const fs::path& path, const Film& film, const DisplaySettings& display) {
     const ImageFormat format = image_format_for(path);
     const int w = film.width(), h = film.height();
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
@@ -72,11 +72,11 @@ void write_image(const fs::path& path, const Film& film, Encoding encoding) {
              out->write_image(OIIO::TypeDesc::FLOAT, floats.data());
     } else {
         OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", encoding == Encoding::kSrgb ? "sRGB" : "Linear");
+        spec.attribute("oiio:ColorSpace", display.encoding == Encoding::kSrgb ? "sRGB" : "Linear");
         bytes.resize(n * 3);
         for (std::size_t i = 0; i < n; ++i) {
             const Color c = film.pixels()[i];
-            for (int k = 0; k < 3; ++k) bytes[3 * i + k] = encode_8bit(c[k], encoding);
+            for (int k = 0; k < 3; ++k) bytes[3 * i + k] = encode_8bit(c[k], display);
         }
         ok = out->open(tmp.string(), spec) &&
              out->write_image(OIIO::TypeDesc::UINT8, bytes.data());

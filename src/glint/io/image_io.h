@@ -26,7 +26,9 @@ ImageFormat image_format_for(const std::filesystem::path& path);
 /// writable folder. Throws IoError with the reason.
 void check_writable(const std::filesystem::path& path);
 
-/// PNG/PPM: 8-bit RGB with `encoding`; EXR: linear 32-bit float RGB, unclamped.
-void write_image(const std::filesystem::path& path, const Film& film, Encoding encoding);
+/// PNG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values as
+/// 32-bit float RGB, unclamped (no exposure, no curve).
+void write_image(const std::filesystem::path& path, const Film& film,
+                 const DisplaySettings& display);
 
 }  // namespace glint

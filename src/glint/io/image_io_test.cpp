@@ -29,7 +29,7 @@ protected:
 
 TEST_F(ImageIo, PngRawRoundTripsThroughOpenImageIO) {
     const fs::path p = dir_ / "a.png";
-    write_image(p, sample_film(), Encoding::kRaw);
+    write_image(p, sample_film(), DisplaySettings{Encoding::kRaw});
     auto in = OIIO::ImageInput::open(p.string());
     ASSERT_TRUE(in);
     ASSERT_EQ(in->spec().width, 3);
@@ -48,7 +48,7 @@ TEST_F(ImageIo, PngRawRoundTripsThroughOpenImageIO) {
 
 TEST_F(ImageIo, ExrIsLinearAndUnclamped) {
     const fs::path p = dir_ / "a.exr";
-    write_image(p, sample_film(), Encoding::kRaw);
+    write_image(p, sample_film(), DisplaySettings{Encoding::kRaw});
     auto in = OIIO::ImageInput::open(p.string());
     ASSERT_TRUE(in);
     std::vector<float> px(3 * 2 * 3);
@@ -60,12 +60,12 @@ TEST_F(ImageIo, ExrIsLinearAndUnclamped) {
 
 TEST_F(ImageIo, PpmIsWritten) {
     const fs::path p = dir_ / "a.ppm";
-    write_image(p, sample_film(), Encoding::kSrgb);
+    write_image(p, sample_film(), DisplaySettings{});
     EXPECT_EQ(read_file(p).rfind("P6", 0), 0u);
 }
 
 TEST_F(ImageIo, UnsupportedExtensionIsRefusedAndNothingIsWritten) {
-    EXPECT_THROW(write_image(dir_ / "a.gif", sample_film(), Encoding::kSrgb), IoError);
+    EXPECT_THROW(write_image(dir_ / "a.gif", sample_film(), DisplaySettings{}), IoError);
     EXPECT_THROW(check_writable(dir_ / "noext"), IoError);
     EXPECT_EQ(file_count(), 0u);
 }
@@ -82,7 +82,7 @@ TEST_F(ImageIo, MissingFolderIsRefused) {
 TEST_F(ImageIo, SuccessfulWriteReplacesTheFileAndLeavesNoTemporary) {
     const fs::path p = dir_ / "a.png";
     std::ofstream(p) << "old";
-    write_image(p, sample_film(), Encoding::kSrgb);
+    write_image(p, sample_film(), DisplaySettings{});
     EXPECT_NE(read_file(p), "old");
     EXPECT_EQ(file_count(), 1u);
 }
@@ -94,7 +94,7 @@ TEST_F(ImageIo, FailedWriteLeavesTheExistingTargetUntouched) {
     const fs::path p = dir_ / "target.png";
     fs::create_directory(p);
     std::ofstream(p / "keep.txt") << "precious";
-    EXPECT_THROW(write_image(p, sample_film(), Encoding::kSrgb), IoError);
+    EXPECT_THROW(write_image(p, sample_film(), DisplaySettings{}), IoError);
     EXPECT_EQ(read_file(p / "keep.txt"), "precious");
     EXPECT_EQ(file_count(), 1u);
 }

@@ -52,7 +52,7 @@ using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;
 struct FilmDesc {
     Located<int> width{640, {}};
     Located<int> height{360, {}};
-    Encoding encoding = Encoding::kSrgb;
+    DisplaySettings display;
     Located<std::string> filename;  ///< empty: the CLI chooses
 };
 

@@ -145,7 +145,7 @@ private:
     }
 
     void film(const YAML::Node& node, FilmDesc& f) {
-        MapReader m(r_, node, "film", {"width", "height", "encoding", "filename"});
+        MapReader m(r_, node, "film", {"width", "height", "encoding", "tonemap", "exposure", "filename"});
         auto size = [this, &m](const char* key, Located<int>& out) {
             if (auto n = m.get(key)) {
                 out.loc = r_.loc(*n);
@@ -159,14 +159,30 @@ private:
         if (auto n = m.get("encoding")) {
             if (auto e = r_.string(*n)) {
                 if (*e == "srgb") {
-                    f.encoding = Encoding::kSrgb;
+                    f.display.encoding = Encoding::kSrgb;
                 } else if (*e == "raw") {
-                    f.encoding = Encoding::kRaw;
+                    f.display.encoding = Encoding::kRaw;
                 } else {
                     r_.error(*n, fmt::format("unknown encoding '{}' (known: srgb, raw)", *e));
                 }
             }
         }
+        if (auto n = m.get("tonemap")) {
+            if (auto c = r_.string(*n)) {
+                if (*c == "clamp") {
+                    f.display.curve = ToneCurve::kClamp;
+                } else if (*c == "reinhard") {
+                    f.display.curve = ToneCurve::kReinhard;
+                } else if (*c == "aces") {
+                    f.display.curve = ToneCurve::kAces;
+                } else {
+                    r_.error(*n, fmt::format("unknown tonemap '{}' (known: clamp, reinhard, aces)", *c));
+                }
+            }
+        }
+        assign(m.get("exposure"), f.display.exposure, [this](const YAML::Node& v) {
+            return r_.number_in(v, "exposure", -64, 64);
+        });
         if (auto n = m.get("filename")) {
             f.filename.loc = r_.loc(*n);
             assign(n, f.filename.value, [this](const YAML::Node& v) { return r_.string(v); });

@@ -200,6 +200,21 @@ TEST(SceneYaml, DegenerateShapesAreReported) {
     EXPECT_NE(e.find("scene.yaml:6:32: error: triangle: expected a list of 3 vertices, got a list of 2\n"), std::string::npos) << e;
 }
 
+TEST(SceneYaml, ToneMappingKeys) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(
+        parse_scene("film: {tonemap: aces, exposure: -1.5, encoding: raw}\n", "s.yaml", sources),
+        {}, sources);
+    EXPECT_EQ(job.display.curve, ToneCurve::kAces);
+    EXPECT_EQ(job.display.exposure, -1.5f);
+    EXPECT_EQ(job.display.encoding, Encoding::kRaw);
+    const std::string e = errors_of("film: {tonemap: filmic, exposure: 100}\n");
+    EXPECT_NE(e.find("scene.yaml:1:17: error: unknown tonemap 'filmic' (known: clamp, reinhard, aces)\n"),
+              std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:1:35: error: exposure must be in [-64, 64], got 100\n"),
+              std::string::npos) << e;
+}
+
 TEST(SceneYaml, JsonIsAccepted) {
     const std::string json = R"({
   "camera": {"type": "look_at", "from": [0, 1, -5], "to": [0, 0, 0], "fov": 40},
@@ -229,7 +244,9 @@ TEST(SceneYaml, DefaultsAndOverridesApply) {
     EXPECT_EQ(job.options.seed, 9u);
     EXPECT_EQ(job.width, 20);
     EXPECT_EQ(job.height, 360);
-    EXPECT_EQ(job.encoding, Encoding::kSrgb);
+    EXPECT_EQ(job.display.encoding, Encoding::kSrgb);
+    EXPECT_EQ(job.display.curve, ToneCurve::kClamp);
+    EXPECT_EQ(job.display.exposure, 0.0f);
 }
 
 }  // namespace
