@@ -67,6 +67,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         }
     }
     job.display = d.film.display;
+    job.options.filter = d.film.filter;
     job.filename = d.film.filename.value;
 
     // Camera.

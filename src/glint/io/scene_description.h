@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "glint/background.h"
+#include "glint/film/filter.h"
 #include "glint/film/tonemap.h"
 #include "glint/io/diagnostics.h"
 #include "glint/lights/light.h"
@@ -53,6 +54,7 @@ struct FilmDesc {
     Located<int> width{640, {}};
     Located<int> height{360, {}};
     DisplaySettings display;
+    FilterDesc filter;
     Located<std::string> filename;  ///< empty: the CLI chooses
 };
 

@@ -145,7 +145,9 @@ private:
     }
 
     void film(const YAML::Node& node, FilmDesc& f) {
-        MapReader m(r_, node, "film", {"width", "height", "encoding", "tonemap", "exposure", "filename"});
+        MapReader m(r_, node, "film",
+                    {"width", "height", "encoding", "tonemap", "exposure", "filter", "filename"});
+        if (auto n = m.get("filter")) f.filter = filter(*n);
         auto size = [this, &m](const char* key, Located<int>& out) {
             if (auto n = m.get(key)) {
                 out.loc = r_.loc(*n);
@@ -187,6 +189,24 @@ private:
             f.filename.loc = r_.loc(*n);
             assign(n, f.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
         }
+    }
+
+    FilterDesc filter(const YAML::Node& node) {
+        const auto type = type_of(node, "filter", {"box", "tent", "gaussian", "blackman_harris"});
+        FilterDesc f;
+        if (!type) return f;
+        if (*type == "box") f = {FilterType::kBox, 0.5f, 0.5f};
+        if (*type == "tent") f = {FilterType::kTent, 1.0f, 0.5f};
+        if (*type == "gaussian") f = {FilterType::kGaussian, 1.5f, 0.5f};
+        if (*type == "blackman_harris") f = {FilterType::kBlackmanHarris, 1.5f, 0.5f};
+        std::vector<std::string> keys{"type", "radius"};
+        if (f.type == FilterType::kGaussian) keys.push_back("sigma");
+        MapReader m(r_, node, fmt::format("{} filter", *type), keys);
+        assign(m.get("radius"), f.radius, [this](const YAML::Node& v) {
+            return r_.number_in(v, "radius", 0, 16, true);
+        });
+        assign(m.get("sigma"), f.sigma, positive("sigma"));
+        return f;
     }
 
     void sampler(const YAML::Node& node, SamplerDesc& s) {

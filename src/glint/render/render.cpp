@@ -18,7 +18,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     const int w = film.width(), h = film.height();
     const int spp = std::max(1, options.spp);
     const int tile = std::max(1, options.tile_size);
-    const float inv_spp = 1.0f / static_cast<float>(spp);
+    const FilterSampler filter(options.filter);
     std::atomic<std::uint64_t> total_rays{0};
 
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
@@ -35,18 +35,22 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                     // The lens gets its own stratified pattern, decorrelated from the pixel's
                     // by a different seed.
                     const std::uint32_t lens_seed = hash_combine(seed, 0x1e25u);
+                    float weight_sum = 0;
                     for (int i = 0; i < spp; ++i) {
                         const auto index = static_cast<std::uint32_t>(i);
                         const auto count = static_cast<std::uint32_t>(spp);
-                        const Sample2 u = stratified_sample(index, count, seed);
+                        const FilterSampler::Sample f =
+                            filter.sample(stratified_sample(index, count, seed));
                         const Sample2 lens = stratified_sample(index, count, lens_seed);
-                        sum += integrator.li(
-                            scene, camera.generate_ray(static_cast<float>(col) + u.x,
-                                                       static_cast<float>(row) + u.y, lens),
-                            counter);
+                        const Ray ray = camera.generate_ray(static_cast<float>(col) + 0.5f + f.dx,
+                                                            static_cast<float>(row) + 0.5f + f.dy,
+                                                            lens);
+                        sum += integrator.li(scene, ray, counter) * f.weight;
+                        weight_sum += f.weight;
                     }
+                    sum = weight_sum > 0 ? sum / weight_sum : Color{0};
                 }
-                film.at(col, row) = sum * inv_spp;
+                film.at(col, row) = sum;
             }
         }
         total_rays.fetch_add(counter.rays, std::memory_order_relaxed);

@@ -6,6 +6,7 @@
 
 #include "glint/cameras/camera.h"
 #include "glint/film/film.h"
+#include "glint/film/filter.h"
 #include "glint/integrators/integrator.h"
 #include "glint/render/progress.h"
 #include "glint/scene.h"
@@ -14,7 +15,8 @@ namespace glint {
 
 struct RenderOptions {
     int threads = 0;  ///< 0: all cores
-    int spp = 1;      ///< 1: the pixel centre; >1: stratified jittered samples, box filter
+    int spp = 1;      ///< 1: the pixel centre; >1: stratified samples drawn through `filter`
+    FilterDesc filter;
     std::uint64_t seed = 0;
     int tile_size = 16;
 };

@@ -110,6 +110,32 @@ TEST(Render, ThinLensBlursOnlyWhatIsOutOfFocus) {
     EXPECT_GT(blurred, 3 * sharp);    // the defocused edge is much wider
 }
 
+TEST(Render, AWiderFilterSpreadsTheEdgeIntoNeighbours) {
+    // The same half-and-half edge as above: with the default box filter the outer pixels see only
+    // their own side; a tent of radius 1.5 reaches across the edge from the left pixel (centre
+    // at -1, edge at 0), so it picks up some white and the middle pixel stays at one half.
+    auto render_edge = [](const std::string& filter) {
+        auto sources = std::make_shared<SourceFiles>();
+        const SceneDescription d = parse_scene(
+            "camera: {position: [0, 50, 0], direction: [0, 0, 1], viewport_width: 3, "
+            "viewport_height: 1, near: 1}\n"
+            "film: {width: 3, height: 1, filter: " + filter + "}\n"
+            "integrator: {type: flat}\n"
+            "objects:\n"
+            "  - {type: plane, point: [0, 0, 5], normal: [0, 0, -1],\n"
+            "     material: {color: {type: checker, size: 100, even: [1, 1, 1], odd: [0, 0, 0]}}}\n",
+            "edge.yaml", sources);
+        return render_with(build(d, {}, sources), 1, 16, 256);
+    };
+    const Film box = render_edge("{type: box}");
+    EXPECT_EQ(box.at(0, 0).r, 0);
+    const Film tent = render_edge("{type: tent, radius: 1.5}");
+    // Tent centred at -1 with radius 1.5: the weight beyond 0 is the tip triangle,
+    // (0.5 * 0.5 * (1/3)) / 1.5 = 1/18 of the total.
+    EXPECT_NEAR(tent.at(0, 0).r, 1.0 / 18, 0.01);
+    EXPECT_NEAR(tent.at(1, 0).r, 0.5, 0.01);
+}
+
 TEST(Render, StatsCountEveryRay) {
     Overrides o;
     o.width = 16;
