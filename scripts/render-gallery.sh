@@ -13,7 +13,9 @@ done
 # Anti-aliased Figure 14 (16 stratified samples per pixel) beside the article's 1-sample one.
 "$glint" render scenes/seed/fig14-reflections.yaml --spp 16 -q -o docs/images/fig14-reflections-16spp.png
 echo docs/images/fig14-reflections-16spp.png
-for name in shapes fig14-dof; do
+# The UV test texture first: scenes/textures.yaml uses it.
+"$glint" render scenes/textures/uv-grid.yaml -q -o scenes/textures/uv-grid.png
+for name in shapes fig14-dof textures; do
   "$glint" render "scenes/$name.yaml" -q -o "docs/images/$name.png"
   echo "docs/images/$name.png"
 done

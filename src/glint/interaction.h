@@ -21,6 +21,7 @@ struct SurfaceInteraction {
     Point3 p;       ///< hit point
     Normal3 n;      ///< unit geometric normal as the shape defines it (outward for spheres)
     MaterialId material;
+    Point2 uv;      ///< texture coordinates, by each shape's convention (shapes/*.h, uv_at)
 };
 
 }  // namespace glint

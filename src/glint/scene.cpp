@@ -2,6 +2,8 @@
 
 #include <cassert>
 
+#include "glint/math/snap.h"
+
 namespace glint {
 
 namespace {
@@ -81,18 +83,31 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
     switch (hit.kind) {
         case ShapeKind::kSphere: {
             const Sphere& s = spheres[hit.index];
-            return {p, s.normal_at(p), s.material};
+            return {p, s.normal_at(p), s.material, s.uv_at(p)};
         }
         case ShapeKind::kPlane: {
             const Plane& pl = planes[hit.index];
-            return {pl.project(p), pl.normal, pl.material};
+            const Point3 q = pl.project(p);
+            return {q, pl.normal, pl.material, pl.uv_at(q)};
         }
-        case ShapeKind::kQuad: return {p, quads[hit.index].normal(), quads[hit.index].material};
-        case ShapeKind::kDisk: return {p, disks[hit.index].normal, disks[hit.index].material};
-        case ShapeKind::kTriangle:
-            return {p, triangles[hit.index].normal(), triangles[hit.index].material};
+        // Flat shapes snap the point onto their plane, like planes (math/snap.h).
+        case ShapeKind::kQuad: {
+            const Quad& q = quads[hit.index];
+            const Point3 s = snap_to_plane(p, q.corner, q.normal());
+            return {s, q.normal(), q.material, q.uv_at(s)};
+        }
+        case ShapeKind::kDisk: {
+            const Disk& d = disks[hit.index];
+            const Point3 s = snap_to_plane(p, d.center, d.normal);
+            return {s, d.normal, d.material, d.uv_at(s)};
+        }
+        case ShapeKind::kTriangle: {
+            const Triangle& t = triangles[hit.index];
+            const Point3 s = snap_to_plane(p, t.p0, t.normal());
+            return {s, t.normal(), t.material, t.uv_at(s)};
+        }
     }
-    return {p, Normal3{0, 1, 0}, 0};  // unreachable: the switch covers every ShapeKind
+    return {p, Normal3{0, 1, 0}, 0, {}};  // unreachable: the switch covers every ShapeKind
 }
 
 }  // namespace glint

@@ -32,6 +32,7 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<Material> materials;
     std::vector<Texture> textures;
+    std::vector<Image> images;
     std::vector<Light> lights;
     Background background = SkyBackground{};
 
@@ -42,6 +43,11 @@ struct Scene {
     std::optional<Hit> intersect(const Ray& ray) const;
     /// Whether anything lies in [kRayTMin, ray.t_max); stops at the first blocker.
     bool occluded(const Ray& ray) const;
+    /// The colour of texture `id` at a surface point.
+    Color texture(TextureId id, const SurfaceInteraction& si) const {
+        return evaluate(textures, images, id, {si.p, si.uv});
+    }
+
     /// Phase two: the full interaction for the winning hit.
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 

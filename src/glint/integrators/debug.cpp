@@ -5,7 +5,7 @@ namespace glint {
 namespace {
 Color surface_color(const Scene& scene, const SurfaceInteraction& si) {
     const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
-    return evaluate(scene.textures[m.color], si.p);
+    return scene.texture(m.color, si);
 }
 }  // namespace
 

@@ -37,7 +37,7 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounte
         // inside of a sphere lit correctly instead of black.
         const Normal3 n = face_forward(si.n, ray.direction);
         const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
-        const Color k = evaluate(scene.textures[m.color], si.p);
+        const Color k = scene.texture(m.color, si);
         const Color d = direct(scene, si.p, n, k, counter);
         const float s = m.shininess;
         if (s <= 0) return result + weight * d;

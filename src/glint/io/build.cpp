@@ -2,6 +2,11 @@
 
 #include <fmt/core.h>
 
+#include <filesystem>
+#include <map>
+#include <utility>
+
+#include "glint/io/image_io.h"
 #include "glint/io/limits.h"
 
 namespace glint {
@@ -10,11 +15,6 @@ namespace {
 
 const SourceLoc kCommandLine{"<command line>", 0, 0};
 
-TextureId add_texture(Scene& scene, const Texture& t) {
-    scene.textures.push_back(t);
-    return static_cast<TextureId>(scene.textures.size() - 1);
-}
-
 // The scene's array for each shape type; a shape without one is a compile error.
 std::vector<Sphere>& shapes_of(Scene& s, const Sphere&) { return s.spheres; }
 std::vector<Plane>& shapes_of(Scene& s, const Plane&) { return s.planes; }
@@ -22,10 +22,63 @@ std::vector<Quad>& shapes_of(Scene& s, const Quad&) { return s.quads; }
 std::vector<Disk>& shapes_of(Scene& s, const Disk&) { return s.disks; }
 std::vector<Triangle>& shapes_of(Scene& s, const Triangle&) { return s.triangles; }
 
-MaterialId add_material(Scene& scene, const MaterialDesc& d) {
-    scene.materials.push_back(ArticleMaterial{add_texture(scene, d.color), d.shininess});
-    return static_cast<MaterialId>(scene.materials.size() - 1);
-}
+// Adds textures and materials to the scene, loading each image file once.
+class MaterialBuilder {
+public:
+    MaterialBuilder(Scene& scene, Diagnostics& diagnostics, std::filesystem::path scene_dir)
+        : scene_(scene), diagnostics_(diagnostics), dir_(std::move(scene_dir)) {}
+
+    MaterialId add_material(const MaterialDesc& d) {
+        scene_.materials.push_back(ArticleMaterial{add_texture(d.color), d.shininess});
+        return static_cast<MaterialId>(scene_.materials.size() - 1);
+    }
+
+private:
+    // Children first, so a texture's ids always point at earlier entries (a tree, no cycles).
+    TextureId add_texture(const TextureDesc& d) {
+        Texture t = ConstantTexture{d.value};
+        switch (d.kind) {
+            case TextureDesc::Kind::kConstant: break;
+            case TextureDesc::Kind::kChecker: t = d.checker; break;
+            case TextureDesc::Kind::kImage:
+                t = ImageTexture{add_image(d.filename, d.encoding), d.wrap, d.size};
+                break;
+            case TextureDesc::Kind::kScale:
+                t = ScaleTexture{add_texture(d.children.at(0)), add_texture(d.children.at(1))};
+                break;
+            case TextureDesc::Kind::kMix:
+                t = MixTexture{add_texture(d.children.at(0)), add_texture(d.children.at(1)),
+                               add_texture(d.children.at(2))};
+                break;
+        }
+        scene_.textures.push_back(t);
+        return static_cast<TextureId>(scene_.textures.size() - 1);
+    }
+
+    // Relative paths are relative to the scene file's folder.
+    ImageId add_image(const Located<std::string>& filename, ImageEncoding encoding) {
+        std::filesystem::path path = filename.value;
+        if (path.is_relative()) path = dir_ / path;
+        const auto key = std::make_pair(path.lexically_normal().string(), encoding);
+        if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
+        Image image;
+        try {
+            image = read_image(path, encoding);
+        } catch (const IoError& e) {
+            diagnostics_.error(filename.loc, e.what());
+            image = Image{1, 1, {Color{0}}};  // keeps ids valid; the build fails anyway
+        }
+        scene_.images.push_back(std::move(image));
+        const auto id = static_cast<ImageId>(scene_.images.size() - 1);
+        cache_.emplace(key, id);
+        return id;
+    }
+
+    Scene& scene_;
+    Diagnostics& diagnostics_;
+    std::filesystem::path dir_;
+    std::map<std::pair<std::string, ImageEncoding>, ImageId> cache_;
+};
 
 // A command-line value wins over the file's; range errors point at whichever was used.
 int pick(const Located<int>& from_file, const std::optional<long long>& flag, const char* what,
@@ -104,10 +157,11 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     Scene& scene = job.scene;
     scene.background = d.background;
     scene.lights = d.lights;
+    MaterialBuilder materials(scene, diagnostics, std::filesystem::path(d.path).parent_path());
     std::vector<std::string> names;
     for (const NamedMaterial& m : d.materials) {
         names.push_back(m.name);
-        add_material(scene, m.material);
+        materials.add_material(m.material);
     }
     for (const ObjectDesc& o : d.objects) {
         MaterialId id = 0;
@@ -127,7 +181,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             }
             id = static_cast<MaterialId>(it - names.begin());
         } else {
-            id = add_material(scene, std::get<MaterialDesc>(o.material.value));
+            id = materials.add_material(std::get<MaterialDesc>(o.material.value));
         }
         std::visit(
             [&](auto shape) {

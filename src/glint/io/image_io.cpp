@@ -1,5 +1,7 @@
 #include "glint/io/image_io.h"
 
+#include "glint/io/limits.h"
+
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <system_error>
 #include <vector>
@@ -25,6 +28,50 @@ ImageFormat image_format_for(const fs::path& path) {
     if (ext == ".ppm") return ImageFormat::kPpm;
     throw IoError(fmt::format("{}: unsupported output format '{}' (supported: .png, .exr, .ppm)",
                               path.string(), ext.empty() ? std::string("no extension") : ext));
+}
+
+float srgb_decode(float v) {
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        std::string why = OIIO::geterror();
+        if (why.empty()) why = "cannot open it";
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    const long long pixels = static_cast<long long>(spec.width) * spec.height;
+    if (spec.width <= 0 || spec.height <= 0 || pixels > max_pixels) {
+        throw IoError(fmt::format("image '{}' is {} x {} pixels; the limit is {} pixels",
+                                  path.string(), spec.width, spec.height, max_pixels));
+    }
+    const int channels = spec.nchannels;
+    std::vector<float> data(static_cast<std::size_t>(pixels) * static_cast<std::size_t>(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), in->geterror()));
+    }
+    const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
+                          spec.format.basetype == OIIO::TypeDesc::HALF ||
+                          spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+    const bool decode = encoding == ImageEncoding::kSrgb ||
+                        (encoding == ImageEncoding::kAuto && !is_float);
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.texels.resize(static_cast<std::size_t>(pixels));
+    for (std::size_t i = 0; i < image.texels.size(); ++i) {
+        const float* px = &data[i * static_cast<std::size_t>(channels)];
+        float rgb[3];
+        for (int k = 0; k < 3; ++k) {
+            float v = px[channels >= 3 ? k : 0];
+            if (!std::isfinite(v) || v < 0) v = 0;  // texels are reflectances or radiances
+            rgb[k] = decode ? srgb_decode(std::min(v, 1.0f)) : v;
+        }
+        image.texels[i] = {rgb[0], rgb[1], rgb[2]};
+    }
+    return image;
 }
 
 void check_writable(const fs::path& path) {

@@ -8,6 +8,8 @@
 
 #include "glint/film/film.h"
 #include "glint/film/tonemap.h"
+#include "glint/io/limits.h"
+#include "glint/textures/texture.h"
 
 namespace glint {
 
@@ -17,6 +19,19 @@ public:
 };
 
 enum class ImageFormat { kPng, kExr, kPpm };
+
+/// How the values in an image file map to linear RGB: kAuto treats integer formats (8/16-bit
+/// PNG, JPEG, ...) as sRGB-encoded and floating-point ones (EXR, HDR) as linear.
+enum class ImageEncoding { kAuto, kSrgb, kLinear };
+
+/// The inverse of the sRGB transfer curve.
+float srgb_decode(float v);
+
+/// Reads an image file through OpenImageIO as linear RGB (grey is replicated, alpha dropped).
+/// Throws IoError, naming the file, if it cannot be opened or read, or if it has more than
+/// kMaxTexturePixels pixels (checked from the header, before reading).
+Image read_image(const std::filesystem::path& path, ImageEncoding encoding,
+                 long long max_pixels = kMaxTexturePixels);
 
 /// The format for a path's extension (.png, .exr, .ppm, case-insensitive); throws IoError
 /// naming the supported ones otherwise.

@@ -11,5 +11,6 @@ inline constexpr long long kMaxFilmPixels = 1LL << 27;       ///< 134M pixels: 1
 inline constexpr long long kMaxSpp = 1 << 20;
 inline constexpr long long kMaxDepth = 10000;
 inline constexpr long long kMaxThreads = 1024;
+inline constexpr long long kMaxTexturePixels = 1LL << 27;  ///< per image: 1.6 GB as float RGB
 
 }  // namespace glint

@@ -12,6 +12,7 @@
 #include "glint/film/filter.h"
 #include "glint/film/tonemap.h"
 #include "glint/io/diagnostics.h"
+#include "glint/io/image_io.h"
 #include "glint/lights/light.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
@@ -72,8 +73,22 @@ struct SamplerDesc {
     std::uint64_t seed = 0;
 };
 
+/// A texture as the file describes it: a tree (scale and mix have children), turned into
+/// Texture ids by build, which also loads the images.
+struct TextureDesc {
+    enum class Kind { kConstant, kChecker, kImage, kScale, kMix };
+    Kind kind = Kind::kConstant;
+    Color value{0.8f};                             ///< constant
+    CheckerTexture checker{1, Color{1}, Color{0}};  ///< checker
+    Located<std::string> filename;                 ///< image, as written in the file
+    ImageEncoding encoding = ImageEncoding::kAuto;
+    WrapMode wrap = WrapMode::kRepeat;
+    Float size = 1;
+    std::vector<TextureDesc> children;  ///< scale: texture, factor; mix: a, b, amount
+};
+
 struct MaterialDesc {
-    Texture color = ConstantTexture{Color{0.8f}};
+    TextureDesc color;
     float shininess = 0;
 };
 

@@ -283,24 +283,74 @@ private:
         }
     }
 
-    std::optional<Texture> texture(const YAML::Node& node) {
-        if (node.IsSequence() || node.IsScalar()) {
-            if (auto c = r_.color(node)) return ConstantTexture{*c};
-            return std::nullopt;
-        }
-        const auto type = type_of(node, "texture", {"constant", "checker"});
-        if (!type) return std::nullopt;
-        if (*type == "constant") {
-            ConstantTexture t;
-            MapReader m(r_, node, "constant texture", {"type", "color"});
-            assign(m.require("color"), t.value, color());
+    // A texture: a number (grey), a colour [r, g, b], or a map with a type.
+    std::optional<TextureDesc> texture(const YAML::Node& node) {
+        TextureDesc t;
+        if (node.IsScalar()) {
+            const auto v = r_.number(node);
+            if (!v) return std::nullopt;
+            if (*v < 0) {
+                r_.error(node, "colour components must be >= 0");
+                return std::nullopt;
+            }
+            t.value = Color{static_cast<float>(*v)};
             return t;
         }
-        CheckerTexture t{1, Color{1}, Color{0}};
-        MapReader m(r_, node, "checker texture", {"type", "size", "even", "odd"});
-        assign(m.get("size"), t.size, positive("size"));
-        assign(m.require("even"), t.even, color());
-        assign(m.require("odd"), t.odd, color());
+        if (node.IsSequence()) {
+            const auto c = r_.color(node);
+            if (!c) return std::nullopt;
+            t.value = *c;
+            return t;
+        }
+        const auto type = type_of(node, "texture", {"constant", "checker", "image", "scale", "mix"});
+        if (!type) return std::nullopt;
+        if (*type == "constant") {
+            MapReader m(r_, node, "constant texture", {"type", "color"});
+            assign(m.require("color"), t.value, color());
+        } else if (*type == "checker") {
+            t.kind = TextureDesc::Kind::kChecker;
+            MapReader m(r_, node, "checker texture", {"type", "size", "even", "odd"});
+            assign(m.get("size"), t.checker.size, positive("size"));
+            assign(m.require("even"), t.checker.even, color());
+            assign(m.require("odd"), t.checker.odd, color());
+        } else if (*type == "image") {
+            t.kind = TextureDesc::Kind::kImage;
+            MapReader m(r_, node, "image texture", {"type", "filename", "encoding", "wrap", "size"});
+            if (const auto n = m.require("filename")) {
+                t.filename.loc = r_.loc(*n);
+                assign(n, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
+            }
+            if (const auto n = m.get("encoding")) {
+                if (const auto e = r_.string(*n)) {
+                    if (*e == "auto") t.encoding = ImageEncoding::kAuto;
+                    else if (*e == "srgb") t.encoding = ImageEncoding::kSrgb;
+                    else if (*e == "linear") t.encoding = ImageEncoding::kLinear;
+                    else r_.error(*n, fmt::format("unknown encoding '{}' (known: auto, srgb, linear)", *e));
+                }
+            }
+            if (const auto n = m.get("wrap")) {
+                if (const auto w = r_.string(*n)) {
+                    if (*w == "repeat") t.wrap = WrapMode::kRepeat;
+                    else if (*w == "clamp") t.wrap = WrapMode::kClamp;
+                    else r_.error(*n, fmt::format("unknown wrap '{}' (known: repeat, clamp)", *w));
+                }
+            }
+            assign(m.get("size"), t.size, positive("size"));
+        } else {
+            const bool scale = *type == "scale";
+            t.kind = scale ? TextureDesc::Kind::kScale : TextureDesc::Kind::kMix;
+            const std::vector<std::string> parts =
+                scale ? std::vector<std::string>{"texture", "factor"}
+                      : std::vector<std::string>{"a", "b", "amount"};
+            std::vector<std::string> keys{"type"};
+            keys.insert(keys.end(), parts.begin(), parts.end());
+            MapReader m(r_, node, fmt::format("{} texture", *type), keys);
+            for (const std::string& part : parts) {
+                const auto child_node = m.require(part);
+                const auto child = child_node ? texture(*child_node) : std::nullopt;
+                t.children.push_back(child.value_or(TextureDesc{}));
+            }
+        }
         return t;
     }
 

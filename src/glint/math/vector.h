@@ -12,6 +12,11 @@ namespace glint {
 
 using Float = float;
 
+/// A 2D point: texture coordinates (u, v) or a point of a 2D domain.
+struct Point2 {
+    Float x = 0, y = 0;
+};
+
 template <typename Derived>
 struct Tuple3 {
     Float x = 0, y = 0, z = 0;

@@ -4,13 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "glint/math/vector.h"
 #include "glint/samplers/stratified.h"
 
 namespace glint {
-
-struct Point2 {
-    float x, y;
-};
 
 /// Uniform on the unit disk, Shirley and Chiu's concentric map: squares to rings, so that
 /// stratification of the square carries over (unlike r = sqrt(u1), phi = 2 pi u2).

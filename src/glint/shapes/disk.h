@@ -27,6 +27,15 @@ struct Disk {
         return t;
     }
 
+    /// The disk's bounding square mapped to [0,1]^2 along the frame orthonormal_basis(normal)
+    /// gives: u = 1/2 + (w.t) / 2r, v = 1/2 + (w.b) / 2r, w = p - center.
+    Point2 uv_at(Point3 p) const {
+        Vector3 t, b;
+        orthonormal_basis(to_vector(normal), t, b);
+        const Vector3 w = p - center;
+        return {Float(0.5) + dot(w, t) / (2 * radius), Float(0.5) + dot(w, b) / (2 * radius)};
+    }
+
     Float area() const { return std::numbers::pi_v<Float> * radius * radius; }
     /// Concentric mapping onto the disk's plane.
     AreaSample sample_area(Sample2 u) const {

@@ -8,6 +8,7 @@
 
 #include "glint/samplers/hash.h"
 #include "glint/shapes/disk.h"
+#include "glint/shapes/plane.h"
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
 #include "glint/shapes/triangle.h"
@@ -206,6 +207,68 @@ TEST(AreaSampling, SphereSamplesAreUniformOverTheSphere) {
     EXPECT_LT(testing::chi_square(observed, expected),
               testing::chi_square_critical_1e4(slabs * sectors - 1));
     EXPECT_NEAR(s.area(), 16 * std::numbers::pi, 1e-4);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(Uv, EachShapesConvention) {
+    const Sphere s{{0, 0, 5}, 2};
+    auto uv = s.uv_at({0, 0, 3});  // facing the default camera
+    EXPECT_NEAR(uv.x, 0.5, 1e-6);
+    EXPECT_NEAR(uv.y, 0.5, 1e-6);
+    EXPECT_NEAR(s.uv_at({0, 2, 5}).y, 1, 1e-6);   // top pole
+    EXPECT_NEAR(s.uv_at({0, -2, 5}).y, 0, 1e-6);  // bottom pole
+    EXPECT_NEAR(s.uv_at({2, 0, 5}).x, 0.75, 1e-6);  // a quarter turn to the right
+    const Quad q = Quad::make({1, 1, 1}, {2, 0, 0}, {0, 4, 0});
+    uv = q.uv_at({2, 4, 1});
+    EXPECT_NEAR(uv.x, 0.5, 1e-6);
+    EXPECT_NEAR(uv.y, 0.75, 1e-6);
+    const Disk d{{0, 0, 0}, {0, 1, 0}, 2};
+    uv = d.uv_at({0, 0, 0});
+    EXPECT_NEAR(uv.x, 0.5, 1e-6);
+    EXPECT_NEAR(uv.y, 0.5, 1e-6);
+    const Triangle t{{0, 0, 0}, {4, 0, 0}, {0, 2, 1}};
+    EXPECT_NEAR(t.uv_at({4, 0, 0}).x, 1, 1e-6);
+    EXPECT_NEAR(t.uv_at({0, 2, 1}).y, 1, 1e-6);
+    uv = t.uv_at({1, 0.5f, 0.25f});  // p0 + 1/4 e1 + 1/4 e2
+    EXPECT_NEAR(uv.x, 0.25, 1e-6);
+    EXPECT_NEAR(uv.y, 0.25, 1e-6);
+    const Plane pl{{1, 0, 2}, {0, 1, 0}};
+    uv = pl.uv_at({3, 0, 5});  // u = x - 1, v = 2 - z for the +y normal
+    EXPECT_NEAR(uv.x, 2, 1e-6);
+    EXPECT_NEAR(uv.y, -3, 1e-6);
+}
+
+}  // namespace
+}  // namespace glint
+
+#include "glint/scene.h"
+
+namespace glint {
+namespace {
+
+TEST(FlatShapes, HitPointsAreSnappedOntoAxisAlignedPlanes) {
+    // A quad, a disk and a triangle in the plane z = 0 (where a 3D checker's floor(z) would
+    // otherwise flicker between 0 and -1): every interaction point has z == 0 exactly.
+    Scene scene;
+    scene.quads.push_back(Quad::make({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}));
+    scene.disks.push_back(Disk{{3, 0, 0}, {0, 0, -1}, 1});
+    scene.triangles.push_back(Triangle{{-3, -1, 0}, {-2, 1, 0}, {-4, 1, 0}});
+    scene.commit();
+    int hits = 0;
+    for (std::uint32_t i = 0; i < 3000; ++i) {
+        const Point3 target{to_unit_float(mix32(i)) * 8 - 4, to_unit_float(mix32(i + 99999)) * 2 - 1, 0};
+        const Ray r = ray({0.3f, 0.2f, -2.7f}, target - Point3{0.3f, 0.2f, -2.7f});
+        if (const auto h = scene.intersect(r)) {
+            ++hits;
+            ASSERT_EQ(scene.interaction(r, *h).p.z, 0.0f) << i;
+        }
+    }
+    EXPECT_GT(hits, 1000);
 }
 
 }  // namespace

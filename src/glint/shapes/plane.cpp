@@ -2,19 +2,18 @@
 
 #include <cmath>
 
+#include "glint/math/frame.h"
+#include "glint/math/snap.h"
+
 namespace glint {
 
-Point3 Plane::project(Point3 p) const {
-    // For an axis-aligned normal this sets that coordinate to the plane's exactly: p.y + (k - p.y)
-    // is exact when p.y is within a factor of two of k (Sterbenz).
-    Point3 q = p;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (std::abs(normal[axis]) == 1) {
-            q[axis] = point[axis];
-            return q;
-        }
-    }
-    return p + to_vector(normal) * dot(normal, point - p);
+Point3 Plane::project(Point3 p) const { return snap_to_plane(p, point, normal); }
+
+Point2 Plane::uv_at(Point3 p) const {
+    Vector3 t, b;
+    orthonormal_basis(to_vector(normal), t, b);
+    const Vector3 w = p - point;
+    return {dot(w, t), dot(w, b)};
 }
 
 }  // namespace glint

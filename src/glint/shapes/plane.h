@@ -23,10 +23,12 @@ struct Plane {
         return std::nullopt;
     }
 
-    /// The hit point moved exactly onto the plane. O + tD lands within round-off of the plane,
-    /// on either side; a 3D checkerboard evaluated on a plane y = k would otherwise flicker
-    /// between floor(k) and floor(k) - 1 from pixel to pixel.
+    /// The hit point moved exactly onto the plane (snap_to_plane).
     Point3 project(Point3 p) const;
+
+    /// Coordinates along the frame orthonormal_basis(normal) gives, from `point`, in scene units
+    /// (for the normal +y: u = x - point.x, v = point.z - z). Unbounded: textures repeat.
+    Point2 uv_at(Point3 p) const;
 };
 
 }  // namespace glint

@@ -38,6 +38,12 @@ struct Quad {
         return t;
     }
 
+    /// (a, b): the point's coordinates along edge1 and edge2, each in [0, 1].
+    Point2 uv_at(Point3 p) const {
+        const Vector3 w = p - corner;
+        return {dot(cross(w, edge2), n_raw) * inv_len2, dot(cross(edge1, w), n_raw) * inv_len2};
+    }
+
     Normal3 normal() const { return Normal3(n_raw * std::sqrt(inv_len2)); }
     Float area() const { return 1 / std::sqrt(inv_len2); }
     AreaSample sample_area(Sample2 u) const {

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -55,6 +56,17 @@ struct Sphere {
     }
 
     Normal3 normal_at(Point3 p) const { return Normal3((p - center) / radius); }
+
+    /// u = 1/2 + atan2(n.x, -n.z) / 2pi: 1/2 where the sphere faces -z (the default camera),
+    /// growing to the right; v = 1 - acos(n.y) / pi: 0 at the bottom pole, 1 at the top. An
+    /// equirectangular image wraps the sphere upright, its top row at the north pole.
+    Point2 uv_at(Point3 p) const {
+        const Vector3 n = (p - center) / radius;
+        const Float u = Float(0.5) + std::atan2(n.x, -n.z) / (2 * std::numbers::pi_v<Float>);
+        const Float v =
+            1 - std::acos(std::clamp(n.y, Float(-1), Float(1))) / std::numbers::pi_v<Float>;
+        return {u, v};
+    }
 
     Float area() const { return 4 * std::numbers::pi_v<Float> * radius * radius; }
     /// Uniform by area: z = 1 - 2 u1 is uniform on [-1, 1] (Archimedes), phi = 2 pi u2.

@@ -1,11 +1,11 @@
 #pragma once
-// Textures: a closed set of plain structs in a std::variant (lajolla's model). Each alternative
-// provides `Color eval(Point3 p) const`; the concept documents that, and a missing overload in
-// evaluate() is a compile error.
+// Textures: a closed set of plain structs in a std::variant (lajolla's model), evaluated at a
+// surface point and its uv. Textures that combine others (scale, mix) refer to them by id; build
+// adds children before parents, so the ids form a tree and evaluation always terminates.
 #include <cmath>
-#include <concepts>
 #include <cstdint>
 #include <variant>
+#include <vector>
 
 #include "glint/math/color.h"
 #include "glint/math/vector.h"
@@ -13,15 +13,32 @@
 namespace glint {
 
 using TextureId = std::uint32_t;
+using ImageId = std::uint32_t;
 
-template <typename T>
-concept TextureLike = requires(const T& t, Point3 p) {
-    { t.eval(p) } -> std::same_as<Color>;
+struct TextureContext {
+    Point3 p;
+    Point2 uv;
 };
+
+/// Linear RGB texels, row 0 at the top of the image. Texture coordinates follow the OBJ, pbrt and
+/// OpenGL convention: (u, v) = (0, 0) is the image's bottom-left corner, v grows upward.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<Color> texels;
+    const Color& texel(int x, int y) const {
+        return texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                      static_cast<std::size_t>(x)];
+    }
+};
+
+enum class WrapMode { kRepeat, kClamp };
+
+/// Bilinear interpolation of the four texels around uv (texel centres at u = (i + 1/2)/width
+/// and v = 1 - (j + 1/2)/height for column i, row j), with repeat or clamp addressing.
+Color bilinear(const Image& image, Point2 uv, WrapMode wrap);
 
 struct ConstantTexture {
     Color value;
-    Color eval(Point3) const { return value; }
 };
 
 /// A 3D checkerboard of cubes of side `size`: `even` where floor(x/s)+floor(y/s)+floor(z/s) is
@@ -44,11 +61,27 @@ struct CheckerTexture {
     }
 };
 
-using Texture = std::variant<ConstantTexture, CheckerTexture>;
-static_assert(TextureLike<ConstantTexture> && TextureLike<CheckerTexture>);
+/// An image over uv, covering `size` x `size` units of uv space.
+struct ImageTexture {
+    ImageId image;
+    WrapMode wrap = WrapMode::kRepeat;
+    Float size = 1;
+};
 
-inline Color evaluate(const Texture& texture, Point3 p) {
-    return std::visit([p](const auto& t) { return t.eval(p); }, texture);
-}
+/// texture * factor, per channel.
+struct ScaleTexture {
+    TextureId texture, factor;
+};
+
+/// (1 - amount) a + amount b, per channel.
+struct MixTexture {
+    TextureId a, b, amount;
+};
+
+using Texture = std::variant<ConstantTexture, CheckerTexture, ImageTexture, ScaleTexture, MixTexture>;
+
+/// The colour of texture `id` at `ctx`.
+Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& images, TextureId id,
+               const TextureContext& ctx);
 
 }  // namespace glint

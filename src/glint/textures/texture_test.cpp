@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -33,6 +34,52 @@ TEST(Checker, ExtremeCoordinatesDoNotOverflow) {
     const CheckerTexture c{1, kEven, kOdd};
     EXPECT_EQ(c.eval({inf, -inf, std::numeric_limits<Float>::quiet_NaN()}), kEven);
     EXPECT_EQ(c.eval({1e30f, 0.5f, 0.5f}), kEven);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// 2 x 2 grey image: row 0 (the top, v near 1) is 0, 1; row 1 (the bottom, v near 0) is 2, 3.
+Image two_by_two() { return Image{2, 2, {Color{0}, Color{1}, Color{2}, Color{3}}}; }
+
+TEST(ImageTexture, BilinearHandValues) {
+    const Image img = two_by_two();
+    // Texel centres at u = (i + 1/2) / 2, v = 1 - (j + 1/2) / 2.
+    EXPECT_FLOAT_EQ(bilinear(img, {0.25f, 0.75f}, WrapMode::kClamp).r, 0);
+    EXPECT_FLOAT_EQ(bilinear(img, {0.75f, 0.75f}, WrapMode::kClamp).r, 1);
+    EXPECT_FLOAT_EQ(bilinear(img, {0.25f, 0.25f}, WrapMode::kClamp).r, 2);
+    EXPECT_FLOAT_EQ(bilinear(img, {0.5f, 0.75f}, WrapMode::kClamp).r, 0.5f);  // between 0 and 1
+    EXPECT_FLOAT_EQ(bilinear(img, {0.5f, 0.5f}, WrapMode::kClamp).r, 1.5f);   // all four
+}
+
+TEST(ImageTexture, RepeatWrapsAndClampHoldsTheEdge) {
+    const Image img = two_by_two();
+    // u = 0 is half a texel left of texel 0's centre: repeat blends with texel 1 (the last
+    // column), clamp with texel 0 itself.
+    EXPECT_FLOAT_EQ(bilinear(img, {0, 0.75f}, WrapMode::kRepeat).r, 0.5f);
+    EXPECT_FLOAT_EQ(bilinear(img, {0, 0.75f}, WrapMode::kClamp).r, 0);
+    // Repeat: u + 1 is u; clamp: far outside is the edge.
+    EXPECT_FLOAT_EQ(bilinear(img, {1.75f, 0.75f}, WrapMode::kRepeat).r, 1);
+    EXPECT_FLOAT_EQ(bilinear(img, {-7.25f, 1.25f}, WrapMode::kRepeat).r,
+                    bilinear(img, {0.75f, 0.25f}, WrapMode::kRepeat).r);
+    EXPECT_FLOAT_EQ(bilinear(img, {50, -50}, WrapMode::kClamp).r, 3);  // bottom-right
+    // Non-finite uv does not crash or read out of bounds.
+    EXPECT_TRUE(is_finite(bilinear(img, {std::numeric_limits<float>::infinity(), 0}, WrapMode::kRepeat)));
+}
+
+TEST(Textures, ScaleMultipliesAndMixInterpolates) {
+    const std::vector<Texture> t{ConstantTexture{Color{0.5f, 1, 2}},      // 0
+                                 ConstantTexture{Color{2, 2, 0.25f}},     // 1
+                                 ScaleTexture{0, 1},                      // 2: product
+                                 ConstantTexture{Color{0, 0.5f, 1}},      // 3: amounts
+                                 MixTexture{0, 1, 3}};                    // 4
+    const TextureContext ctx{{0, 0, 0}, {0, 0}};
+    EXPECT_EQ(evaluate(t, {}, 2, ctx), (Color{1, 2, 0.5f}));
+    // Per channel: r all a (0.5), g halfway (1.5), b all b (0.25).
+    EXPECT_EQ(evaluate(t, {}, 4, ctx), (Color{0.5f, 1.5f, 0.25f}));
 }
 
 }  // namespace

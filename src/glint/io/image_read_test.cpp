@@ -1,0 +1,97 @@
+// Reading texture images through OpenImageIO: real files written here, then read back.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "glint/io/build.h"
+#include "glint/io/image_io.h"
+#include "glint/io/scene_yaml.h"
+#include "glint/render/render.h"
+#include "testing.h"
+
+namespace glint {
+namespace {
+
+void write_rgb(const std::filesystem::path& path, int w, int h, OIIO::TypeDesc type,
+               const std::vector<float>& rgb) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(w, h, 3, type)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
+    out->close();
+}
+
+TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
+    for (float v : {0.0f, 0.001f, 0.2f, 0.5f, 1.0f}) EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-5);
+    EXPECT_NEAR(srgb_decode(0.5f), 0.21404, 1e-4);
+}
+
+TEST(ImageRead, EightBitIsSrgbAndFloatIsLinearByDefault) {
+    testing::TempDir dir;
+    // 188/255 = 0.7373 encodes 0.5 linear within 8-bit precision.
+    write_rgb(dir / "a.png", 1, 1, OIIO::TypeDesc::UINT8, {188 / 255.0f, 0, 1});
+    write_rgb(dir / "a.exr", 1, 1, OIIO::TypeDesc::FLOAT, {0.5f, 2.5f, 0});
+    const Image png = read_image(dir / "a.png", ImageEncoding::kAuto);
+    EXPECT_NEAR(png.texel(0, 0).r, srgb_decode(188 / 255.0f), 1e-6);
+    EXPECT_NEAR(png.texel(0, 0).r, 0.5, 0.003);
+    EXPECT_EQ(png.texel(0, 0).b, 1.0f);
+    EXPECT_NEAR(read_image(dir / "a.png", ImageEncoding::kLinear).texel(0, 0).r, 188 / 255.0f, 1e-6);
+    const Image exr = read_image(dir / "a.exr", ImageEncoding::kAuto);
+    EXPECT_EQ(exr.texel(0, 0).r, 0.5f);
+    EXPECT_EQ(exr.texel(0, 0).g, 2.5f);  // linear, unclamped
+}
+
+TEST(ImageRead, TooLargeIsRefusedFromTheHeader) {
+    testing::TempDir dir;
+    write_rgb(dir / "big.png", 4, 4, OIIO::TypeDesc::UINT8, std::vector<float>(48, 0.5f));
+    try {
+        read_image(dir / "big.png", ImageEncoding::kAuto, 10);
+        FAIL();
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("is 4 x 4 pixels; the limit is 10 pixels"), std::string::npos);
+    }
+}
+
+TEST(ImageRead, MissingTextureIsASceneErrorAtTheFilename) {
+    testing::TempDir dir;
+    const std::string scene =
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: 1,\n"
+        "     material: {color: {type: image, filename: nope.png}}}\n";
+    std::ofstream(dir / "s.yaml") << scene;
+    auto sources = std::make_shared<SourceFiles>();
+    const std::string path = (dir / "s.yaml").string();
+    try {
+        build(load_scene_file(path, sources), {}, sources);
+        FAIL();
+    } catch (const SceneError& e) {
+        const std::string msg = e.what();
+        // Column of "nope.png" on line 3, resolved relative to the scene file's folder.
+        EXPECT_EQ(msg.rfind(path + ":3:48: error: cannot read image '" + (dir / "nope.png").string() + "'", 0), 0u) << msg;
+    }
+}
+
+TEST(ImageRead, TexturedQuadRendersTheImage) {
+    // A 2 x 1 image, red | blue, on a quad filling the view: with bilinear filtering the outer
+    // quarters are pure red and pure blue.
+    testing::TempDir dir;
+    write_rgb(dir / "rb.exr", 2, 1, OIIO::TypeDesc::FLOAT, {1, 0, 0, 0, 0, 1});
+    std::ofstream(dir / "s.yaml") <<
+        "camera: {position: [0, 0, -1], direction: [0, 0, 1], viewport_width: 2, viewport_height: 2, near: 1}\n"
+        "film: {width: 16, height: 16}\n"
+        "integrator: {type: flat}\n"
+        "objects:\n"
+        "  - {type: quad, corner: [-1, -1, 0], edge1: [2, 0, 0], edge2: [0, 2, 0],\n"
+        "     material: {color: {type: image, filename: rb.exr, wrap: clamp}}}\n";
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(load_scene_file((dir / "s.yaml").string(), sources), {}, sources);
+    Film film(job.width, job.height);
+    render(job.scene, job.camera, *job.integrator, job.options, film);
+    EXPECT_EQ(film.at(1, 8), (Color{1, 0, 0}));
+    EXPECT_EQ(film.at(14, 8), (Color{0, 0, 1}));
+    EXPECT_NEAR(film.at(7, 8).r + film.at(8, 8).r, 1, 1e-5);  // the blend in the middle
+}
+
+}  // namespace
+}  // namespace glint

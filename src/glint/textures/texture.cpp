@@ -1,0 +1,67 @@
+#include "glint/textures/texture.h"
+
+#include <algorithm>
+
+namespace glint {
+
+namespace {
+
+int wrap_index(int i, int n, WrapMode wrap) {
+    if (wrap == WrapMode::kClamp) return std::clamp(i, 0, n - 1);
+    const int m = i % n;
+    return m < 0 ? m + n : m;
+}
+
+// Texel coordinates of u scaled to n texels; guards huge or non-finite u (repeat: only the
+// fractional part matters; clamp: anything past the edge is the edge).
+float to_texels(Float u, int n, WrapMode wrap) {
+    if (!std::isfinite(u)) return 0;
+    if (wrap == WrapMode::kRepeat) u -= std::floor(u);
+    else u = std::clamp(u, Float(-1), Float(2));
+    return u * static_cast<float>(n) - 0.5f;
+}
+
+template <typename... F>
+struct Overloaded : F... {
+    using F::operator()...;
+};
+template <typename... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+}  // namespace
+
+Color bilinear(const Image& image, Point2 uv, WrapMode wrap) {
+    // v = 0 is the bottom row: flip before addressing rows.
+    const float x = to_texels(uv.x, image.width, wrap), y = to_texels(1 - uv.y, image.height, wrap);
+    const float fx0 = std::floor(x), fy0 = std::floor(y);
+    const float tx = x - fx0, ty = y - fy0;
+    const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
+    const int xa = wrap_index(x0, image.width, wrap), xb = wrap_index(x0 + 1, image.width, wrap);
+    const int ya = wrap_index(y0, image.height, wrap), yb = wrap_index(y0 + 1, image.height, wrap);
+    return image.texel(xa, ya) * ((1 - tx) * (1 - ty)) + image.texel(xb, ya) * (tx * (1 - ty)) +
+           image.texel(xa, yb) * ((1 - tx) * ty) + image.texel(xb, yb) * (tx * ty);
+}
+
+Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& images, TextureId id,
+               const TextureContext& ctx) {
+    // A missing alternative here is a compile error.
+    return std::visit(
+        Overloaded{
+            [](const ConstantTexture& t) { return t.value; },
+            [&](const CheckerTexture& t) { return t.eval(ctx.p); },
+            [&](const ImageTexture& t) {
+                return bilinear(images[t.image], {ctx.uv.x / t.size, ctx.uv.y / t.size}, t.wrap);
+            },
+            [&](const ScaleTexture& t) {
+                return evaluate(textures, images, t.texture, ctx) *
+                       evaluate(textures, images, t.factor, ctx);
+            },
+            [&](const MixTexture& t) {
+                const Color k = evaluate(textures, images, t.amount, ctx);
+                return evaluate(textures, images, t.a, ctx) * (Color{1} - k) +
+                       evaluate(textures, images, t.b, ctx) * k;
+            }},
+        textures[id]);
+}
+
+}  // namespace glint
