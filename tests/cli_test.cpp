@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#include <vector>
 
 #include "testing.h"
 
@@ -49,7 +50,7 @@ TEST_F(Cli, VersionAndHelp) {
     r = run("render --help");
     EXPECT_EQ(r.status, 0);
     for (const char* flag : {"--output", "--width", "--height", "--spp", "--threads", "--seed",
-                             "--max-depth", "--quiet"})
+                             "--max-depth", "--aovs", "--quiet"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
 
@@ -114,6 +115,47 @@ TEST_F(Cli, RendersExrWithLinearValuesAndPrintsASummary) {
     std::vector<float> px(161 * 91 * 3);
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
     EXPECT_NEAR(px[(45 * 161 + 80) * 3], 0.1 + 1 / std::sqrt(3.0), 2e-6);
+}
+
+TEST_F(Cli, AovsAreExrChannelsWithHandValues) {
+    const Result r = run("render " + seed("fig10-diffuse.yaml") +
+                         " --width 161 --height 91 --aovs -q -o aov.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto in = OIIO::ImageInput::open((dir_ / "aov.exr").string());
+    ASSERT_TRUE(in);
+    const auto& spec = in->spec();
+    ASSERT_EQ(spec.nchannels, 10);
+    // EXR keeps channels by name (files store them sorted): look each one up.
+    auto channel = [&spec](const std::string& name) {
+        for (int c = 0; c < spec.nchannels; ++c)
+            if (spec.channel_name(c) == name) return static_cast<std::size_t>(c);
+        ADD_FAILURE() << "no channel " << name;
+        return std::size_t{0};
+    };
+    std::vector<float> px(161 * 91 * 10);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 10, OIIO::TypeDesc::FLOAT, px.data()));
+    // Centre: the white sphere's front at (0,0,0), distance 1 from the camera at (0,0,-1),
+    // normal (0,0,-1), albedo K = 1.
+    const float* c = &px[(45 * 161 + 80) * 10];
+    EXPECT_NEAR(c[channel("R")], 0.1 + 1 / std::sqrt(3.0), 2e-6);
+    EXPECT_EQ(c[channel("albedo.R")], 1.0f);
+    EXPECT_EQ(c[channel("albedo.B")], 1.0f);
+    EXPECT_NEAR(c[channel("N.Z")], -1, 1e-6);
+    EXPECT_NEAR(c[channel("N.X")], 0, 1e-6);
+    EXPECT_NEAR(c[channel("Z")], 1, 1e-5);
+    // Corner: sky. Albedo is the background colour, normal zero, depth infinite.
+    const float* k = &px[0];
+    EXPECT_EQ(k[channel("albedo.G")], k[channel("G")]);
+    EXPECT_EQ(k[channel("N.Y")], 0.0f);
+    EXPECT_TRUE(std::isinf(k[channel("Z")]));
+}
+
+TEST_F(Cli, AovsNeedAnExrOutput) {
+    const Result r = run("render " + seed("fig10-diffuse.yaml") + " --aovs -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output"),
+              std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
 }
 
 TEST_F(Cli, QuietPrintsNothing) {

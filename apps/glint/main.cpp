@@ -26,6 +26,7 @@ struct RenderArgs {
     std::optional<long long> width, height, spp, threads, max_depth;
     std::optional<std::uint64_t> seed;
     bool quiet = false;
+    bool aovs = false;
 };
 
 // Where the image goes: -o, else the scene's film.filename, else <scene stem>.png in the current
@@ -42,16 +43,22 @@ int run_render(const RenderArgs& args) {
     const glint::SceneDescription description =
         args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
                            : glint::load_scene_file(args.scene, sources);
-    glint::Overrides overrides{args.width, args.height, args.spp, args.max_depth, args.threads,
-                               args.seed};
+    glint::Overrides overrides{args.width,  args.height, args.spp, args.max_depth,
+                               args.threads, args.seed,   args.aovs};
     glint::RenderJob job = glint::build(description, overrides, sources);
     const std::filesystem::path out = output_path(args, job);
     glint::check_writable(out);  // fail before rendering, not after
+    if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
+        throw glint::IoError(fmt::format(
+            "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
+            out.string()));
+    }
 
     const auto mode = args.quiet                 ? glint::ProgressMode::kQuiet
                       : ::isatty(::fileno(stderr)) ? glint::ProgressMode::kBar
                                                    : glint::ProgressMode::kSummary;
     glint::Film film(job.width, job.height);
+    if (job.aovs) film.enable_aovs();
     glint::Progress progress(mode, stderr,
                              static_cast<std::uint64_t>(job.width) * static_cast<std::uint64_t>(job.height));
     const glint::RenderStats stats =
@@ -89,6 +96,9 @@ int main(int argc, char** argv) {
     render->add_option("--seed", args.seed, "Sampler seed (overrides the scene)");
     render->add_option("--max-depth", args.max_depth,
                        "Maximum reflection depth for whitted (the camera ray is depth 0)");
+    render->add_flag("--aovs", args.aovs,
+                     "Also write albedo, normal and depth (for denoisers) as EXR channels "
+                     "albedo.R/G/B, N.X/Y/Z and Z; needs an .exr output");
     render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
 
     try {

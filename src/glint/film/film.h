@@ -1,10 +1,12 @@
 #pragma once
-// The film: float linear RGB per pixel, row 0 at the top. It knows nothing about scenes or
-// files; the renderer fills it, image_io encodes and writes it.
+// The film: float linear RGB per pixel, row 0 at the top, and optionally the AOVs denoisers
+// consume (albedo, normal, depth). It knows nothing about scenes or files; the renderer fills
+// it, image_io encodes and writes it.
 #include <cstddef>
 #include <vector>
 
 #include "glint/math/color.h"
+#include "glint/math/vector.h"
 
 namespace glint {
 
@@ -19,6 +21,20 @@ public:
     const Color& at(int col, int row) const { return pixels_[index(col, row)]; }
     const std::vector<Color>& pixels() const { return pixels_; }
 
+    /// Allocates the AOV planes (albedo, normal, depth), before rendering.
+    void enable_aovs() {
+        albedo_.assign(pixels_.size(), Color{0});
+        normal_.assign(pixels_.size(), Normal3{0, 0, 0});
+        depth_.assign(pixels_.size(), 0);
+    }
+    bool has_aovs() const { return !albedo_.empty(); }
+    Color& albedo(int col, int row) { return albedo_[index(col, row)]; }
+    Normal3& normal(int col, int row) { return normal_[index(col, row)]; }
+    float& depth(int col, int row) { return depth_[index(col, row)]; }
+    const std::vector<Color>& albedo() const { return albedo_; }
+    const std::vector<Normal3>& normal() const { return normal_; }
+    const std::vector<float>& depth() const { return depth_; }
+
 private:
     std::size_t index(int col, int row) const {
         return static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
@@ -26,6 +42,9 @@ private:
     }
     int width_, height_;
     std::vector<Color> pixels_;
+    std::vector<Color> albedo_;
+    std::vector<Normal3> normal_;
+    std::vector<float> depth_;
 };
 
 }  // namespace glint

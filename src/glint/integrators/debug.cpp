@@ -1,3 +1,5 @@
+#include <optional>
+
 #include "glint/integrators/integrator.h"
 
 namespace glint {
@@ -7,20 +9,34 @@ Color surface_color(const Scene& scene, const SurfaceInteraction& si) {
     const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
     return scene.texture(m.color, si);
 }
+
+// The first intersection of both debug views, with the AOVs filled in.
+std::optional<SurfaceInteraction> first_hit(const Scene& scene, const Ray& ray,
+                                            RayCounter& counter, FirstHit* first) {
+    ++counter.rays;
+    const auto hit = scene.intersect(ray);
+    if (!hit) {
+        if (first) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
+        return std::nullopt;
+    }
+    const SurfaceInteraction si = scene.interaction(ray, *hit);
+    if (first) *first = {surface_color(scene, si), si.n, hit->t, true};
+    return si;
+}
 }  // namespace
 
-Color FlatIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter) const {
-    ++counter.rays;
-    const auto hit = scene.intersect(ray);
-    if (!hit) return evaluate(scene.background, ray.direction);
-    return surface_color(scene, scene.interaction(ray, *hit));
+Color FlatIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter,
+                         FirstHit* first) const {
+    const auto si = first_hit(scene, ray, counter, first);
+    if (!si) return evaluate(scene.background, ray.direction);
+    return surface_color(scene, *si);
 }
 
-Color NormalsIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter) const {
-    ++counter.rays;
-    const auto hit = scene.intersect(ray);
-    if (!hit) return evaluate(scene.background, ray.direction);
-    const Normal3 n = scene.interaction(ray, *hit).n;
+Color NormalsIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter,
+                            FirstHit* first) const {
+    const auto si = first_hit(scene, ray, counter, first);
+    if (!si) return evaluate(scene.background, ray.direction);
+    const Normal3 n = si->n;
     return Color{(n.x + 1) / 2, (n.y + 1) / 2, (n.z + 1) / 2};
 }
 

@@ -15,22 +15,35 @@ struct RayCounter {
     std::uint64_t rays = 0;
 };
 
+/// What the camera ray saw first, for the AOVs denoisers consume. On a miss: albedo is the
+/// background colour, normal (0,0,0), hit false.
+struct FirstHit {
+    Color albedo;
+    Normal3 normal;  ///< the unit normal used for shading, world space
+    Float depth = 0; ///< distance along the camera ray
+    bool hit = false;
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    virtual Color li(const Scene& scene, const Ray& camera_ray, RayCounter& counter) const = 0;
+    /// Radiance along the camera ray; fills `first` (when not null) with the first hit's AOVs.
+    virtual Color li(const Scene& scene, const Ray& camera_ray, RayCounter& counter,
+                     FirstHit* first = nullptr) const = 0;
 };
 
 /// Figure 7: the object's colour where the ray hits, the background elsewhere.
 class FlatIntegrator final : public Integrator {
 public:
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+             FirstHit* first = nullptr) const override;
 };
 
 /// Figure 9: (N + 1)/2 of the outward geometric normal, the background elsewhere.
 class NormalsIntegrator final : public Integrator {
 public:
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+             FirstHit* first = nullptr) const override;
 };
 
 struct WhittedSettings {
@@ -46,7 +59,8 @@ struct WhittedSettings {
 class WhittedIntegrator final : public Integrator {
 public:
     explicit WhittedIntegrator(WhittedSettings settings) : settings_(settings) {}
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter) const override;
+    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+             FirstHit* first = nullptr) const override;
     /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
     Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const;
 

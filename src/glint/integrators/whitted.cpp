@@ -23,14 +23,19 @@ Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Color k
 // The recursion colour = (1-s) d + s (d * r) is affine in r, so it unrolls into a loop:
 // colour = a0 + b0 * (a1 + b1 * (a2 + ...)) with a = (1-s) d and b = s d. `weight` is the
 // product of the b's so far. No recursion, so no stack depth limit on max_depth.
-Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounter& counter) const {
+Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounter& counter,
+                            FirstHit* first) const {
     Color result{0};
     Color weight{1};
     Ray ray = camera_ray;
     for (int depth = 0;; ++depth) {
         ++counter.rays;
         const auto hit = scene.intersect(ray);
-        if (!hit) return result + weight * evaluate(scene.background, ray.direction);
+        if (!hit) {
+            const Color bg = evaluate(scene.background, ray.direction);
+            if (first && depth == 0) *first = {bg, {}, 0, false};
+            return result + weight * bg;
+        }
         const SurfaceInteraction si = scene.interaction(ray, *hit);
         // Shade with the normal facing the viewer. For every surface seen from its front (all of
         // the article's figures) this is the article's N; it keeps the back of a plane and the
@@ -38,6 +43,7 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounte
         const Normal3 n = face_forward(si.n, ray.direction);
         const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
         const Color k = scene.texture(m.color, si);
+        if (first && depth == 0) *first = {k, n, hit->t, true};
         const Color d = direct(scene, si.p, n, k, counter);
         const float s = m.shininess;
         if (s <= 0) return result + weight * d;

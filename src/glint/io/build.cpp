@@ -121,6 +121,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     }
     job.display = d.film.display;
     job.options.filter = d.film.filter;
+    job.aovs = d.film.aovs || overrides.aovs;
     job.filename = d.film.filename.value;
 
     // Camera.

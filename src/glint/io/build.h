@@ -20,6 +20,7 @@ namespace glint {
 struct Overrides {
     std::optional<long long> width, height, spp, max_depth, threads;
     std::optional<std::uint64_t> seed;
+    bool aovs = false;  ///< --aovs: write the AOVs even if the scene does not ask
 };
 
 struct RenderJob {
@@ -29,6 +30,7 @@ struct RenderJob {
     RenderOptions options;
     int width = 0, height = 0;
     DisplaySettings display;
+    bool aovs = false;
     std::string filename;  ///< the scene's film.filename, or empty
 };
 

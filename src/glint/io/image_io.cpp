@@ -108,12 +108,28 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     std::vector<std::uint8_t> bytes;
     const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (format == ImageFormat::kExr) {
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+        // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names.
+        const int channels = film.has_aovs() ? 10 : 3;
+        OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
         spec.attribute("compression", "zip");
-        floats.resize(n * 3);
+        if (film.has_aovs()) {
+            spec.channelnames = {"R",   "G",   "B",   "albedo.R", "albedo.G",
+                                 "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+            spec.z_channel = 9;
+        }
+        const auto stride = static_cast<std::size_t>(channels);
+        floats.resize(n * stride);
         for (std::size_t i = 0; i < n; ++i) {
+            float* px = &floats[i * stride];
             const Color c = film.pixels()[i];
-            floats[3 * i] = c.r, floats[3 * i + 1] = c.g, floats[3 * i + 2] = c.b;
+            px[0] = c.r, px[1] = c.g, px[2] = c.b;
+            if (film.has_aovs()) {
+                const Color a = film.albedo()[i];
+                const Normal3 nn = film.normal()[i];
+                px[3] = a.r, px[4] = a.g, px[5] = a.b;
+                px[6] = nn.x, px[7] = nn.y, px[8] = nn.z;
+                px[9] = film.depth()[i];
+            }
         }
         ok = out->open(tmp.string(), spec) &&
              out->write_image(OIIO::TypeDesc::FLOAT, floats.data());

@@ -42,7 +42,8 @@ ImageFormat image_format_for(const std::filesystem::path& path);
 void check_writable(const std::filesystem::path& path);
 
 /// PNG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values as
-/// 32-bit float RGB, unclamped (no exposure, no curve).
+/// 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as
+/// channels albedo.R/G/B, N.X/Y/Z and Z.
 void write_image(const std::filesystem::path& path, const Film& film,
                  const DisplaySettings& display);
 

@@ -56,6 +56,7 @@ struct FilmDesc {
     Located<int> height{360, {}};
     DisplaySettings display;
     FilterDesc filter;
+    bool aovs = false;  ///< write albedo, normal and depth channels (EXR only)
     Located<std::string> filename;  ///< empty: the CLI chooses
 };
 

@@ -146,7 +146,9 @@ private:
 
     void film(const YAML::Node& node, FilmDesc& f) {
         MapReader m(r_, node, "film",
-                    {"width", "height", "encoding", "tonemap", "exposure", "filter", "filename"});
+                    {"width", "height", "encoding", "tonemap", "exposure", "filter", "aovs",
+                     "filename"});
+        assign(m.get("aovs"), f.aovs, [this](const YAML::Node& v) { return r_.boolean(v); });
         if (auto n = m.get("filter")) f.filter = filter(*n);
         auto size = [this, &m](const char* key, Located<int>& out) {
             if (auto n = m.get(key)) {

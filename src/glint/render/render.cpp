@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "glint/samplers/hash.h"
 #include "glint/samplers/stratified.h"
@@ -19,6 +20,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     const int spp = std::max(1, options.spp);
     const int tile = std::max(1, options.tile_size);
     const FilterSampler filter(options.filter);
+    const bool aovs = film.has_aovs();
     std::atomic<std::uint64_t> total_rays{0};
 
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
@@ -26,16 +28,30 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
                 Color sum{0};
+                // AOVs, filter-weighted like the colour; depth averages the samples that hit.
+                FirstHit first;
+                FirstHit* const want = aovs ? &first : nullptr;
+                Color albedo{0};
+                Vector3 normal{0, 0, 0};
+                float depth = 0, hit_weight = 0;
+                auto add_aovs = [&](float weight) {
+                    albedo += first.albedo * weight;
+                    normal += to_vector(first.normal) * weight;
+                    if (first.hit) depth += first.depth * weight, hit_weight += weight;
+                };
+                float weight_sum = 1;
                 if (spp == 1) {  // the pixel centre, through the lens centre
                     sum = integrator.li(
-                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter);
+                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter,
+                        want);
+                    if (aovs) add_aovs(1);
                 } else {
                     const std::uint32_t seed = pixel_seed(options.seed, static_cast<std::uint32_t>(col),
                                                           static_cast<std::uint32_t>(row));
                     // The lens gets its own stratified pattern, decorrelated from the pixel's
                     // by a different seed.
                     const std::uint32_t lens_seed = hash_combine(seed, 0x1e25u);
-                    float weight_sum = 0;
+                    weight_sum = 0;
                     for (int i = 0; i < spp; ++i) {
                         const auto index = static_cast<std::uint32_t>(i);
                         const auto count = static_cast<std::uint32_t>(spp);
@@ -45,12 +61,20 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                         const Ray ray = camera.generate_ray(static_cast<float>(col) + 0.5f + f.dx,
                                                             static_cast<float>(row) + 0.5f + f.dy,
                                                             lens);
-                        sum += integrator.li(scene, ray, counter) * f.weight;
+                        sum += integrator.li(scene, ray, counter, want) * f.weight;
+                        if (aovs) add_aovs(f.weight);
                         weight_sum += f.weight;
                     }
                     sum = weight_sum > 0 ? sum / weight_sum : Color{0};
                 }
                 film.at(col, row) = sum;
+                if (aovs) {
+                    const float inv = weight_sum > 0 ? 1 / weight_sum : 0;
+                    film.albedo(col, row) = albedo * inv;
+                    film.normal(col, row) = Normal3(normal * inv);
+                    film.depth(col, row) = hit_weight > 0 ? depth / hit_weight
+                                                          : std::numeric_limits<float>::infinity();
+                }
             }
         }
         total_rays.fetch_add(counter.rays, std::memory_order_relaxed);
