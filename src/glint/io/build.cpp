@@ -111,6 +111,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     }
     job.options.spp = pick(d.sampler.spp, overrides.spp, "spp", 1, kMaxSpp, diagnostics);
     job.options.seed = overrides.seed.value_or(d.sampler.seed);
+    job.options.sampler = d.sampler.type;
     if (overrides.threads) {
         if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
             diagnostics.error(kCommandLine, fmt::format("--threads must be in [0, {}], got {}",

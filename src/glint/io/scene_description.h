@@ -14,6 +14,7 @@
 #include "glint/io/diagnostics.h"
 #include "glint/io/image_io.h"
 #include "glint/lights/light.h"
+#include "glint/samplers/sampler.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
 #include "glint/shapes/quad.h"
@@ -70,6 +71,7 @@ struct IntegratorDesc {
 };
 
 struct SamplerDesc {
+    SamplerType type = SamplerType::kSobol;
     Located<int> spp{1, {}};
     std::uint64_t seed = 0;
 };

@@ -212,7 +212,13 @@ private:
     }
 
     void sampler(const YAML::Node& node, SamplerDesc& s) {
-        MapReader m(r_, node, "sampler", {"spp", "seed"});
+        MapReader m(r_, node, "sampler", {"type", "spp", "seed"});
+        if (m.has("type")) {
+            const auto type = type_of(node, "sampler", {"sobol", "stratified", "independent"});
+            if (type == "sobol") s.type = SamplerType::kSobol;
+            if (type == "stratified") s.type = SamplerType::kStratified;
+            if (type == "independent") s.type = SamplerType::kIndependent;
+        }
         if (auto n = m.get("spp")) {
             s.spp.loc = r_.loc(*n);
             assign(n, s.spp.value,

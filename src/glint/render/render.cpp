@@ -8,8 +8,7 @@
 #include <chrono>
 #include <limits>
 
-#include "glint/samplers/hash.h"
-#include "glint/samplers/stratified.h"
+#include "glint/samplers/sampler.h"
 
 namespace glint {
 
@@ -46,18 +45,17 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                         want);
                     if (aovs) add_aovs(1);
                 } else {
-                    const std::uint32_t seed = pixel_seed(options.seed, static_cast<std::uint32_t>(col),
-                                                          static_cast<std::uint32_t>(row));
-                    // The lens gets its own stratified pattern, decorrelated from the pixel's
-                    // by a different seed.
-                    const std::uint32_t lens_seed = hash_combine(seed, 0x1e25u);
+                    // Dimension pair 0 places the sample in the pixel (through the filter), pair 1
+                    // on the lens; later pairs are the integrator's.
+                    const PixelSampler sampler(
+                        options.sampler, static_cast<std::uint32_t>(spp),
+                        pixel_seed(options.seed, static_cast<std::uint32_t>(col),
+                                   static_cast<std::uint32_t>(row)));
                     weight_sum = 0;
                     for (int i = 0; i < spp; ++i) {
                         const auto index = static_cast<std::uint32_t>(i);
-                        const auto count = static_cast<std::uint32_t>(spp);
-                        const FilterSampler::Sample f =
-                            filter.sample(stratified_sample(index, count, seed));
-                        const Sample2 lens = stratified_sample(index, count, lens_seed);
+                        const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
+                        const Sample2 lens = sampler.get_2d(index, 1);
                         const Ray ray = camera.generate_ray(static_cast<float>(col) + 0.5f + f.dx,
                                                             static_cast<float>(row) + 0.5f + f.dy,
                                                             lens);

@@ -9,6 +9,7 @@
 #include "glint/film/filter.h"
 #include "glint/integrators/integrator.h"
 #include "glint/render/progress.h"
+#include "glint/samplers/sampler.h"
 #include "glint/scene.h"
 
 namespace glint {
@@ -17,6 +18,7 @@ struct RenderOptions {
     int threads = 0;  ///< 0: all cores
     int spp = 1;      ///< 1: the pixel centre; >1: stratified samples drawn through `filter`
     FilterDesc filter;
+    SamplerType sampler = SamplerType::kSobol;
     std::uint64_t seed = 0;
     int tile_size = 16;
 };

@@ -1,0 +1,64 @@
+#include "glint/samplers/sampler.h"
+
+#include <algorithm>
+
+#include "glint/samplers/hash.h"
+
+namespace glint {
+
+namespace {
+
+std::uint32_t reverse_bits(std::uint32_t v) {
+    v = ((v >> 1) & 0x55555555U) | ((v & 0x55555555U) << 1);
+    v = ((v >> 2) & 0x33333333U) | ((v & 0x33333333U) << 2);
+    v = ((v >> 4) & 0x0f0f0f0fU) | ((v & 0x0f0f0f0fU) << 4);
+    v = ((v >> 8) & 0x00ff00ffU) | ((v & 0x00ff00ffU) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+// A 32-bit binary fraction to a float in [0, 1): the top 24 bits, exactly.
+float to_float(std::uint32_t v) { return static_cast<float>(v >> 8) * (1.0f / 16777216.0f); }
+
+}  // namespace
+
+std::uint32_t sobol_0(std::uint32_t i) { return reverse_bits(i); }
+
+std::uint32_t sobol_1(std::uint32_t i) {
+    std::uint32_t v = 1U << 31, result = 0;
+    for (; i != 0; i >>= 1, v ^= v >> 1) {
+        if (i & 1U) result ^= v;
+    }
+    return result;
+}
+
+std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
+    std::uint32_t out = v;
+    // Bits below the top 24 do not reach a float; leave them.
+    for (int bit = 31; bit >= 8; --bit) {
+        // The prefix (bits above `bit`) with a sentinel 1 marking its length: one key per node
+        // of the binary permutation tree.
+        const std::uint32_t above = bit == 31 ? 0U : v >> (bit + 1);
+        const std::uint32_t key = above | (1U << (31 - bit));
+        out ^= (hash_combine(seed, key) & 1U) << bit;
+    }
+    return out;
+}
+
+Sample2 PixelSampler::get_2d(std::uint32_t index, std::uint32_t dimension) const {
+    const std::uint32_t seed = hash_combine(seed_, dimension);
+    switch (type_) {
+        case SamplerType::kStratified: return stratified_sample(index, spp_, seed);
+        case SamplerType::kIndependent:
+            return {to_unit_float(hash_combine(seed, 2 * index)),
+                    to_unit_float(hash_combine(seed, 2 * index + 1))};
+        case SamplerType::kSobol: {
+            const std::uint32_t i = permute_index(index, spp_, hash_combine(seed, 0x5eed));
+            const float x = to_float(owen_scramble(sobol_0(i), hash_combine(seed, 1)));
+            const float y = to_float(owen_scramble(sobol_1(i), hash_combine(seed, 2)));
+            return {x, y};
+        }
+    }
+    return {0.5f, 0.5f};
+}
+
+}  // namespace glint

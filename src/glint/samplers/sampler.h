@@ -1,0 +1,41 @@
+#pragma once
+// Per-pixel sample patterns. A sample is a pure function of (pixel seed, sample index,
+// dimension), so images are bit-identical for any thread count and tile order.
+//
+//  - kSobol (the default): Owen-scrambled Sobol points, "padded" as in pbrt-v4: every 2D
+//    dimension pair uses the first two Sobol dimensions (van der Corput, and the dimension with
+//    direction numbers v_k = v_{k-1} xor (v_{k-1} >> 1)), with its own nested uniform (Owen)
+//    scramble and its own permutation of the sample indices. For spp = 2^m the points of each
+//    pair form a (0, m, 2)-net: every elementary interval of area 1/spp holds exactly one.
+//  - kStratified: correlated multi-jittered samples (stratified.h), for any spp.
+//  - kIndependent: uniform random points, no stratification (a baseline for comparisons).
+#include <cstdint>
+
+#include "glint/samplers/stratified.h"
+
+namespace glint {
+
+enum class SamplerType { kSobol, kStratified, kIndependent };
+
+/// The i-th point of Sobol dimension 0 (van der Corput) and 1, as 32-bit binary fractions.
+std::uint32_t sobol_0(std::uint32_t i);
+std::uint32_t sobol_1(std::uint32_t i);
+
+/// Nested uniform scrambling of a 32-bit binary fraction: bit b is flipped or not by a hash of
+/// the seed and the bits above b, so every subinterval is permuted independently (Owen 1995).
+std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
+
+class PixelSampler {
+public:
+    PixelSampler(SamplerType type, std::uint32_t spp, std::uint32_t pixel_seed)
+        : type_(type), spp_(spp), seed_(pixel_seed) {}
+    /// Sample `index` (< spp) of the 2D dimension pair `dimension`, in [0, 1)^2.
+    Sample2 get_2d(std::uint32_t index, std::uint32_t dimension) const;
+
+private:
+    SamplerType type_;
+    std::uint32_t spp_;
+    std::uint32_t seed_;
+};
+
+}  // namespace glint
