@@ -21,7 +21,8 @@ struct SurfaceInteraction {
     Point3 p;       ///< hit point
     Normal3 n;      ///< unit geometric normal as the shape defines it (outward for spheres)
     MaterialId material;
-    Point2 uv;      ///< texture coordinates, by each shape's convention (shapes/*.h, uv_at)
+    ShapeKind shape;            ///< which shape was hit, so that Scene::uv can compute the
+    std::uint32_t shape_index;  ///< texture coordinates only when a texture needs them
 };
 
 }  // namespace glint

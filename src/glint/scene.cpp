@@ -1,6 +1,7 @@
 #include "glint/scene.h"
 
 #include <cassert>
+#include <type_traits>
 
 #include "glint/math/snap.h"
 
@@ -53,6 +54,24 @@ void Scene::commit() {
         bounds_.extend(t.p2);
     }
     committed_count_ = bounded_count();
+    any_bounded_ = committed_count_ > 0;
+    any_flat_ = !quads.empty() || !disks.empty() || !triangles.empty();
+    // Which textures read uv: images, and whatever combines one. Children come before their
+    // parents (build adds them first), so one forward pass settles every entry.
+    texture_needs_uv_.assign(textures.size(), false);
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+        const auto needs = [this](TextureId id) { return static_cast<bool>(texture_needs_uv_[id]); };
+        texture_needs_uv_[i] = std::visit(
+            [&](const auto& t) -> bool {
+                using T = std::decay_t<decltype(t)>;
+                if constexpr (std::is_same_v<T, ImageTexture>) return true;
+                if constexpr (std::is_same_v<T, ScaleTexture>) return needs(t.texture) || needs(t.factor);
+                if constexpr (std::is_same_v<T, MixTexture>)
+                    return needs(t.a) || needs(t.b) || needs(t.amount);
+                return false;
+            },
+            textures[i]);
+    }
 }
 
 std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
@@ -61,11 +80,13 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
     std::optional<Hit> best;
     // Planes first: a plane hit shortens t_max, which the box test and the rest then use.
     closest_hit<ShapeKind::kPlane>(planes, ray, best);
-    if (bounded_count() > 0 && bounds_.hit(ray, reciprocal(ray.direction))) {
+    if (any_bounded_ && bounds_.hit(ray, reciprocal(ray.direction))) {
         closest_hit<ShapeKind::kSphere>(spheres, ray, best);
-        closest_hit<ShapeKind::kQuad>(quads, ray, best);
-        closest_hit<ShapeKind::kDisk>(disks, ray, best);
-        closest_hit<ShapeKind::kTriangle>(triangles, ray, best);
+        if (any_flat_) {  // the article's scenes have none: skip three empty loops per ray
+            closest_hit<ShapeKind::kQuad>(quads, ray, best);
+            closest_hit<ShapeKind::kDisk>(disks, ray, best);
+            closest_hit<ShapeKind::kTriangle>(triangles, ray, best);
+        }
     }
     return best;
 }
@@ -73,9 +94,9 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
 bool Scene::occluded(const Ray& ray) const {
     assert(committed_count_ == bounded_count() && "Scene::commit() not called");
     if (any_hit(planes, ray)) return true;
-    if (bounded_count() == 0 || !bounds_.hit(ray, reciprocal(ray.direction))) return false;
-    return any_hit(spheres, ray) || any_hit(quads, ray) || any_hit(disks, ray) ||
-           any_hit(triangles, ray);
+    if (!any_bounded_ || !bounds_.hit(ray, reciprocal(ray.direction))) return false;
+    return any_hit(spheres, ray) ||
+           (any_flat_ && (any_hit(quads, ray) || any_hit(disks, ray) || any_hit(triangles, ray)));
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
@@ -83,31 +104,40 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
     switch (hit.kind) {
         case ShapeKind::kSphere: {
             const Sphere& s = spheres[hit.index];
-            return {p, s.normal_at(p), s.material, s.uv_at(p)};
+            return {p, s.normal_at(p), s.material, hit.kind, hit.index};
         }
         case ShapeKind::kPlane: {
             const Plane& pl = planes[hit.index];
-            const Point3 q = pl.project(p);
-            return {q, pl.normal, pl.material, pl.uv_at(q)};
+            return {pl.project(p), pl.normal, pl.material, hit.kind, hit.index};
         }
         // Flat shapes snap the point onto their plane, like planes (math/snap.h).
         case ShapeKind::kQuad: {
             const Quad& q = quads[hit.index];
-            const Point3 s = snap_to_plane(p, q.corner, q.normal());
-            return {s, q.normal(), q.material, q.uv_at(s)};
+            return {snap_to_plane(p, q.corner, q.normal()), q.normal(), q.material, hit.kind,
+                    hit.index};
         }
         case ShapeKind::kDisk: {
             const Disk& d = disks[hit.index];
-            const Point3 s = snap_to_plane(p, d.center, d.normal);
-            return {s, d.normal, d.material, d.uv_at(s)};
+            return {snap_to_plane(p, d.center, d.normal), d.normal, d.material, hit.kind, hit.index};
         }
         case ShapeKind::kTriangle: {
             const Triangle& t = triangles[hit.index];
-            const Point3 s = snap_to_plane(p, t.p0, t.normal());
-            return {s, t.normal(), t.material, t.uv_at(s)};
+            return {snap_to_plane(p, t.p0, t.normal()), t.normal(), t.material, hit.kind,
+                    hit.index};
         }
     }
-    return {p, Normal3{0, 1, 0}, 0, {}};  // unreachable: the switch covers every ShapeKind
+    return {p, Normal3{0, 1, 0}, 0, hit.kind, hit.index};  // unreachable: every kind is covered
+}
+
+Point2 Scene::uv(const SurfaceInteraction& si) const {
+    switch (si.shape) {
+        case ShapeKind::kSphere: return spheres[si.shape_index].uv_at(si.p);
+        case ShapeKind::kPlane: return planes[si.shape_index].uv_at(si.p);
+        case ShapeKind::kQuad: return quads[si.shape_index].uv_at(si.p);
+        case ShapeKind::kDisk: return disks[si.shape_index].uv_at(si.p);
+        case ShapeKind::kTriangle: return triangles[si.shape_index].uv_at(si.p);
+    }
+    return {};
 }
 
 }  // namespace glint

@@ -36,17 +36,25 @@ struct Scene {
     std::vector<Light> lights;
     Background background = SkyBackground{};
 
-    /// Computes the derived data (the bounds of the bounded shapes) from the arrays.
+    /// Computes the derived data (the bounds of the bounded shapes, which textures read uv) from
+    /// the arrays.
     void commit();
 
     /// Nearest hit in [kRayTMin, ray.t_max).
     std::optional<Hit> intersect(const Ray& ray) const;
     /// Whether anything lies in [kRayTMin, ray.t_max); stops at the first blocker.
     bool occluded(const Ray& ray) const;
-    /// The colour of texture `id` at a surface point.
+    /// The colour of texture `id` at a surface point. The uv is computed only for textures
+    /// that read it (an atan2 and an acos per sphere hit otherwise wasted).
     Color texture(TextureId id, const SurfaceInteraction& si) const {
-        return evaluate(textures, images, id, {si.p, si.uv});
+        // The article's textures inline; the rest go through the general (recursive) evaluate.
+        const Texture& t = textures[id];
+        if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
+        if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
+        return evaluate(textures, images, id, {si.p, texture_needs_uv_[id] ? uv(si) : Point2{}});
     }
+    /// Texture coordinates of a surface point, by the hit shape's convention (shapes/*.h).
+    Point2 uv(const SurfaceInteraction& si) const;
 
     /// Phase two: the full interaction for the winning hit.
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
@@ -56,6 +64,9 @@ private:
         return spheres.size() + quads.size() + disks.size() + triangles.size();
     }
     Bounds3 bounds_;  ///< around every sphere, quad, disk and triangle
+    bool any_bounded_ = false;  ///< set by commit(): any sphere, quad, disk or triangle
+    bool any_flat_ = false;     ///< set by commit(): any quad, disk or triangle
+    std::vector<char> texture_needs_uv_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
 };
 

@@ -10,7 +10,7 @@ namespace glint {
 /// flicker between floor(k) and floor(k) - 1 from pixel to pixel. For an axis-aligned normal the
 /// coordinate is set to the plane's exactly; otherwise p is projected (the checker's cell
 /// boundaries then cross the plane, and round-off cannot flip a whole cell).
-inline Point3 snap_to_plane(Point3 p, Point3 origin, Normal3 n) {
+[[gnu::always_inline]] inline Point3 snap_to_plane(Point3 p, Point3 origin, Normal3 n) {
     for (int axis = 0; axis < 3; ++axis) {
         if (std::abs(n[axis]) == 1) {
             p[axis] = origin[axis];

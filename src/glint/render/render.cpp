@@ -26,6 +26,11 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
         RayCounter counter;
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
+                if (spp == 1 && !aovs) {  // the article's case: one ray through the centre
+                    film.at(col, row) = integrator.li(
+                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter);
+                    continue;
+                }
                 Color sum{0};
                 // AOVs, filter-weighted like the colour; depth averages the samples that hit.
                 FirstHit first;

@@ -7,8 +7,6 @@
 
 namespace glint {
 
-Point3 Plane::project(Point3 p) const { return snap_to_plane(p, point, normal); }
-
 Point2 Plane::uv_at(Point3 p) const {
     Vector3 t, b;
     orthonormal_basis(to_vector(normal), t, b);

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "glint/interaction.h"
+#include "glint/math/snap.h"
 #include "glint/ray.h"
 
 namespace glint {
@@ -24,7 +25,7 @@ struct Plane {
     }
 
     /// The hit point moved exactly onto the plane (snap_to_plane).
-    Point3 project(Point3 p) const;
+    Point3 project(Point3 p) const { return snap_to_plane(p, point, normal); }
 
     /// Coordinates along the frame orthonormal_basis(normal) gives, from `point`, in scene units
     /// (for the normal +y: u = x - point.x, v = point.z - z). Unbounded: textures repeat.
