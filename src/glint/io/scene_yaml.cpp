@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
+#include <utility>
 #include <limits>
 #include <sstream>
 
@@ -87,6 +89,21 @@ private:
         return name;
     }
 
+    // A name from a fixed list, mapped to its value; otherwise "unknown WHAT 'x' (known: ...)".
+    template <typename T>
+    std::optional<T> choice(const YAML::Node& node, const char* what,
+                            std::initializer_list<std::pair<const char*, T>> options) {
+        const auto name = r_.string(node);
+        if (!name) return std::nullopt;
+        std::string known;
+        for (const auto& [key, value] : options) {
+            if (*name == key) return value;
+            known += (known.empty() ? "" : ", ") + std::string(key);
+        }
+        r_.error(node, fmt::format("unknown {} '{}' (known: {})", what, *name, known));
+        return std::nullopt;
+    }
+
     auto positive(const char* what) {
         return [this, what](const YAML::Node& n) { return r_.number_in(n, what, 0, kInf, true); };
     }
@@ -161,28 +178,16 @@ private:
         size("width", f.width);
         size("height", f.height);
         if (auto n = m.get("encoding")) {
-            if (auto e = r_.string(*n)) {
-                if (*e == "srgb") {
-                    f.display.encoding = Encoding::kSrgb;
-                } else if (*e == "raw") {
-                    f.display.encoding = Encoding::kRaw;
-                } else {
-                    r_.error(*n, fmt::format("unknown encoding '{}' (known: srgb, raw)", *e));
-                }
-            }
+            if (auto e = choice<Encoding>(*n, "encoding",
+                                          {{"srgb", Encoding::kSrgb}, {"raw", Encoding::kRaw}}))
+                f.display.encoding = *e;
         }
         if (auto n = m.get("tonemap")) {
-            if (auto c = r_.string(*n)) {
-                if (*c == "clamp") {
-                    f.display.curve = ToneCurve::kClamp;
-                } else if (*c == "reinhard") {
-                    f.display.curve = ToneCurve::kReinhard;
-                } else if (*c == "aces") {
-                    f.display.curve = ToneCurve::kAces;
-                } else {
-                    r_.error(*n, fmt::format("unknown tonemap '{}' (known: clamp, reinhard, aces)", *c));
-                }
-            }
+            if (auto c = choice<ToneCurve>(*n, "tonemap",
+                                           {{"clamp", ToneCurve::kClamp},
+                                            {"reinhard", ToneCurve::kReinhard},
+                                            {"aces", ToneCurve::kAces}}))
+                f.display.curve = *c;
         }
         assign(m.get("exposure"), f.display.exposure, [this](const YAML::Node& v) {
             return r_.number_in(v, "exposure", -64, 64);
@@ -329,19 +334,16 @@ private:
                 assign(n, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
             }
             if (const auto n = m.get("encoding")) {
-                if (const auto e = r_.string(*n)) {
-                    if (*e == "auto") t.encoding = ImageEncoding::kAuto;
-                    else if (*e == "srgb") t.encoding = ImageEncoding::kSrgb;
-                    else if (*e == "linear") t.encoding = ImageEncoding::kLinear;
-                    else r_.error(*n, fmt::format("unknown encoding '{}' (known: auto, srgb, linear)", *e));
-                }
+                if (auto e = choice<ImageEncoding>(*n, "encoding",
+                                                   {{"auto", ImageEncoding::kAuto},
+                                                    {"srgb", ImageEncoding::kSrgb},
+                                                    {"linear", ImageEncoding::kLinear}}))
+                    t.encoding = *e;
             }
             if (const auto n = m.get("wrap")) {
-                if (const auto w = r_.string(*n)) {
-                    if (*w == "repeat") t.wrap = WrapMode::kRepeat;
-                    else if (*w == "clamp") t.wrap = WrapMode::kClamp;
-                    else r_.error(*n, fmt::format("unknown wrap '{}' (known: repeat, clamp)", *w));
-                }
+                if (auto w = choice<WrapMode>(
+                        *n, "wrap", {{"repeat", WrapMode::kRepeat}, {"clamp", WrapMode::kClamp}}))
+                    t.wrap = *w;
             }
             assign(m.get("size"), t.size, positive("size"));
         } else {

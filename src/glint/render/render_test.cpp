@@ -62,21 +62,25 @@ TEST(Render, OneSampleIsThePixelCentre) {
     }
 }
 
-TEST(Render, StratifiedSamplesSplitAnEdgePixelInHalf) {
-    // A flat, screen-parallel checker whose cells meet at x = 0, seen by a 3-pixel-wide film: the
-    // middle pixel's left half sees x < 0 (odd = 0), its right half x >= 0 (even = 1). The 16
-    // stratified samples are n-rooks in x, so exactly 8 fall on each side: the pixel is 0.5.
+// A flat, screen-parallel checker whose cells meet at x = 0, seen by a 3-pixel-wide film: the
+// middle pixel's left half sees x < 0 (odd = 0), its right half x >= 0 (even = 1).
+RenderJob edge_scene(const std::string& filter) {
     auto sources = std::make_shared<SourceFiles>();
     const SceneDescription d = parse_scene(
         "camera: {position: [0, 50, 0], direction: [0, 0, 1], viewport_width: 3, "
         "viewport_height: 1, near: 1}\n"
-        "film: {width: 3, height: 1}\n"
+        "film: {width: 3, height: 1, filter: " + filter + "}\n"
         "integrator: {type: flat}\n"
         "objects:\n"
         "  - {type: plane, point: [0, 0, 5], normal: [0, 0, -1],\n"
         "     material: {color: {type: checker, size: 100, even: [1, 1, 1], odd: [0, 0, 0]}}}\n",
         "edge.yaml", sources);
-    const RenderJob job = build(d, {}, sources);
+    return build(d, {}, sources);
+}
+
+TEST(Render, StratifiedSamplesSplitAnEdgePixelInHalf) {
+    // The 16 samples are stratified in x (n-rooks), so exactly 8 fall on each side: 0.5.
+    const RenderJob job = edge_scene("{type: box}");
     const Film one = render_with(job, 1, 16, 1);
     EXPECT_EQ(one.at(0, 0).r, 0);
     EXPECT_EQ(one.at(2, 0).r, 1);
@@ -117,17 +121,7 @@ TEST(Render, AWiderFilterSpreadsTheEdgeIntoNeighbours) {
     // their own side; a tent of radius 1.5 reaches across the edge from the left pixel (centre
     // at -1, edge at 0), so it picks up some white and the middle pixel stays at one half.
     auto render_edge = [](const std::string& filter) {
-        auto sources = std::make_shared<SourceFiles>();
-        const SceneDescription d = parse_scene(
-            "camera: {position: [0, 50, 0], direction: [0, 0, 1], viewport_width: 3, "
-            "viewport_height: 1, near: 1}\n"
-            "film: {width: 3, height: 1, filter: " + filter + "}\n"
-            "integrator: {type: flat}\n"
-            "objects:\n"
-            "  - {type: plane, point: [0, 0, 5], normal: [0, 0, -1],\n"
-            "     material: {color: {type: checker, size: 100, even: [1, 1, 1], odd: [0, 0, 0]}}}\n",
-            "edge.yaml", sources);
-        return render_with(build(d, {}, sources), 1, 16, 256);
+        return render_with(edge_scene(filter), 1, 16, 256);
     };
     const Film box = render_edge("{type: box}");
     EXPECT_EQ(box.at(0, 0).r, 0);

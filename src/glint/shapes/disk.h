@@ -5,6 +5,7 @@
 #include "glint/interaction.h"
 #include "glint/math/frame.h"
 #include "glint/ray.h"
+#include "glint/shapes/plane.h"
 #include "glint/samplers/warp.h"
 #include "glint/shapes/area_sample.h"
 
@@ -18,11 +19,9 @@ struct Disk {
     MaterialId material = 0;
 
     std::optional<Float> intersect(const Ray& ray) const {
-        const Float denom = dot(normal, ray.direction);
-        if (std::abs(denom) < Float(1e-12)) return std::nullopt;
-        const Float t = dot(normal, center - ray.origin) / denom;
-        if (!(t >= kRayTMin && t < ray.t_max)) return std::nullopt;
-        const Vector3 w = ray.at(t) - center;
+        const auto t = intersect_plane(ray, center, normal);
+        if (!t) return std::nullopt;
+        const Vector3 w = ray.at(*t) - center;
         if (dot(w, w) > radius * radius) return std::nullopt;
         return t;
     }

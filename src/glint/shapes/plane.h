@@ -8,6 +8,17 @@
 
 namespace glint {
 
+/// The t in [kRayTMin, ray.t_max) where the ray meets the plane through `point` with unit normal
+/// n: (P0 - O).N / (D.N); rays parallel to the plane (|D.N| tiny) miss. Shared by every flat
+/// shape whose plane is given by a point and a unit normal.
+inline std::optional<Float> intersect_plane(const Ray& ray, Point3 point, Normal3 n) {
+    const Float denom = dot(n, ray.direction);
+    if (std::abs(denom) < Float(1e-9)) return std::nullopt;
+    const Float t = dot(n, point - ray.origin) / denom;
+    if (t >= kRayTMin && t < ray.t_max) return t;
+    return std::nullopt;
+}
+
 /// An infinite plane through `point` with unit normal `normal` (which also fixes its
 /// orientation: the side the normal points to is the front).
 struct Plane {
@@ -16,13 +27,7 @@ struct Plane {
     MaterialId material = 0;
 
     /// t = (P0 - O).N / (D.N); rays parallel to the plane (|D.N| tiny) miss.
-    std::optional<Float> intersect(const Ray& ray) const {
-        const Float denom = dot(normal, ray.direction);
-        if (std::abs(denom) < Float(1e-9)) return std::nullopt;
-        const Float t = dot(normal, point - ray.origin) / denom;
-        if (t >= kRayTMin && t < ray.t_max) return t;
-        return std::nullopt;
-    }
+    std::optional<Float> intersect(const Ray& ray) const { return intersect_plane(ray, point, normal); }
 
     /// The hit point moved exactly onto the plane (snap_to_plane).
     Point3 project(Point3 p) const { return snap_to_plane(p, point, normal); }
