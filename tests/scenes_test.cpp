@@ -26,6 +26,29 @@ TEST(Scenes, EveryShippedSceneLoadsAndBuilds) {
     EXPECT_GE(count, 6);
 }
 
+// The first ```yaml block after `marker` in a document of the repository.
+std::string yaml_block(const std::string& document, const std::string& marker) {
+    std::ifstream in(fs::path(GLINT_SOURCE_DIR) / document);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string doc = text.str();
+    const auto at = doc.find(marker);
+    if (at == std::string::npos) return "";
+    const auto start = doc.find("```yaml\n", at);
+    if (start == std::string::npos) return "";
+    const auto body = start + 8;
+    return doc.substr(body, doc.find("```", body) - body);
+}
+
+TEST(Scenes, SceneFormatCompleteExampleLoadsAndBuilds) {
+    const std::string yaml = yaml_block("docs/scene-format.md", "## A complete example");
+    ASSERT_FALSE(yaml.empty());
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_scene(yaml, "scene-format.md", sources), {}, sources);
+    EXPECT_EQ(job.scene.spheres.size(), 9u);
+    EXPECT_EQ(job.scene.planes.size(), 1u);
+}
+
 TEST(Scenes, ReadmeExampleLoadsAndBuilds) {
     std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "README.md");
     std::ostringstream text;
