@@ -72,9 +72,9 @@ int run_render(const RenderArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"glint: a ray tracer. The article's Whitted tracer (camera, spheres, planes, "
-                 "directional and point lights, hard shadows, reflections), rendering YAML "
-                 "scene files to PNG, EXR or PPM.",
+    CLI::App app{"glint: a ray tracer. Renders YAML or JSON scene files (the article's camera and "
+                 "Whitted shading with shadows and reflections; spheres, planes, quads, disks, "
+                 "triangles and boxes; image textures; depth of field) to PNG, EXR or PPM.",
                  "glint"};
     app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
     app.require_subcommand(1);
