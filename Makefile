@@ -20,7 +20,6 @@ build: configure
 
 demo: build
 	$(BUILD)/apps/glint/glint render -o glint.png
-	@echo "wrote glint.png"
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
