@@ -150,8 +150,16 @@ TEST(Figures, Fig12ShadowedGroundGetsAmbientOnlyAndLitGroundIsLambert) {
     }
     EXPECT_GT(shadowed, 10);  // the test really looked at both kinds of point
     EXPECT_GT(lit, 100);
-    // A point picked by hand: the ground near (-1.8, -1.02, 2.2) is shadowed (its ray to the
-    // light passes 0.82 from the white sphere's centre); ambient only: 0.1 K = (0.08,0.08,0.02).
+    // A point picked by hand: the ground at x = -1.8, z = 2.2 (y = -101 + sqrt(100^2 - 1.8^2 -
+    // 1.2^2) = -1.0234) is shadowed: its ray towards the light passes 0.82 from the white
+    // sphere's centre. The pixel that sees it gets ambient only, 0.1 K = (0.08, 0.08, 0.02).
+    const double gy = -101 + std::sqrt(10000 - 1.8 * 1.8 - 1.2 * 1.2);
+    const ref::V to_point = ref::sub({-1.8, gy, 2.2}, o);  // the point seen from the camera
+    const double x_view = to_point[0] / to_point[2], y_view = to_point[1] / to_point[2];  // z = 1
+    const int col = static_cast<int>((x_view + kViewW / 2) / kViewW * kW);
+    const int row = static_cast<int>((kViewH / 2 - y_view) / kViewH * kH);
+    ASSERT_FALSE(ref::hit_sphere(o, fig_dir(col, row), small, 1));  // not hidden by the sphere
+    expect_color(f.at(col, row), {0.08, 0.08, 0.02}, 1e-6);
 }
 
 TEST(Figures, Fig14FloorFollowsTheArticlesShadingAndChecker) {

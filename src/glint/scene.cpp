@@ -31,23 +31,19 @@ bool any_hit(const std::vector<Shape>& shapes, const Ray& ray) {
 
 void Scene::commit() {
     bounds_ = Bounds3{};
-    for (const Sphere& s : spheres) {
-        const Vector3 r{s.radius, s.radius, s.radius};
-        bounds_.extend(s.center - r);
-        bounds_.extend(s.center + r);
-    }
+    const auto extend_ball = [this](Point3 center, Float radius) {
+        const Vector3 r{radius, radius, radius};
+        bounds_.extend(center - r);
+        bounds_.extend(center + r);
+    };
+    for (const Sphere& s : spheres) extend_ball(s.center, s.radius);
     for (const Quad& q : quads) {
         bounds_.extend(q.corner);
         bounds_.extend(q.corner + q.edge1);
         bounds_.extend(q.corner + q.edge2);
         bounds_.extend(q.corner + q.edge1 + q.edge2);
     }
-    for (const Disk& d : disks) {
-        // The disk lies in the sphere of its radius.
-        const Vector3 r{d.radius, d.radius, d.radius};
-        bounds_.extend(d.center - r);
-        bounds_.extend(d.center + r);
-    }
+    for (const Disk& d : disks) extend_ball(d.center, d.radius);  // a disk lies in its ball
     for (const Triangle& t : triangles) {
         bounds_.extend(t.p0);
         bounds_.extend(t.p1);

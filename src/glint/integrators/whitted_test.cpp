@@ -73,7 +73,7 @@ TEST(Whitted, ShadowsOffIgnoresOccluders) {
 }
 
 TEST(Whitted, PointLightFallsOffWithInverseSquare) {
-    // Intensity 8 at distance 2 straight above, no occluder in between (the sphere is moved).
+    // Intensity 8 at distance 2 straight above (5,0,0); the sphere at (0,2,0) is not in between.
     Scene scene = shadow_scene(PointLight{{5, 2, 0}, Color{8}});
     const WhittedIntegrator w({0, true, 5});
     RayCounter counter;

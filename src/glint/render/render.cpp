@@ -22,13 +22,18 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     const bool aovs = film.has_aovs();
     std::atomic<std::uint64_t> total_rays{0};
 
+    // The single-sample ray: the pixel centre, through the lens centre.
+    const auto centre_ray = [&camera](int col, int row) {
+        return camera.generate_ray(static_cast<float>(col) + 0.5f, static_cast<float>(row) + 0.5f,
+                                   {0.5f, 0.5f});
+    };
+
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
         RayCounter counter;
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
-                if (spp == 1 && !aovs) {  // the article's case: one ray through the centre
-                    film.at(col, row) = integrator.li(
-                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter);
+                if (spp == 1 && !aovs) {  // the article's case, kept minimal
+                    film.at(col, row) = integrator.li(scene, centre_ray(col, row), counter);
                     continue;
                 }
                 Color sum{0};
@@ -44,10 +49,8 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                     if (first.hit) depth += first.depth * weight, hit_weight += weight;
                 };
                 float weight_sum = 1;
-                if (spp == 1) {  // the pixel centre, through the lens centre
-                    sum = integrator.li(
-                        scene, camera.generate_ray(col + 0.5f, row + 0.5f, {0.5f, 0.5f}), counter,
-                        want);
+                if (spp == 1) {
+                    sum = integrator.li(scene, centre_ray(col, row), counter, want);
                     if (aovs) add_aovs(1);
                 } else {
                     // Dimension pair 0 places the sample in the pixel (through the filter), pair 1
