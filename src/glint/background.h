@@ -1,9 +1,15 @@
 #pragma once
-// What a ray that leaves the scene sees.
+// What a ray that leaves the scene sees. Under the path tracer the background is also a light
+// (the environment), sampled by lights/light_sampler.h.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <variant>
 
 #include "glint/math/color.h"
 #include "glint/math/vector.h"
+#include "glint/samplers/distribution.h"
+#include "glint/textures/texture.h"
 
 namespace glint {
 
@@ -22,7 +28,37 @@ struct ConstantBackground {
     Color eval(Vector3) const { return color; }
 };
 
-using Background = std::variant<SkyBackground, ConstantBackground>;
+/// An HDR environment in the latitude-longitude layout: the image's top row is straight up
+/// (+y), its bottom row straight down, its centre column looks along +z (where the default
+/// camera looks) and its right half towards +x. Radiance = scale x the bilinearly filtered texel.
+/// make() builds the importance-sampling distribution: per texel, the largest luminance of the
+/// texel and its eight neighbours (so every direction the filter can light has density) times
+/// sin(theta) (the texel's solid angle).
+struct EnvironmentMap {
+    Image image;
+    float scale = 1;
+    Distribution2D distribution;
+
+    static EnvironmentMap make(Image image, float scale);
+
+    /// (u, v) in [0,1)^2 with v = 0 at the top row, and back.
+    static Point2 direction_to_uv(Vector3 d) {
+        const float phi = std::atan2(d.x, d.z);
+        const float theta = std::acos(std::clamp(d.y, -1.0f, 1.0f));
+        return {0.5f + phi * (0.5f * std::numbers::inv_pi_v<float>),
+                theta * std::numbers::inv_pi_v<float>};
+    }
+    static Vector3 uv_to_direction(Point2 uv) {
+        const float theta = uv.y * std::numbers::pi_v<float>;
+        const float phi = (uv.x - 0.5f) * 2 * std::numbers::pi_v<float>;
+        const float s = std::sin(theta);
+        return {s * std::sin(phi), std::cos(theta), s * std::cos(phi)};
+    }
+    /// Bilinear between texel centres, wrapping around in longitude, clamped at the poles.
+    Color eval(Vector3 d) const;
+};
+
+using Background = std::variant<SkyBackground, ConstantBackground, EnvironmentMap>;
 
 inline Color evaluate(const Background& bg, Vector3 d) {
     return std::visit([d](const auto& b) { return b.eval(d); }, bg);

@@ -1,5 +1,6 @@
 #include "glint/scene.h"
 
+#include <algorithm>
 #include <cassert>
 #include <type_traits>
 
@@ -50,6 +51,9 @@ void Scene::commit() {
         bounds_.extend(t.p2);
     }
     committed_count_ = bounded_count();
+    const float radius =
+        bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
+    light_sampler_.build(*this, std::max(radius, 1e-3f));
     any_bounded_ = committed_count_ > 0;
     any_flat_ = !quads.empty() || !disks.empty() || !triangles.empty();
     // Which textures read uv: images, and whatever combines one. Children come before their

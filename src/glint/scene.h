@@ -14,6 +14,7 @@
 #include "glint/math/bounds.h"
 #include "glint/interaction.h"
 #include "glint/lights/light.h"
+#include "glint/lights/light_sampler.h"
 #include "glint/materials/material.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
@@ -31,6 +32,7 @@ struct Scene {
     std::vector<Disk> disks;
     std::vector<Triangle> triangles;
     std::vector<Material> materials;
+    std::vector<Emission> emission;  ///< per material; missing entries emit nothing
     std::vector<Texture> textures;
     std::vector<Image> images;
     std::vector<Light> lights;
@@ -53,6 +55,19 @@ struct Scene {
         if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
         return evaluate(textures, images, id, {si.p, texture_needs_uv_[id] ? uv(si) : Point2{}});
     }
+    const Emission& emission_of(MaterialId m) const {
+        static const Emission kNone;
+        return m < emission.size() ? emission[m] : kNone;
+    }
+    /// Radiance the surface at si emits towards wo (unit, pointing away from the surface).
+    Color emitted(const SurfaceInteraction& si, Vector3 wo) const {
+        const Emission& e = emission_of(si.material);
+        if (!e.emits()) return Color{0};
+        return e.two_sided || dot(si.n, wo) > 0 ? e.radiance : Color{0};
+    }
+    /// Every light, for the path tracer; built by commit().
+    const LightSampler& light_sampler() const { return light_sampler_; }
+
     /// Texture coordinates of a surface point, by the hit shape's convention (shapes/*.h).
     Point2 uv(const SurfaceInteraction& si) const;
 
@@ -68,6 +83,7 @@ private:
     bool any_flat_ = false;     ///< set by commit(): any quad, disk or triangle
     std::vector<char> texture_needs_uv_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
+    LightSampler light_sampler_;
 };
 
 }  // namespace glint

@@ -1,13 +1,13 @@
 #include <optional>
 
 #include "glint/integrators/integrator.h"
+#include "glint/materials/make_bsdf.h"
 
 namespace glint {
 
 namespace {
 Color surface_color(const Scene& scene, const SurfaceInteraction& si) {
-    const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
-    return scene.texture(m.color, si);
+    return article_view(scene, si).color;
 }
 
 // The first intersection of both debug views, with the AOVs filled in.
@@ -25,14 +25,14 @@ std::optional<SurfaceInteraction> first_hit(const Scene& scene, const Ray& ray,
 }
 }  // namespace
 
-Color FlatIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter,
+Color FlatIntegrator::li(const Scene& scene, const Ray& ray, SampleStream&, RayCounter& counter,
                          FirstHit* first) const {
     const auto si = first_hit(scene, ray, counter, first);
     if (!si) return evaluate(scene.background, ray.direction);
     return surface_color(scene, *si);
 }
 
-Color NormalsIntegrator::li(const Scene& scene, const Ray& ray, RayCounter& counter,
+Color NormalsIntegrator::li(const Scene& scene, const Ray& ray, SampleStream&, RayCounter& counter,
                             FirstHit* first) const {
     const auto si = first_hit(scene, ray, counter, first);
     if (!si) return evaluate(scene.background, ray.direction);

@@ -2,10 +2,12 @@
 // Integrators answer "what colour arrives along this camera ray". A virtual interface is right
 // here: the choice is made once per render, not per ray.
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "glint/math/color.h"
 #include "glint/ray.h"
+#include "glint/samplers/sampler.h"
 #include "glint/scene.h"
 
 namespace glint {
@@ -28,21 +30,21 @@ class Integrator {
 public:
     virtual ~Integrator() = default;
     /// Radiance along the camera ray; fills `first` (when not null) with the first hit's AOVs.
-    virtual Color li(const Scene& scene, const Ray& camera_ray, RayCounter& counter,
+    virtual Color li(const Scene& scene, const Ray& camera_ray, SampleStream& samples, RayCounter& counter,
                      FirstHit* first = nullptr) const = 0;
 };
 
 /// Figure 7: the object's colour where the ray hits, the background elsewhere.
 class FlatIntegrator final : public Integrator {
 public:
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+    Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
 };
 
 /// Figure 9: (N + 1)/2 of the outward geometric normal, the background elsewhere.
 class NormalsIntegrator final : public Integrator {
 public:
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+    Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
 };
 
@@ -59,13 +61,39 @@ struct WhittedSettings {
 class WhittedIntegrator final : public Integrator {
 public:
     explicit WhittedIntegrator(WhittedSettings settings) : settings_(settings) {}
-    Color li(const Scene& scene, const Ray& ray, RayCounter& counter,
+    Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
     /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
     Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const;
 
 private:
     WhittedSettings settings_;
+};
+
+enum class LightStrategy { kMis, kLight, kBsdf };
+
+struct PathSettings {
+    int max_depth = 16;  ///< scattering events; 1 = direct lighting only
+    /// Russian roulette from this depth on (0-based); paths die with probability 1 - throughput.
+    int rr_depth = 3;
+    /// Clamp each sample's radiance to this luminance-independent maximum per channel (biased;
+    /// off when infinite).
+    float clamp = std::numeric_limits<float>::infinity();
+    /// kMis: light sampling and BSDF sampling combined by the power heuristic; kLight / kBsdf:
+    /// one strategy only (for comparisons; kBsdf never sees point, spot or sharp sun lights).
+    LightStrategy strategy = LightStrategy::kMis;
+};
+
+/// Unidirectional path tracing with next-event estimation and multiple importance sampling
+/// (Veach's power heuristic, beta = 2) for every light, Russian roulette and max_depth.
+class PathIntegrator final : public Integrator {
+public:
+    explicit PathIntegrator(PathSettings settings) : settings_(settings) {}
+    Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
+             FirstHit* first = nullptr) const override;
+
+private:
+    PathSettings settings_;
 };
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "glint/integrators/integrator.h"
+#include "glint/materials/make_bsdf.h"
 
 namespace glint {
 
@@ -23,7 +24,7 @@ Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Color k
 // The recursion colour = (1-s) d + s (d * r) is affine in r, so it unrolls into a loop:
 // colour = a0 + b0 * (a1 + b1 * (a2 + ...)) with a = (1-s) d and b = s d. `weight` is the
 // product of the b's so far. No recursion, so no stack depth limit on max_depth.
-Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounter& counter,
+Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream&, RayCounter& counter,
                             FirstHit* first) const {
     Color result{0};
     Color weight{1};
@@ -41,8 +42,8 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, RayCounte
         // the article's figures) this is the article's N; it keeps the back of a plane and the
         // inside of a sphere lit correctly instead of black.
         const Normal3 n = face_forward(si.n, ray.direction);
-        const auto& m = std::get<ArticleMaterial>(scene.materials[si.material]);
-        const Color k = scene.texture(m.color, si);
+        const ArticleView m = article_view(scene, si);  // the article's material as is
+        const Color k = m.color;
         if (first && depth == 0) *first = {k, n, hit->t, true};
         const Color d = direct(scene, si.p, n, k, counter);
         const float s = m.shininess;

@@ -100,8 +100,10 @@ TEST(Whitted, AtTheDepthLimitReflectionSeesTheBackground) {
     s.commit();
     const WhittedIntegrator w({0.2f, true, 0});
     RayCounter counter;
+    const PixelSampler sampler(SamplerType::kSobol, 1, 0);
+    SampleStream samples(sampler, 0);
     // No lights: d = K a = (0.2, 0.1, 0.05); r = 0.5.
-    expect_color(w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, counter), Color{0.1f, 0.05f, 0.025f});
+    expect_color(w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, samples, counter), Color{0.1f, 0.05f, 0.025f});
     EXPECT_EQ(counter.rays, 1u);
 }
 
@@ -117,8 +119,10 @@ TEST(Whitted, ShininessBlendsDiffuseAndReflection) {
     s.commit();
     const WhittedIntegrator w({0.5f, true, 5});
     RayCounter counter;
+    const PixelSampler sampler(SamplerType::kSobol, 1, 0);
+    SampleStream samples(sampler, 0);
     // d_A = 1 * 0.5 = 0.5; r = d_B = 0.4 * 0.5 = 0.2; colour = 0.5 * 0.5 + 0.5 * 0.5 * 0.2.
-    expect_color(w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, counter), Color{0.25f + 0.05f});
+    expect_color(w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, samples, counter), Color{0.25f + 0.05f});
     EXPECT_EQ(counter.rays, 2u);
 }
 
@@ -133,8 +137,10 @@ TEST(Whitted, FacingMirrorsStopAtMaxDepth) {
     for (int depth : {0, 1, 5, 100}) {
         const WhittedIntegrator w({0.5f, true, depth});
         RayCounter counter;
+        const PixelSampler sampler(SamplerType::kSobol, 1, 0);
+        SampleStream samples(sampler, 0);
         // Each bounce multiplies by d = 0.5; the last one sees the background (1).
-        const Color c = w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, counter);
+        const Color c = w.li(s, Ray{{0, 0, 0}, {0, 0, 1}}, samples, counter);
         EXPECT_NEAR(c.r, std::pow(0.5, depth + 1), 1e-6) << depth;
         EXPECT_EQ(counter.rays, static_cast<std::uint64_t>(depth + 1));
     }

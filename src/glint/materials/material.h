@@ -1,19 +1,69 @@
 #pragma once
-// Materials: a closed set (std::variant of plain structs). Today glint has the article's
-// material; the path tracer's materials join the variant as new alternatives.
+// Materials: a closed set (std::variant of plain structs). Colours come from textures (ids into
+// the scene's texture array); scalar parameters are constants. Each material turns into a Bsdf
+// at a hit (make_bsdf in materials/make_bsdf.h). Emission is not a material kind: any material
+// may emit (Scene::emission, parallel to the materials).
+#include <optional>
 #include <variant>
 
+#include "glint/materials/bsdf.h"
 #include "glint/textures/texture.h"
 
 namespace glint {
 
 /// The article's material: a colour K (from a texture) and a shininess s in [0,1] that blends
-/// diffuse shading d with the reflected colour: (1-s) d + s (d * r).
+/// diffuse shading d with the reflected colour: (1-s) d + s (d * r). Under the path tracer it is
+/// the matching mix of a diffuse lobe of albedo (1 - s) K and a perfect mirror of reflectance
+/// s K (the article's d * r: reflections tinted by the surface colour).
 struct ArticleMaterial {
     TextureId color;
     Float shininess = 0;
 };
 
-using Material = std::variant<ArticleMaterial>;
+/// Lambertian reflection.
+struct DiffuseMaterial {
+    TextureId albedo;
+};
+
+/// A metal. `lobe` holds the complex index (a preset or eta/k) and the GGX width; when
+/// `reflectance` is set, the Fresnel term is Schlick's with that texture as f0 instead.
+struct ConductorMaterial {
+    ConductorLobe lobe;
+    std::optional<TextureId> reflectance;
+};
+
+/// Glass (smooth or rough, optionally a thin sheet).
+struct DielectricMaterial {
+    DielectricLobe lobe;
+};
+
+/// A diffuse base under a dielectric coat.
+struct PlasticMaterial {
+    TextureId albedo;
+    PlasticLobe coat;  ///< eta, width and the precomputed internal reflectance; albedo set per hit
+};
+
+/// glTF 2.0 metallic-roughness: mix(dielectric, metal, metallic), where the metal is GGX with
+/// Schlick's Fresnel and f0 = base colour, and the dielectric is a plastic of base colour under
+/// a coat of index ior, or, in proportion `transmission`, rough glass tinted by the base colour.
+/// alpha = roughness^2, as glTF specifies.
+struct PbrMaterial {
+    TextureId base_color;
+    float metallic = 1;
+    float roughness = 1;
+    float transmission = 0;
+    float ior = 1.5f;
+    float fdr_inside = 0;  ///< of the coat, precomputed
+};
+
+using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMaterial,
+                              DielectricMaterial, PlasticMaterial, PbrMaterial>;
+
+/// Light a surface emits, in radiance, on the side its normal faces (both when two_sided).
+struct Emission {
+    Color radiance{0};
+    bool two_sided = false;
+    bool emits() const { return radiance.max_component() > 0; }
+};
 
 }  // namespace glint

@@ -30,10 +30,16 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
 
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
         RayCounter counter;
+        const auto seed_of = [&options](int col, int row) {
+            return pixel_seed(options.seed, static_cast<std::uint32_t>(col),
+                              static_cast<std::uint32_t>(row));
+        };
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
                 if (spp == 1 && !aovs) {  // the article's case, kept minimal
-                    film.at(col, row) = integrator.li(scene, centre_ray(col, row), counter);
+                    const PixelSampler sampler(options.sampler, 1, seed_of(col, row));
+                    SampleStream samples(sampler, 0);
+                    film.at(col, row) = integrator.li(scene, centre_ray(col, row), samples, counter);
                     continue;
                 }
                 Color sum{0};
@@ -50,15 +56,15 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                 };
                 float weight_sum = 1;
                 if (spp == 1) {
-                    sum = integrator.li(scene, centre_ray(col, row), counter, want);
+                    const PixelSampler sampler(options.sampler, 1, seed_of(col, row));
+                    SampleStream samples(sampler, 0);
+                    sum = integrator.li(scene, centre_ray(col, row), samples, counter, want);
                     if (aovs) add_aovs(1);
                 } else {
                     // Dimension pair 0 places the sample in the pixel (through the filter), pair 1
                     // on the lens; later pairs are the integrator's.
-                    const PixelSampler sampler(
-                        options.sampler, static_cast<std::uint32_t>(spp),
-                        pixel_seed(options.seed, static_cast<std::uint32_t>(col),
-                                   static_cast<std::uint32_t>(row)));
+                    const PixelSampler sampler(options.sampler, static_cast<std::uint32_t>(spp),
+                                               seed_of(col, row));
                     weight_sum = 0;
                     for (int i = 0; i < spp; ++i) {
                         const auto index = static_cast<std::uint32_t>(i);
@@ -67,7 +73,8 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                         const Ray ray = camera.generate_ray(static_cast<float>(col) + 0.5f + f.dx,
                                                             static_cast<float>(row) + 0.5f + f.dy,
                                                             lens);
-                        sum += integrator.li(scene, ray, counter, want) * f.weight;
+                        SampleStream samples(sampler, index);
+                        sum += integrator.li(scene, ray, samples, counter, want) * f.weight;
                         if (aovs) add_aovs(f.weight);
                         weight_sum += f.weight;
                     }

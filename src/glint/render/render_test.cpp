@@ -55,9 +55,11 @@ TEST(Render, OneSampleIsThePixelCentre) {
     const RenderJob job = load("fig12-shadows.yaml", o);
     const Film film = render_with(job, 2, 16, 1);
     RayCounter counter;
+    const PixelSampler sampler(SamplerType::kSobol, 1, 0);
     for (auto [col, row] : {std::pair{0, 0}, std::pair{17, 21}, std::pair{39, 29}}) {
+        SampleStream samples(sampler, 0);
         const Color expected = job.integrator->li(
-            job.scene, job.camera.generate_ray(col + 0.5f, row + 0.5f), counter);
+            job.scene, job.camera.generate_ray(col + 0.5f, row + 0.5f), samples, counter);
         EXPECT_EQ(film.at(col, row), expected);
     }
 }

@@ -38,4 +38,21 @@ private:
     std::uint32_t seed_;
 };
 
+/// The dimensions of one camera sample, handed out in order: an integrator draws what it needs
+/// per bounce, and the same path always gets the same numbers. Pairs 0 (pixel) and 1 (lens)
+/// belong to the camera; the stream starts at pair 2.
+class SampleStream {
+public:
+    SampleStream(const PixelSampler& sampler, std::uint32_t index, std::uint32_t first_pair = 2)
+        : sampler_(&sampler), index_(index), pair_(first_pair) {}
+    Sample2 next_2d() { return sampler_->get_2d(index_, pair_++); }
+    /// One number: the first coordinate of a fresh pair (which stays stratified on its own).
+    float next_1d() { return next_2d().x; }
+
+private:
+    const PixelSampler* sampler_;
+    std::uint32_t index_;
+    std::uint32_t pair_;
+};
+
 }  // namespace glint

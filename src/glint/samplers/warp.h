@@ -1,6 +1,7 @@
 #pragma once
 // Warps from the unit square to shapes, for sampling points uniformly by area. Each maps
 // uniform (u1, u2) in [0,1)^2 to a uniform point of its domain.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +32,39 @@ inline Point2 sample_uniform_disk_concentric(Sample2 u) {
 inline Point2 sample_uniform_triangle(Sample2 u) {
     const float s = std::sqrt(u.x);
     return {1 - s, u.y * s};
+}
+
+/// Cosine-weighted direction about +z (Malley's method: a uniform disk point lifted onto the
+/// hemisphere); density cos(theta) / pi.
+inline Vector3 sample_cosine_hemisphere(Sample2 u) {
+    const Point2 d = sample_uniform_disk_concentric(u);
+    const float z = std::sqrt(std::max(0.0f, 1 - d.x * d.x - d.y * d.y));
+    return {d.x, d.y, z};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) {
+    return cos_theta > 0 ? cos_theta * std::numbers::inv_pi_v<float> : 0;
+}
+
+/// Uniform direction on the unit sphere; density 1 / (4 pi).
+inline Vector3 sample_uniform_sphere(Sample2 u) {
+    const float z = 1 - 2 * u.x;
+    const float r = std::sqrt(std::max(0.0f, 1 - z * z));
+    const float phi = 2 * std::numbers::pi_v<float> * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float kUniformSpherePdf = 0.25f * std::numbers::inv_pi_v<float>;
+
+/// Uniform direction in the cone of directions within angle theta_max of +z, given
+/// one_minus_cos = 1 - cos(theta_max) > 0 (pass 2 sin^2(theta_max / 2): exact for a small sun);
+/// density 1 / (2 pi one_minus_cos).
+inline Vector3 sample_uniform_cone(Sample2 u, float one_minus_cos) {
+    const float one_minus_z = u.x * one_minus_cos;
+    const float r = std::sqrt(std::max(0.0f, one_minus_z * (2 - one_minus_z)));
+    const float phi = 2 * std::numbers::pi_v<float> * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), 1 - one_minus_z};
+}
+inline float uniform_cone_pdf(float one_minus_cos) {
+    return 1 / (2 * std::numbers::pi_v<float> * one_minus_cos);
 }
 
 }  // namespace glint

@@ -1,0 +1,52 @@
+#include "glint/background.h"
+
+#include <cmath>
+
+namespace glint {
+
+namespace {
+float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+int wrap_column(int x, int width) { return ((x % width) + width) % width; }
+}  // namespace
+
+EnvironmentMap EnvironmentMap::make(Image image, float scale) {
+    EnvironmentMap env;
+    const int w = image.width, h = image.height;
+    std::vector<float> weights(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    for (int y = 0; y < h; ++y) {
+        const float sin_theta =
+            std::sin((static_cast<float>(y) + 0.5f) / static_cast<float>(h) * std::numbers::pi_v<float>);
+        for (int x = 0; x < w; ++x) {
+            float m = 0;
+            for (int dy = -1; dy <= 1; ++dy) {
+                const int yy = std::clamp(y + dy, 0, h - 1);
+                for (int dx = -1; dx <= 1; ++dx)
+                    m = std::max(m, luminance(image.texel(wrap_column(x + dx, w), yy)));
+            }
+            weights[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                    static_cast<std::size_t>(x)] = m * sin_theta;
+        }
+    }
+    env.distribution = Distribution2D(weights, w, h);
+    env.image = std::move(image);
+    env.scale = scale;
+    return env;
+}
+
+Color EnvironmentMap::eval(Vector3 d) const {
+    const Point2 uv = direction_to_uv(d);
+    if (!(std::isfinite(uv.x) && std::isfinite(uv.y))) return Color{0};
+    const float x = uv.x * static_cast<float>(image.width) - 0.5f;
+    const float y = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
+                               static_cast<float>(image.height - 1));
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float tx = x - fx, ty = y - fy;
+    const int x0 = wrap_column(static_cast<int>(fx), image.width);
+    const int x1 = wrap_column(static_cast<int>(fx) + 1, image.width);
+    const int y0 = static_cast<int>(fy), y1 = std::min(y0 + 1, image.height - 1);
+    const Color c = image.texel(x0, y0) * ((1 - tx) * (1 - ty)) + image.texel(x1, y0) * (tx * (1 - ty)) +
+                    image.texel(x0, y1) * ((1 - tx) * ty) + image.texel(x1, y1) * (tx * ty);
+    return c * scale;
+}
+
+}  // namespace glint

@@ -1,0 +1,68 @@
+#pragma once
+// Light sampling for the path tracer: every light of a committed scene (the file's lights, one
+// area light per emitting shape, and the environment) in one index space, chosen in proportion
+// to its power, and sampled by solid angle from a shaded point.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "glint/interaction.h"
+#include "glint/lights/light.h"
+#include "glint/samplers/distribution.h"
+
+namespace glint {
+
+struct Scene;
+
+/// Radiance L arriving at the shaded point from direction wi, with the density of wi by solid
+/// angle (for a delta light: 1, and delta set).
+struct LightLiSample {
+    Color L;
+    Vector3 wi;
+    float pdf = 0;
+    float distance = 0;  ///< how far a shadow ray must stay clear (infinite for distant lights)
+    bool delta = false;
+};
+
+inline constexpr std::uint32_t kNoLight = 0xffffffffU;
+
+class LightSampler {
+public:
+    /// Called by Scene::commit: gathers the lights and their powers; `radius` bounds the scene
+    /// (distant lights' power is what crosses a disk of that radius).
+    void build(const Scene& scene, float radius);
+
+    std::uint32_t count() const { return static_cast<std::uint32_t>(lights_.size()) + (env_ ? 1 : 0); }
+    /// A light chosen with probability proportional to its power.
+    std::uint32_t pick(float u, float* pmf) const;
+    float pmf(std::uint32_t light) const { return distribution_.pmf(light); }
+
+    std::optional<LightLiSample> sample_li(const Scene& scene, std::uint32_t light, Point3 p,
+                                           Sample2 u) const;
+    /// The solid-angle density with which sample_li(light, p) produces the direction wi that
+    /// reaches the light at the point `on_light` (for area lights; ignored otherwise).
+    float pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,
+                 Point3 on_light) const;
+
+    /// The area light of an emitting shape, or kNoLight.
+    std::uint32_t light_of(ShapeKind kind, std::uint32_t index) const {
+        const auto& v = shape_light_[static_cast<std::size_t>(kind)];
+        return index < v.size() ? v[index] : kNoLight;
+    }
+    /// Lights a ray that leaves the scene can meet: soft suns, then the environment.
+    const std::vector<std::uint32_t>& distant() const { return distant_; }
+    std::uint32_t environment() const { return env_ ? static_cast<std::uint32_t>(lights_.size()) : kNoLight; }
+    /// Radiance a ray leaving the scene along unit `d` receives from distant light `light`.
+    Color distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d) const;
+    const Light& light(std::uint32_t i) const { return lights_[i]; }
+
+private:
+    std::vector<Light> lights_;  ///< the file's lights, then the area lights; the environment is last
+    bool env_ = false;
+    Distribution1D distribution_;
+    std::array<std::vector<std::uint32_t>, 5> shape_light_;
+    std::vector<std::uint32_t> distant_;
+};
+
+}  // namespace glint

@@ -1,0 +1,437 @@
+#include "glint/materials/bsdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "glint/materials/fresnel.h"
+#include "glint/samplers/warp.h"
+
+namespace glint {
+
+namespace {
+
+constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+
+bool same_side(Vector3 a, Vector3 b) { return a.z * b.z > 0; }
+Vector3 mirror_z(Vector3 v) { return {-v.x, -v.y, v.z}; }
+Vector3 flip_z(Vector3 v) { return {v.x, v.y, -v.z}; }
+float sqr(float v) { return v * v; }
+
+// Reflection-only lobes are two-sided: seen from below, mirror both directions to the upper side.
+template <typename F>
+auto upper(Vector3 wo, Vector3 wi, F f) {
+    return wo.z < 0 ? f(flip_z(wo), flip_z(wi)) : f(wo, wi);
+}
+
+Vector3 reflect_about(Vector3 wo, Vector3 m) { return m * (2 * dot(wo, m)) - wo; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------- diffuse
+
+Color DiffuseLobe::eval(Vector3 wo, Vector3 wi) const {
+    return same_side(wo, wi) ? albedo * kInvPi : Color{0};
+}
+
+float DiffuseLobe::pdf(Vector3 wo, Vector3 wi) const {
+    return same_side(wo, wi) ? std::abs(wi.z) * kInvPi : 0;
+}
+
+std::optional<BsdfSample> DiffuseLobe::sample(Vector3 wo, float, Sample2 u) const {
+    Vector3 wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0) wi = flip_z(wi);
+    const float pdf = std::abs(wi.z) * kInvPi;
+    if (pdf <= 0) return std::nullopt;
+    return BsdfSample{albedo * kInvPi, wi, pdf};
+}
+
+// -------------------------------------------------------------------------------- conductor
+
+namespace {
+
+// E(mu, alpha) on a kN x kN grid of cell centres, by midpoint quadrature over the visible-normal
+// sample space (the map is smooth, so the quadrature converges fast): the reflected fraction
+// for F = 1 is the mean of G2(wo, wi) / G1(wo) over visible normals.
+constexpr int kN = 32;
+struct AlbedoTable {
+    float e[kN][kN];   // [alpha][mu]
+    float avg[kN];     // [alpha]
+    AlbedoTable() {
+        constexpr int kQ = 32;
+        for (int a = 0; a < kN; ++a) {
+            const Ggx ggx{(static_cast<float>(a) + 0.5f) / kN};
+            double sum_avg = 0;
+            for (int m = 0; m < kN; ++m) {
+                const float mu = (static_cast<float>(m) + 0.5f) / kN;
+                const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
+                double sum = 0;
+                for (int i = 0; i < kQ; ++i) {
+                    for (int j = 0; j < kQ; ++j) {
+                        const Sample2 u{(static_cast<float>(i) + 0.5f) / kQ,
+                                        (static_cast<float>(j) + 0.5f) / kQ};
+                        const Vector3 wm = ggx.sample_visible(wo, u);
+                        const Vector3 wi = reflect_about(wo, wm);
+                        if (wi.z > 0) sum += ggx.g(wo, wi) / ggx.g1(wo);
+                    }
+                }
+                e[a][m] = static_cast<float>(sum / (kQ * kQ));
+                sum_avg += 2.0 * e[a][m] * mu / kN;
+            }
+            avg[a] = static_cast<float>(sum_avg);
+        }
+    }
+};
+
+const AlbedoTable& albedo_table() {
+    static const AlbedoTable table;
+    return table;
+}
+
+// Linear interpolation between cell centres, clamped at the ends.
+void cell(float x, int& i0, int& i1, float& t) {
+    const float f = std::clamp(x * kN - 0.5f, 0.0f, static_cast<float>(kN - 1));
+    i0 = static_cast<int>(f);
+    i1 = std::min(i0 + 1, kN - 1);
+    t = f - static_cast<float>(i0);
+}
+
+}  // namespace
+
+float ggx_albedo(float mu, float alpha) {
+    const AlbedoTable& table = albedo_table();
+    int a0, a1, m0, m1;
+    float ta, tm;
+    cell(alpha, a0, a1, ta);
+    cell(mu, m0, m1, tm);
+    const auto row = [&](int a) { return table.e[a][m0] * (1 - tm) + table.e[a][m1] * tm; };
+    return row(a0) * (1 - ta) + row(a1) * ta;
+}
+
+float ggx_albedo_average(float alpha) {
+    const AlbedoTable& table = albedo_table();
+    int a0, a1;
+    float ta;
+    cell(alpha, a0, a1, ta);
+    return table.avg[a0] * (1 - ta) + table.avg[a1] * ta;
+}
+
+ConductorLobe make_conductor(ConductorLobe::FresnelKind kind, Color eta, Color k, float alpha) {
+    ConductorLobe c;
+    c.kind = kind;
+    c.eta = eta;
+    c.k = k;
+    c.ggx = Ggx{alpha};
+    // F_avg = 2 int F(mu) mu dmu, midpoint rule.
+    constexpr int kSteps = 256;
+    Color sum{0};
+    for (int i = 0; i < kSteps; ++i) {
+        const float mu = (static_cast<float>(i) + 0.5f) / kSteps;
+        sum += c.fresnel(mu) * (2 * mu / kSteps);
+    }
+    c.f_avg = sum;
+    if (!c.ggx.smooth()) (void)albedo_table();  // build the table now, not inside a render
+    return c;
+}
+
+Color ConductorLobe::fresnel(float cos_i) const {
+    switch (kind) {
+        case FresnelKind::kComplex: return fresnel_conductor(cos_i, eta, k);
+        case FresnelKind::kSchlick: return fresnel_schlick(cos_i, eta);
+        case FresnelKind::kConstant: return eta;
+    }
+    return eta;
+}
+
+Color ConductorLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
+    if (ggx.smooth()) return Color{0};
+    return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
+        if (wo.z <= 0 || wi.z <= 0) return Color{0};
+        const Vector3 wm = normalize(wo + wi);
+        const Color single =
+            fresnel(dot(wo, wm)) * (ggx.d(wm) * ggx.g(wo, wi) / (4 * wo.z * wi.z));
+        // Kulla-Conty: f_ms = (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg)), coloured by
+        // F_avg^2 E_avg / (1 - F_avg (1 - E_avg)).
+        const float e_avg = ggx_albedo_average(ggx.alpha);
+        if (e_avg >= 1) return single;
+        const float ms = (1 - ggx_albedo(wo.z, ggx.alpha)) * (1 - ggx_albedo(wi.z, ggx.alpha)) /
+                         (std::numbers::pi_v<float> * (1 - e_avg));
+        const Color f_ms{sqr(f_avg.r) * e_avg / (1 - f_avg.r * (1 - e_avg)),
+                         sqr(f_avg.g) * e_avg / (1 - f_avg.g * (1 - e_avg)),
+                         sqr(f_avg.b) * e_avg / (1 - f_avg.b * (1 - e_avg))};
+        return single + f_ms * ms;
+    });
+}
+
+float ConductorLobe::pdf(Vector3 wo_in, Vector3 wi_in) const {
+    if (ggx.smooth()) return 0;
+    return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        const float p_ms = 1 - ggx_albedo(wo.z, ggx.alpha);
+        const Vector3 wm = normalize(wo + wi);
+        const float spec = ggx.d_visible(wo, wm) / (4 * dot(wo, wm));
+        return (1 - p_ms) * spec + p_ms * wi.z * kInvPi;
+    });
+}
+
+std::optional<BsdfSample> ConductorLobe::sample(Vector3 wo_in, float uc, Sample2 u) const {
+    const bool below = wo_in.z < 0;
+    const Vector3 wo = below ? flip_z(wo_in) : wo_in;
+    if (wo.z == 0) return std::nullopt;
+    Vector3 wi;
+    if (ggx.smooth()) {
+        wi = mirror_z(wo);
+        BsdfSample s{fresnel(wo.z) / wi.z, below ? flip_z(wi) : wi, 1, true};
+        return s;
+    }
+    const float p_ms = 1 - ggx_albedo(wo.z, ggx.alpha);
+    if (uc < p_ms) {
+        wi = sample_cosine_hemisphere(u);
+    } else {
+        wi = reflect_about(wo, ggx.sample_visible(wo, u));
+    }
+    if (wi.z <= 0) return std::nullopt;
+    const float pdf_value = pdf(wo, wi);
+    if (pdf_value <= 0) return std::nullopt;
+    return BsdfSample{eval(wo, wi), below ? flip_z(wi) : wi, pdf_value};
+}
+
+// ------------------------------------------------------------------------------- dielectric
+
+namespace {
+
+// The half vector of a reflection or refraction pair, facing +z, and the index ratio etap
+// (1 for reflection). False when the pair is impossible (grazing or back-facing microfacet).
+bool generalized_half(Vector3 wo, Vector3 wi, float eta, Vector3& wm, float& etap) {
+    const float cos_o = wo.z, cos_i = wi.z;
+    if (cos_o == 0 || cos_i == 0) return false;
+    const bool reflect = cos_o * cos_i > 0;
+    etap = reflect ? 1 : (cos_o > 0 ? eta : 1 / eta);
+    wm = wi * etap + wo;
+    if (dot(wm, wm) == 0) return false;
+    wm = normalize(wm);
+    if (wm.z < 0) wm = -wm;
+    return !(dot(wm, wi) * cos_i < 0 || dot(wm, wo) * cos_o < 0);
+}
+
+}  // namespace
+
+Color DielectricLobe::eval(Vector3 wo, Vector3 wi) const {
+    if (thin || ggx.smooth() || eta == 1) return Color{0};
+    Vector3 wm;
+    float etap;
+    if (!generalized_half(wo, wi, eta, wm, etap)) return Color{0};
+    const float f = fresnel_dielectric(dot(wo, wm), eta);
+    if (etap == 1) {
+        return Color{ggx.d(wm) * ggx.g(wo, wi) * f / std::abs(4 * wi.z * wo.z)};
+    }
+    const float denom = sqr(dot(wi, wm) + dot(wo, wm) / etap) * wi.z * wo.z;
+    const float ft = ggx.d(wm) * (1 - f) * ggx.g(wo, wi) *
+                     std::abs(dot(wi, wm) * dot(wo, wm) / denom) / sqr(etap);
+    return tint * ft;
+}
+
+float DielectricLobe::pdf(Vector3 wo, Vector3 wi) const {
+    if (thin || ggx.smooth() || eta == 1) return 0;
+    Vector3 wm;
+    float etap;
+    if (!generalized_half(wo, wi, eta, wm, etap)) return 0;
+    const float r = fresnel_dielectric(dot(wo, wm), eta);
+    if (etap == 1) return r * ggx.d_visible(wo, wm) / (4 * std::abs(dot(wo, wm)));
+    const float denom = sqr(dot(wi, wm) + dot(wo, wm) / etap);
+    return (1 - r) * ggx.d_visible(wo, wm) * std::abs(dot(wi, wm)) / denom;
+}
+
+std::optional<BsdfSample> DielectricLobe::sample(Vector3 wo, float uc, Sample2 u) const {
+    if (wo.z == 0) return std::nullopt;
+    if (thin || ggx.smooth() || eta == 1) {
+        float r = fresnel_dielectric(wo.z, eta);
+        if (thin && r < 1) r += sqr(1 - r) * r / (1 - r * r);  // the sheet's inter-reflections
+        const float t = 1 - r;
+        if (uc < r) {
+            const Vector3 wi = mirror_z(wo);
+            return BsdfSample{Color{r / std::abs(wi.z)}, wi, r, true};
+        }
+        if (thin || eta == 1) {
+            const Vector3 wi = -wo;
+            return BsdfSample{tint * (t / std::abs(wi.z)), wi, t, true};
+        }
+        Vector3 wi;
+        float etap;
+        if (!refract(wo, {0, 0, 1}, eta, wi, etap)) return std::nullopt;
+        return BsdfSample{tint * (t / std::abs(wi.z) / sqr(etap)), wi, t, true, etap};
+    }
+    const Vector3 wm = ggx.sample_visible(wo, u);
+    const float r = fresnel_dielectric(dot(wo, wm), eta);
+    Vector3 wi;
+    float etap = 1;
+    if (uc < r) {
+        wi = reflect_about(wo, wm);
+        if (!same_side(wo, wi)) return std::nullopt;
+    } else {
+        if (!refract(wo, wm, eta, wi, etap) || same_side(wo, wi) || wi.z == 0) return std::nullopt;
+    }
+    const float p = pdf(wo, wi);
+    if (p <= 0) return std::nullopt;
+    return BsdfSample{eval(wo, wi), wi, p, false, etap};
+}
+
+// ---------------------------------------------------------------------------------- plastic
+
+float diffuse_fresnel_inside(float eta) {
+    constexpr int kSteps = 1024;
+    double sum = 0;
+    for (int i = 0; i < kSteps; ++i) {
+        const float mu = (static_cast<float>(i) + 0.5f) / kSteps;
+        sum += 2.0 * fresnel_dielectric(mu, 1 / eta) * mu / kSteps;
+    }
+    return static_cast<float>(sum);
+}
+
+PlasticLobe make_plastic(Color albedo, float eta, float alpha) {
+    PlasticLobe p;
+    p.albedo = albedo;
+    p.eta = eta;
+    p.ggx = Ggx{alpha};
+    p.fdr_inside = diffuse_fresnel_inside(eta);
+    return p;
+}
+
+float PlasticLobe::coat_probability(float cos_o) const {
+    const float f = fresnel_dielectric(cos_o, eta);
+    const float base = (1 - f) * (albedo.r + albedo.g + albedo.b) / 3;
+    return f + base > 0 ? std::clamp(f / (f + base), 0.05f, 1.0f) : 1.0f;
+}
+
+Color PlasticLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
+    return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
+        if (wo.z <= 0 || wi.z <= 0) return Color{0};
+        const float fo = fresnel_dielectric(wo.z, eta), fi = fresnel_dielectric(wi.z, eta);
+        const float scale = (1 - fo) * (1 - fi) * kInvPi / (eta * eta);
+        const Color base{albedo.r * scale / (1 - albedo.r * fdr_inside),
+                         albedo.g * scale / (1 - albedo.g * fdr_inside),
+                         albedo.b * scale / (1 - albedo.b * fdr_inside)};
+        if (ggx.smooth()) return base;
+        const Vector3 wm = normalize(wo + wi);
+        const float coat = ggx.d(wm) * ggx.g(wo, wi) * fresnel_dielectric(dot(wo, wm), eta) /
+                           (4 * wo.z * wi.z);
+        return base + Color{coat};
+    });
+}
+
+float PlasticLobe::pdf(Vector3 wo_in, Vector3 wi_in) const {
+    return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        const float pc = coat_probability(wo.z);
+        float coat = 0;
+        if (!ggx.smooth()) {
+            const Vector3 wm = normalize(wo + wi);
+            coat = ggx.d_visible(wo, wm) / (4 * dot(wo, wm));
+        }
+        return pc * coat + (1 - pc) * wi.z * kInvPi;
+    });
+}
+
+std::optional<BsdfSample> PlasticLobe::sample(Vector3 wo_in, float uc, Sample2 u) const {
+    const bool below = wo_in.z < 0;
+    const Vector3 wo = below ? flip_z(wo_in) : wo_in;
+    if (wo.z == 0) return std::nullopt;
+    const float pc = coat_probability(wo.z);
+    Vector3 wi;
+    if (uc < pc) {
+        if (ggx.smooth()) {
+            wi = mirror_z(wo);
+            const float f = fresnel_dielectric(wo.z, eta);
+            return BsdfSample{Color{f / wi.z}, below ? flip_z(wi) : wi, pc, true};
+        }
+        wi = reflect_about(wo, ggx.sample_visible(wo, u));
+    } else {
+        wi = sample_cosine_hemisphere(u);
+    }
+    if (wi.z <= 0) return std::nullopt;
+    const float p = pdf(wo, wi);
+    if (p <= 0) return std::nullopt;
+    return BsdfSample{eval(wo, wi), below ? flip_z(wi) : wi, p};
+}
+
+// ------------------------------------------------------------------------------- composite
+
+Bsdf::Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes) {
+    n_ = to_vector(n);
+    orthonormal_basis(n_, t_, b_);
+    float total = 0;
+    for (const auto& [lobe, weight] : lobes) {
+        if (!(weight > 0) || count_ == 3) continue;
+        lobes_[static_cast<std::size_t>(count_)] = lobe;
+        weight_[static_cast<std::size_t>(count_)] = weight;
+        total += weight;
+        has_non_delta_ |= std::visit(
+            [](const auto& l) {
+                using T = std::decay_t<decltype(l)>;
+                if constexpr (std::is_same_v<T, ConductorLobe>) return !l.ggx.smooth();
+                if constexpr (std::is_same_v<T, DielectricLobe>)
+                    return !(l.thin || l.ggx.smooth() || l.eta == 1);
+                return true;
+            },
+            lobe);
+        ++count_;
+    }
+    for (int i = 0; i < count_; ++i) select_[static_cast<std::size_t>(i)] =
+        weight_[static_cast<std::size_t>(i)] / total;
+}
+
+Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const {
+    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+    Color f{0};
+    for (int i = 0; i < count_; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        f += std::visit([&](const auto& l) { return l.eval(wo, wi); }, lobes_[k]) * weight_[k];
+    }
+    return f;
+}
+
+float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
+    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+    float p = 0;
+    for (int i = 0; i < count_; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        p += std::visit([&](const auto& l) { return l.pdf(wo, wi); }, lobes_[k]) * select_[k];
+    }
+    return p;
+}
+
+std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const {
+    if (count_ == 0) return std::nullopt;
+    // Choose a lobe with uc, then reuse the remainder of uc inside it.
+    std::size_t k = 0;
+    float lo = 0;
+    while (k + 1 < static_cast<std::size_t>(count_) && uc >= lo + select_[k]) lo += select_[k++];
+    const float uc_lobe = std::clamp((uc - lo) / select_[k], 0.0f, 0x1.fffffep-1f);
+    const Vector3 wo = to_local(wo_w);
+    auto s = std::visit([&](const auto& l) { return l.sample(wo, uc_lobe, u); }, lobes_[k]);
+    if (!s) return std::nullopt;
+    if (s->specular || count_ == 1) {
+        s->f = s->f * weight_[k];
+        s->pdf *= select_[k];
+    } else {
+        const Vector3 wi = s->wi;
+        Color f{0};
+        float p = 0;
+        for (int i = 0; i < count_; ++i) {
+            const auto j = static_cast<std::size_t>(i);
+            std::visit(
+                [&](const auto& l) {
+                    f += l.eval(wo, wi) * weight_[j];
+                    p += l.pdf(wo, wi) * select_[j];
+                },
+                lobes_[j]);
+        }
+        s->f = f;
+        s->pdf = p;
+    }
+    if (!(s->pdf > 0)) return std::nullopt;
+    s->wi = to_world(s->wi);
+    return s;
+}
+
+}  // namespace glint

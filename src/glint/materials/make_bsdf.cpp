@@ -1,0 +1,91 @@
+#include "glint/materials/make_bsdf.h"
+
+#include <cmath>
+#include <type_traits>
+
+#include "glint/materials/fresnel.h"
+
+namespace glint {
+
+namespace {
+
+float f0_dielectric(float eta) { return fresnel_dielectric(1, eta); }
+
+}  // namespace
+
+Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
+    return std::visit(
+        [&](const auto& m) -> Bsdf {
+            using T = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<T, ArticleMaterial>) {
+                const Color k = scene.texture(m.color, si);
+                const float s = m.shininess;
+                ConductorLobe mirror;  // smooth, constant reflectance K; weighted by s
+                mirror.eta = k;
+                return Bsdf(si.n, {{DiffuseLobe{k}, 1 - s}, {mirror, s}});
+            } else if constexpr (std::is_same_v<T, DiffuseMaterial>) {
+                return Bsdf(si.n, {{DiffuseLobe{scene.texture(m.albedo, si)}, 1.0f}});
+            } else if constexpr (std::is_same_v<T, ConductorMaterial>) {
+                if (!m.reflectance) return Bsdf(si.n, {{m.lobe, 1.0f}});
+                ConductorLobe lobe = m.lobe;
+                lobe.kind = ConductorLobe::FresnelKind::kSchlick;
+                lobe.eta = scene.texture(*m.reflectance, si);
+                lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);  // closed form
+                return Bsdf(si.n, {{lobe, 1.0f}});
+            } else if constexpr (std::is_same_v<T, DielectricMaterial>) {
+                return Bsdf(si.n, {{m.lobe, 1.0f}});
+            } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
+                PlasticLobe lobe = m.coat;
+                lobe.albedo = scene.texture(m.albedo, si);
+                return Bsdf(si.n, {{lobe, 1.0f}});
+            } else {
+                static_assert(std::is_same_v<T, PbrMaterial>);
+                const Color base = scene.texture(m.base_color, si);
+                const float alpha = m.roughness * m.roughness;
+                ConductorLobe metal;
+                metal.kind = ConductorLobe::FresnelKind::kSchlick;
+                metal.eta = base;
+                metal.f_avg = base + (Color{1} - base) * (1.0f / 21);
+                metal.ggx = Ggx{alpha};
+                PlasticLobe plastic;
+                plastic.albedo = base;
+                plastic.eta = m.ior;
+                plastic.ggx = Ggx{alpha};
+                plastic.fdr_inside = m.fdr_inside;
+                DielectricLobe glass;
+                glass.eta = m.ior;
+                glass.ggx = Ggx{alpha};
+                glass.tint = base;
+                const float dielectric = 1 - m.metallic;
+                return Bsdf(si.n, {{metal, m.metallic},
+                                   {plastic, dielectric * (1 - m.transmission)},
+                                   {glass, dielectric * m.transmission}});
+            }
+        },
+        scene.materials[si.material]);
+}
+
+ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
+    return std::visit(
+        [&](const auto& m) -> ArticleView {
+            using T = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<T, ArticleMaterial>) {
+                return {scene.texture(m.color, si), m.shininess};
+            } else if constexpr (std::is_same_v<T, DiffuseMaterial>) {
+                return {scene.texture(m.albedo, si), 0};
+            } else if constexpr (std::is_same_v<T, ConductorMaterial>) {
+                const Color f0 = m.reflectance ? scene.texture(*m.reflectance, si)
+                                               : m.lobe.fresnel(1);
+                return {f0, 1 - std::sqrt(m.lobe.ggx.alpha)};
+            } else if constexpr (std::is_same_v<T, DielectricMaterial>) {
+                return {m.lobe.tint, f0_dielectric(m.lobe.eta)};
+            } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
+                return {scene.texture(m.albedo, si), f0_dielectric(m.coat.eta)};
+            } else {
+                return {scene.texture(m.base_color, si), m.metallic};
+            }
+        },
+        scene.materials[si.material]);
+}
+
+}  // namespace glint
