@@ -51,6 +51,13 @@ public:
         focus_distance_ = focus_distance;
     }
     Float aperture_radius() const { return aperture_radius_; }
+    /// For right-handed scene data (the Cornell box's): H becomes -H, so the image is the
+    /// mirror image of the left-handed one and right-handed data appears as in its own renders.
+    void make_right_handed(int film_width) {
+        corner_ = corner_ + h_step_ * static_cast<Float>(film_width);
+        h_step_ = -h_step_;
+        basis_.h = -basis_.h;
+    }
 
     /// The camera ray through continuous film position (fx, fy): fx in [0, Sw) to the right,
     /// fy in [0, Sh) downward from the top edge. The pixel centre of (col, row) is

@@ -29,8 +29,48 @@ public:
         : scene_(scene), diagnostics_(diagnostics), dir_(std::move(scene_dir)) {}
 
     MaterialId add_material(const MaterialDesc& d) {
-        scene_.materials.push_back(ArticleMaterial{add_texture(d.color), d.shininess});
+        using K = MaterialDesc::Kind;
+        const float alpha = d.roughness * d.roughness;
+        switch (d.kind) {
+            case K::kArticle:
+                scene_.materials.push_back(ArticleMaterial{add_texture(d.color), d.shininess});
+                break;
+            case K::kDiffuse: scene_.materials.push_back(DiffuseMaterial{add_texture(d.color)}); break;
+            case K::kConductor: {
+                ConductorMaterial c{make_conductor(ConductorLobe::FresnelKind::kComplex, d.eta, d.k, alpha),
+                                    std::nullopt};
+                if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
+                scene_.materials.push_back(c);
+                break;
+            }
+            case K::kDielectric: {
+                DielectricLobe lobe;
+                lobe.eta = d.ior;
+                lobe.ggx = Ggx{alpha};
+                lobe.thin = d.thin;
+                lobe.tint = d.tint;
+                scene_.materials.push_back(DielectricMaterial{lobe});
+                break;
+            }
+            case K::kPlastic:
+                scene_.materials.push_back(
+                    PlasticMaterial{add_texture(d.color), make_plastic(Color{0}, d.ior, alpha)});
+                break;
+            case K::kPbr:
+                scene_.materials.push_back(PbrMaterial{add_texture(d.color), d.metallic, d.roughness,
+                                                       d.transmission, d.ior,
+                                                       diffuse_fresnel_inside(d.ior)});
+                break;
+        }
+        scene_.emission.resize(scene_.materials.size());
+        scene_.emission.back() = d.emission;
         return static_cast<MaterialId>(scene_.materials.size() - 1);
+    }
+
+    /// The environment image: loaded linear (an HDR radiance map), relative to the scene file.
+    void set_environment(const EnvironmentDesc& e) {
+        const ImageId id = add_image(e.filename, ImageEncoding::kAuto);
+        scene_.background = EnvironmentMap::make(scene_.images[id], e.scale);
     }
 
 private:
@@ -133,10 +173,12 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         job.camera = Camera(a->position, a->direction, a->up, vw, a->viewport_height, a->near,
                             job.width, job.height);
         job.camera.set_lens(a->aperture_radius, a->focus_distance.value_or(a->near));
+        if (a->right_handed) job.camera.make_right_handed(job.width);
     } else {
         const auto& l = std::get<LookAtCameraDesc>(d.camera);
         job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
         job.camera.set_lens(l.aperture_radius, l.focus_distance.value_or(length(l.to - l.from)));
+        if (l.right_handed) job.camera.make_right_handed(job.width);
     }
 
     // Integrator.
@@ -153,6 +195,13 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             job.integrator = std::make_unique<WhittedIntegrator>(s);
             break;
         }
+        case IntegratorKind::kPath: {
+            PathSettings s = d.integrator.path;
+            s.max_depth = pick(d.integrator.max_depth, overrides.max_depth, "max-depth", 0,
+                               kMaxDepth, diagnostics);
+            job.integrator = std::make_unique<PathIntegrator>(s);
+            break;
+        }
     }
 
     // Scene contents: named materials first (ids in file order), then objects.
@@ -160,6 +209,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     scene.background = d.background;
     scene.lights = d.lights;
     MaterialBuilder materials(scene, diagnostics, std::filesystem::path(d.path).parent_path());
+    if (d.environment) materials.set_environment(*d.environment);
     std::vector<std::string> names;
     for (const NamedMaterial& m : d.materials) {
         names.push_back(m.name);

@@ -13,7 +13,9 @@
 #include "glint/film/tonemap.h"
 #include "glint/io/diagnostics.h"
 #include "glint/io/image_io.h"
+#include "glint/integrators/integrator.h"
 #include "glint/lights/light.h"
+#include "glint/materials/material.h"
 #include "glint/samplers/sampler.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
@@ -39,6 +41,7 @@ struct ArticleCameraDesc {
     Float near = 1;  ///< the article's z
     Float aperture_radius = 0;
     std::optional<Float> focus_distance;  ///< default: near
+    bool right_handed = false;
 };
 
 struct LookAtCameraDesc {
@@ -48,6 +51,12 @@ struct LookAtCameraDesc {
     Float fov = 45;  ///< vertical, degrees
     Float aperture_radius = 0;
     std::optional<Float> focus_distance;  ///< default: |to - from|
+    bool right_handed = false;
+};
+
+struct EnvironmentDesc {
+    Located<std::string> filename;
+    float scale = 1;
 };
 
 using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;
@@ -61,13 +70,14 @@ struct FilmDesc {
     Located<std::string> filename;  ///< empty: the CLI chooses
 };
 
-enum class IntegratorKind { kFlat, kNormals, kWhitted };
+enum class IntegratorKind { kFlat, kNormals, kWhitted, kPath };
 
 struct IntegratorDesc {
     IntegratorKind kind = IntegratorKind::kWhitted;
     float ambient = 0.1f;
     bool shadows = true;
-    Located<int> max_depth{5, {}};
+    Located<int> max_depth{5, {}};  ///< whitted's default; path's is 16 (set by the parser)
+    PathSettings path;              ///< path: everything but max_depth
 };
 
 struct SamplerDesc {
@@ -91,8 +101,22 @@ struct TextureDesc {
 };
 
 struct MaterialDesc {
-    TextureDesc color;
+    enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr };
+    Kind kind = Kind::kArticle;
+    TextureDesc color;  ///< article colour, diffuse/plastic albedo, pbr base colour
     float shininess = 0;
+    float roughness = 0;  ///< alpha = roughness^2
+    // conductor: a complex index (a named metal or eta + k), or a Schlick reflectance texture
+    Color eta{0.2f, 0.92f, 1.1f}, k{3.9f, 2.45f, 2.14f};
+    std::optional<TextureDesc> reflectance;
+    // dielectric, plastic, pbr
+    float ior = 1.5f;
+    bool thin = false;
+    Color tint{1};
+    // pbr
+    float metallic = 0;
+    float transmission = 0;
+    Emission emission;
 };
 
 /// An object's material: a name to resolve, or an inline description.
@@ -121,6 +145,7 @@ struct SceneDescription {
     IntegratorDesc integrator;
     SamplerDesc sampler;
     Background background = SkyBackground{};
+    std::optional<EnvironmentDesc> environment;  ///< a background loaded from an image by build
     std::vector<Light> lights;
     std::vector<NamedMaterial> materials;
     std::vector<ObjectDesc> objects;

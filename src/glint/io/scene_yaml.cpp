@@ -11,10 +11,12 @@
 #include <initializer_list>
 #include <utility>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "glint/io/limits.h"
 #include "glint/io/yaml_reader.h"
+#include "glint/materials/metals.h"
 
 namespace glint {
 
@@ -53,7 +55,7 @@ public:
         if (auto n = m.get("sampler")) sampler(*n, scene.sampler);
         if (auto n = m.get("integrator")) integrator(*n, scene.integrator);
         if (auto n = m.get("background")) {
-            if (auto bg = background(*n)) scene.background = *bg;
+            if (auto bg = background(*n, scene.environment)) scene.background = *bg;
         }
         if (auto n = m.get("lights")) lights(*n, scene.lights);
         if (auto n = m.get("materials")) materials(*n, scene.materials);
@@ -122,8 +124,10 @@ private:
         if (type == "look_at") {
             LookAtCameraDesc c;
             MapReader m(r_, node, "look_at camera",
-                        {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance"});
+                        {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance",
+                         "handedness"});
             lens(m, c.aperture_radius, c.focus_distance);
+            handedness(m, c.right_handed);
             assign(m.require("from"), c.from, point());
             assign(m.require("to"), c.to, point());
             assign(m.get("up"), c.up, direction("up"));
@@ -139,8 +143,9 @@ private:
         if (!type) return c;
         MapReader m(r_, node, "camera",
                     {"type", "position", "direction", "up", "viewport_width", "viewport_height",
-                     "near", "aperture_radius", "focus_distance"});
+                     "near", "aperture_radius", "focus_distance", "handedness"});
         lens(m, c.aperture_radius, c.focus_distance);
+        handedness(m, c.right_handed);
         assign(m.get("position"), c.position, point());
         assign(m.get("direction"), c.direction, direction("direction"));
         assign(m.get("up"), c.up, direction("up"));
@@ -150,6 +155,13 @@ private:
         assign(m.get("viewport_height"), c.viewport_height, positive("viewport_height"));
         assign(m.get("near"), c.near, positive("near"));
         return c;
+    }
+
+    void handedness(MapReader& m, bool& right) {
+        if (auto n = m.get("handedness")) {
+            if (auto h = choice<bool>(*n, "handedness", {{"left", false}, {"right", true}}))
+                right = *h;
+        }
     }
 
     void lens(MapReader& m, Float& aperture, std::optional<Float>& focus) {
@@ -235,28 +247,48 @@ private:
     }
 
     void integrator(const YAML::Node& node, IntegratorDesc& d) {
-        const auto type = type_of(node, "integrator", {"flat", "normals", "whitted"});
+        const auto type = type_of(node, "integrator", {"flat", "normals", "whitted", "path"});
         if (!type) return;
-        if (*type != "whitted") {
+        if (*type == "flat" || *type == "normals") {
             d.kind = *type == "flat" ? IntegratorKind::kFlat : IntegratorKind::kNormals;
             MapReader m(r_, node, fmt::format("{} integrator", *type), {"type"});
             return;
         }
-        d.kind = IntegratorKind::kWhitted;
-        MapReader m(r_, node, "whitted integrator", {"type", "max_depth", "ambient", "shadows"});
+        const bool path = *type == "path";
+        d.kind = path ? IntegratorKind::kPath : IntegratorKind::kWhitted;
+        MapReader m(r_, node, fmt::format("{} integrator", *type),
+                    path ? std::vector<std::string>{"type", "max_depth", "rr_depth", "clamp",
+                                                    "strategy"}
+                         : std::vector<std::string>{"type", "max_depth", "ambient", "shadows"});
+        if (path) d.max_depth.value = d.path.max_depth;
         if (auto n = m.get("max_depth")) {
             d.max_depth.loc = r_.loc(*n);
             assign(n, d.max_depth.value, [this](const YAML::Node& v) {
                 return r_.integer_in(v, "max_depth", 0, kMaxDepth);
             });
         }
+        if (path) {
+            assign(m.get("rr_depth"), d.path.rr_depth, [this](const YAML::Node& v) {
+                return r_.integer_in(v, "rr_depth", 0, kMaxDepth);
+            });
+            assign(m.get("clamp"), d.path.clamp, positive("clamp"));
+            if (auto n = m.get("strategy")) {
+                if (auto st = choice<LightStrategy>(*n, "strategy",
+                                                    {{"mis", LightStrategy::kMis},
+                                                     {"light", LightStrategy::kLight},
+                                                     {"bsdf", LightStrategy::kBsdf}}))
+                    d.path.strategy = *st;
+            }
+            return;
+        }
         assign(m.get("ambient"), d.ambient,
                [this](const YAML::Node& v) { return r_.number_in(v, "ambient", 0, 1); });
         assign(m.get("shadows"), d.shadows, [this](const YAML::Node& v) { return r_.boolean(v); });
     }
 
-    std::optional<Background> background(const YAML::Node& node) {
-        const auto type = type_of(node, "background", {"sky", "constant"});
+    std::optional<Background> background(const YAML::Node& node,
+                                         std::optional<EnvironmentDesc>& environment) {
+        const auto type = type_of(node, "background", {"sky", "constant", "environment"});
         if (!type) return std::nullopt;
         if (*type == "sky") {
             SkyBackground sky;
@@ -264,6 +296,18 @@ private:
             assign(m.get("horizon"), sky.horizon, color());
             assign(m.get("zenith"), sky.zenith, color());
             return sky;
+        }
+        if (*type == "environment") {
+            EnvironmentDesc e;
+            MapReader m(r_, node, "environment background", {"type", "filename", "scale"});
+            if (const auto n = m.require("filename")) {
+                e.filename.loc = r_.loc(*n);
+                assign(n, e.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
+            }
+            assign(m.get("scale"), e.scale,
+                   [this](const YAML::Node& v) { return r_.number_in(v, "scale", 0, kInf); });
+            environment = e;
+            return std::nullopt;
         }
         ConstantBackground c;
         MapReader m(r_, node, "constant background", {"type", "color"});
@@ -276,21 +320,51 @@ private:
             r_.error(node, fmt::format("lights: expected a list, got {}", describe(node)));
             return;
         }
+        const auto degrees = [this](const char* what, double hi) {
+            return [this, what, hi](const YAML::Node& n) { return r_.number_in(n, what, 0, hi); };
+        };
         for (const YAML::Node& item : node) {
-            const auto type = type_of(item, "light", {"directional", "point"});
+            const auto type = type_of(item, "light", {"directional", "point", "spot"});
             if (!type) continue;
             if (*type == "directional") {
                 DirectionalLight l{{0, -1, 0}, Color{1}};
-                MapReader m(r_, item, "directional light", {"type", "direction", "intensity"});
+                MapReader m(r_, item, "directional light",
+                            {"type", "direction", "intensity", "angular_diameter"});
                 assign(m.require("direction"), l.direction, direction("direction"));
                 l.direction = normalize(l.direction);
                 assign(m.get("intensity"), l.intensity, color());
+                float diameter = 0;
+                assign(m.get("angular_diameter"), diameter, degrees("angular_diameter", 179));
+                const float s = std::sin(diameter * std::numbers::pi_v<float> / 720);  // sin(d/4)
+                l.one_minus_cos = 2 * s * s;
                 out.emplace_back(l);
-            } else {
+            } else if (*type == "point") {
                 PointLight l{{0, 0, 0}, Color{1}};
                 MapReader m(r_, item, "point light", {"type", "position", "intensity"});
                 assign(m.require("position"), l.position, point());
                 assign(m.get("intensity"), l.intensity, color());
+                out.emplace_back(l);
+            } else {
+                SpotLight l{{0, 0, 0}, {0, -1, 0}, Color{1}, 1, 0};
+                MapReader m(r_, item, "spot light",
+                            {"type", "position", "direction", "intensity", "cone_angle",
+                             "falloff_start"});
+                assign(m.require("position"), l.position, point());
+                assign(m.require("direction"), l.direction, direction("direction"));
+                l.direction = normalize(l.direction);
+                assign(m.get("intensity"), l.intensity, color());
+                float cone = 30, start = 25;
+                assign(m.get("cone_angle"), cone, degrees("cone_angle", 180));
+                const auto start_node = m.get("falloff_start");
+                assign(start_node, start, degrees("falloff_start", 180));
+                if (!start_node) start = cone * 5 / 6;
+                if (start > cone && start_node) {
+                    r_.error(*start_node, "spot light: falloff_start must not exceed cone_angle");
+                }
+                const float to_rad = std::numbers::pi_v<float> / 180;
+                l.cos_outer = std::cos(cone * to_rad);
+                l.cos_inner = std::cos(std::min(start, cone) * to_rad);
+                if (l.cos_inner <= l.cos_outer) l.cos_inner = l.cos_outer + 1e-6f;
                 out.emplace_back(l);
             }
         }
@@ -366,12 +440,89 @@ private:
 
     MaterialDesc material(const YAML::Node& node, const std::string& context) {
         MaterialDesc d;
-        MapReader m(r_, node, context, {"color", "shininess"});
-        if (auto n = m.get("color")) {
-            if (auto t = texture(*n)) d.color = *t;
+        if (!node.IsMap()) {
+            r_.error(node, fmt::format("{}: expected a map of keys, got {}", context, describe(node)));
+            return d;
         }
-        assign(m.get("shininess"), d.shininess,
-               [this](const YAML::Node& v) { return r_.number_in(v, "shininess", 0, 1); });
+        const auto type = type_of(node, "material",
+                                  {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr"},
+                                  "article");
+        if (!type) return d;
+        std::vector<std::string> keys{"type", "emission", "two_sided"};
+        const auto add = [&keys](std::initializer_list<const char*> more) {
+            keys.insert(keys.end(), more.begin(), more.end());
+        };
+        using K = MaterialDesc::Kind;
+        if (*type == "article") d.kind = K::kArticle, add({"color", "shininess"});
+        if (*type == "diffuse") d.kind = K::kDiffuse, add({"albedo"});
+        if (*type == "conductor") d.kind = K::kConductor, add({"metal", "eta", "k", "reflectance", "roughness"});
+        if (*type == "dielectric") d.kind = K::kDielectric, add({"ior", "roughness", "thin", "tint"});
+        if (*type == "plastic") d.kind = K::kPlastic, add({"albedo", "ior", "roughness"});
+        if (*type == "pbr") {
+            d.kind = K::kPbr;
+            d.roughness = 0.5f;
+            add({"base_color", "metallic", "roughness", "transmission", "ior"});
+        }
+        MapReader m(r_, node, context, keys);
+        const auto tex = [&](const char* key) {
+            if (auto n = m.get(key)) {
+                if (auto t = texture(*n)) d.color = *t;
+            }
+        };
+        const auto unit = [this](const char* what) {
+            return [this, what](const YAML::Node& v) { return r_.number_in(v, what, 0, 1); };
+        };
+        tex("color");
+        tex("albedo");
+        tex("base_color");
+        assign(m.get("shininess"), d.shininess, unit("shininess"));
+        assign(m.get("roughness"), d.roughness, unit("roughness"));
+        assign(m.get("metallic"), d.metallic, unit("metallic"));
+        assign(m.get("transmission"), d.transmission, unit("transmission"));
+        assign(m.get("ior"), d.ior, [this](const YAML::Node& v) {
+            return r_.number_in(v, "ior", 0, 10, true);
+        });
+        assign(m.get("thin"), d.thin, [this](const YAML::Node& v) { return r_.boolean(v); });
+        assign(m.get("tint"), d.tint, color());
+        assign(m.get("emission"), d.emission.radiance, color());
+        assign(m.get("two_sided"), d.emission.two_sided,
+               [this](const YAML::Node& v) { return r_.boolean(v); });
+        if (d.kind == K::kConductor) {
+            const auto metal = m.get("metal");
+            const auto eta = m.get("eta"), k = m.get("k"), reflectance = m.get("reflectance");
+            const int forms = (metal ? 1 : 0) + (eta || k ? 1 : 0) + (reflectance ? 1 : 0);
+            if (forms > 1) {
+                r_.error(node, fmt::format("{}: give one of 'metal', 'eta' and 'k', or "
+                                           "'reflectance'", context));
+            }
+            if (metal) {
+                if (const auto name = r_.string(*metal)) {
+                    const auto it = std::find_if(kMetals.begin(), kMetals.end(),
+                                                 [&](const MetalPreset& p) { return p.name == *name; });
+                    if (it == kMetals.end()) {
+                        std::vector<std::string> names;
+                        for (const auto& p : kMetals) names.emplace_back(p.name);
+                        const std::string guess = closest_match(*name, names);
+                        r_.error(*metal, fmt::format("unknown metal '{}'{} (known: {})", *name,
+                                                     guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                                     join(names)));
+                    } else {
+                        d.eta = it->eta;
+                        d.k = it->k;
+                    }
+                }
+            } else if (eta || k) {
+                if (!(eta && k)) r_.error(node, fmt::format("{}: 'eta' and 'k' go together", context));
+                assign(eta, d.eta, color());
+                assign(k, d.k, color());
+            } else if (reflectance) {
+                if (auto t = texture(*reflectance)) d.reflectance = *t;
+            } else {
+                TextureDesc white;  // no form given: a perfect mirror-white metal
+                white.value = Color{1};
+                d.reflectance = white;
+            }
+        }
         return d;
     }
 
@@ -408,7 +559,8 @@ private:
         }
         for (const YAML::Node& item : node) {
             const auto type =
-                type_of(item, "object", {"sphere", "plane", "quad", "disk", "triangle", "box"});
+                type_of(item, "object",
+                        {"sphere", "plane", "quad", "disk", "triangle", "polygon", "box"});
             if (!type) continue;
             const std::size_t first = out.size();
             std::optional<YAML::Node> mat;
@@ -451,25 +603,34 @@ private:
                 assign(m.require("radius"), d.radius, positive("radius"));
                 out.push_back({d, {}, {}});
                 mat = m.get("material");
-            } else if (*type == "triangle") {
-                Triangle t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-                MapReader m(r_, item, "triangle", {"type", "vertices", "material"});
+            } else if (*type == "triangle" || *type == "polygon") {
+                // A triangle, or a convex polygon split into a fan of triangles around vertex 0.
+                const bool polygon = *type == "polygon";
+                MapReader m(r_, item, *type, {"type", "vertices", "material"});
                 if (const auto v = m.require("vertices")) {
-                    if (!v->IsSequence() || v->size() != 3) {
-                        r_.error(*v, fmt::format("triangle: expected a list of 3 vertices, got {}",
+                    const bool count_ok =
+                        v->IsSequence() && (polygon ? v->size() >= 3 : v->size() == 3);
+                    if (!count_ok) {
+                        r_.error(*v, fmt::format("{}: expected a list of {} vertices, got {}", *type,
+                                                 polygon ? "3 or more" : "3",
                                                  v->IsSequence() ? fmt::format("a list of {}", v->size())
                                                                  : describe(*v)));
                     } else {
-                        const auto a = r_.point((*v)[0]), b = r_.point((*v)[1]), c = r_.point((*v)[2]);
-                        if (a && b && c) {
-                            t = Triangle{*a, *b, *c};
-                            if (!(length(cross(*b - *a, *c - *a)) > 0)) {
-                                r_.error(*v, "triangle: the vertices are collinear (zero area)");
+                        std::vector<Point3> points;
+                        for (const YAML::Node& vertex : *v) {
+                            if (auto p = r_.point(vertex)) points.push_back(*p);
+                        }
+                        for (std::size_t i = 1; points.size() == v->size() && i + 1 < points.size(); ++i) {
+                            const Point3 a = points[0], b = points[i], c = points[i + 1];
+                            if (!(length(cross(b - a, c - a)) > 0)) {
+                                r_.error(*v, polygon ? fmt::format("polygon: vertices 0, {} and {} "
+                                                                   "are collinear (zero area)", i, i + 1)
+                                                     : "triangle: the vertices are collinear (zero area)");
                             }
+                            out.push_back({Triangle{a, b, c}, {}, {}});
                         }
                     }
                 }
-                out.push_back({t, {}, {}});
                 mat = m.get("material");
             } else {
                 Point3 lo{0, 0, 0}, hi{1, 1, 1};

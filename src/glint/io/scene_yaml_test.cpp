@@ -114,7 +114,7 @@ TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
     const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
     EXPECT_EQ(errors_of(text),
               "scene.yaml:2:12: error: unknown object type 'sphre'; did you mean 'sphere'? "
-              "(known: sphere, plane, quad, disk, triangle, box)\n"
+              "(known: sphere, plane, quad, disk, triangle, polygon, box)\n"
               "      - {type: sphre, center: [0, 0, 1], radius: 1}\n" +
                   caret(12, 5));
 }

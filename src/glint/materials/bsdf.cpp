@@ -50,41 +50,34 @@ std::optional<BsdfSample> DiffuseLobe::sample(Vector3 wo, float, Sample2 u) cons
 
 namespace {
 
-// E(mu, alpha) on a kN x kN grid of cell centres, by midpoint quadrature over the visible-normal
-// sample space (the map is smooth, so the quadrature converges fast): the reflected fraction
-// for F = 1 is the mean of G2(wo, wi) / G1(wo) over visible normals.
+// E(mu, alpha) at the centres of a kN x kN grid, computed by tools/ggx_albedo_table.cpp (an
+// accurate quadrature takes seconds, too long for every run). E_avg(alpha) = 2 int E mu dmu is
+// integrated here from the same interpolated E that eval uses, so that the multiple-scattering
+// term returns exactly the energy the single-scattering term loses.
 constexpr int kN = 32;
-struct AlbedoTable {
-    float e[kN][kN];   // [alpha][mu]
-    float avg[kN];     // [alpha]
-    AlbedoTable() {
-        constexpr int kQ = 32;
+constexpr float kAlbedo[kN][kN] = {
+#include "glint/materials/ggx_albedo_table.inc"
+};
+
+float interpolate_mu(int a, float mu);
+
+struct AlbedoAverage {
+    float avg[kN];
+    AlbedoAverage() {
+        constexpr int kSteps = 2048;
         for (int a = 0; a < kN; ++a) {
-            const Ggx ggx{(static_cast<float>(a) + 0.5f) / kN};
-            double sum_avg = 0;
-            for (int m = 0; m < kN; ++m) {
-                const float mu = (static_cast<float>(m) + 0.5f) / kN;
-                const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
-                double sum = 0;
-                for (int i = 0; i < kQ; ++i) {
-                    for (int j = 0; j < kQ; ++j) {
-                        const Sample2 u{(static_cast<float>(i) + 0.5f) / kQ,
-                                        (static_cast<float>(j) + 0.5f) / kQ};
-                        const Vector3 wm = ggx.sample_visible(wo, u);
-                        const Vector3 wi = reflect_about(wo, wm);
-                        if (wi.z > 0) sum += ggx.g(wo, wi) / ggx.g1(wo);
-                    }
-                }
-                e[a][m] = static_cast<float>(sum / (kQ * kQ));
-                sum_avg += 2.0 * e[a][m] * mu / kN;
+            double sum = 0;
+            for (int i = 0; i < kSteps; ++i) {
+                const float mu = (static_cast<float>(i) + 0.5f) / kSteps;
+                sum += 2.0 * interpolate_mu(a, mu) * mu / kSteps;
             }
-            avg[a] = static_cast<float>(sum_avg);
+            avg[a] = static_cast<float>(sum);
         }
     }
 };
 
-const AlbedoTable& albedo_table() {
-    static const AlbedoTable table;
+const AlbedoAverage& albedo_average() {
+    static const AlbedoAverage table;
     return table;
 }
 
@@ -96,20 +89,24 @@ void cell(float x, int& i0, int& i1, float& t) {
     t = f - static_cast<float>(i0);
 }
 
+float interpolate_mu(int a, float mu) {
+    int m0, m1;
+    float tm;
+    cell(mu, m0, m1, tm);
+    return kAlbedo[a][m0] * (1 - tm) + kAlbedo[a][m1] * tm;
+}
+
 }  // namespace
 
 float ggx_albedo(float mu, float alpha) {
-    const AlbedoTable& table = albedo_table();
-    int a0, a1, m0, m1;
-    float ta, tm;
+    int a0, a1;
+    float ta;
     cell(alpha, a0, a1, ta);
-    cell(mu, m0, m1, tm);
-    const auto row = [&](int a) { return table.e[a][m0] * (1 - tm) + table.e[a][m1] * tm; };
-    return row(a0) * (1 - ta) + row(a1) * ta;
+    return interpolate_mu(a0, mu) * (1 - ta) + interpolate_mu(a1, mu) * ta;
 }
 
 float ggx_albedo_average(float alpha) {
-    const AlbedoTable& table = albedo_table();
+    const AlbedoAverage& table = albedo_average();
     int a0, a1;
     float ta;
     cell(alpha, a0, a1, ta);
@@ -130,7 +127,7 @@ ConductorLobe make_conductor(ConductorLobe::FresnelKind kind, Color eta, Color k
         sum += c.fresnel(mu) * (2 * mu / kSteps);
     }
     c.f_avg = sum;
-    if (!c.ggx.smooth()) (void)albedo_table();  // build the table now, not inside a render
+    if (!c.ggx.smooth()) (void)albedo_average();  // build it now, not inside a render
     return c;
 }
 
