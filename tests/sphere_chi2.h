@@ -55,20 +55,36 @@ inline SphereFit fit_sphere(const std::function<std::optional<Vector3>(int)>& sa
     std::vector<double> expected(observed.size(), 0);
     double integral = 0;
     const double dtheta = pi / n_theta, dphi = 2 * pi / n_phi;
+    // Midpoint rule on a sub x sub grid; cells the density's support only partly covers (a
+    // light's edge, total internal reflection) are integrated again on a 256 x 256 grid, since a
+    // step is where the midpoint rule is least accurate.  Refining where samples landed only
+    // makes the integral more accurate; it cannot hide a sample the density does not allow.
+    const auto integrate_cell = [&](int t, int p, int n, bool* mixed) {
+        double sum = 0;
+        bool any_zero = false, any_positive = false;
+        for (int a = 0; a < n; ++a) {
+            for (int b = 0; b < n; ++b) {
+                const double theta = (t + (a + 0.5) / n) * dtheta;
+                const double phi = (p + (b + 0.5) / n) * dphi;
+                const double r = std::sin(theta);
+                const double v = pdf(Vector3{static_cast<float>(r * std::cos(phi)),
+                                             static_cast<float>(r * std::sin(phi)),
+                                             static_cast<float>(std::cos(theta))});
+                (v > 0 ? any_positive : any_zero) = true;
+                sum += r * v;
+            }
+        }
+        if (mixed) *mixed = any_zero && any_positive;
+        return sum / (n * n);
+    };
     for (int t = 0; t < n_theta; ++t) {
         for (int p = 0; p < n_phi; ++p) {
-            double sum = 0;
-            for (int a = 0; a < sub; ++a) {
-                for (int b = 0; b < sub; ++b) {
-                    const double theta = (t + (a + 0.5) / sub) * dtheta;
-                    const double phi = (p + (b + 0.5) / sub) * dphi;
-                    const double r = std::sin(theta);
-                    sum += r * pdf(Vector3{static_cast<float>(r * std::cos(phi)),
-                                           static_cast<float>(r * std::sin(phi)),
-                                           static_cast<float>(std::cos(theta))});
-                }
-            }
-            const double mass = sum / (sub * sub) * dtheta * dphi;
+            bool mixed = false;
+            double sum = integrate_cell(t, p, sub, &mixed);
+            // Also where the coarse grid saw no support but samples landed (a sliver of an edge).
+            const bool sampled = observed[static_cast<std::size_t>(t * n_phi + p)] > 0;
+            if (mixed || (sum == 0 && sampled)) sum = integrate_cell(t, p, 256, nullptr);
+            const double mass = sum * dtheta * dphi;
             integral += mass;
             expected[static_cast<std::size_t>(t * n_phi + p)] = mass * n_samples;
         }
