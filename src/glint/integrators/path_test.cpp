@@ -1,0 +1,171 @@
+// The path tracer against known answers: white furnaces, the three light strategies agreeing,
+// and error falling as 1 / sqrt(spp) on the Cornell box.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "glint/integrators/integrator.h"
+#include "glint/io/build.h"
+#include "glint/io/scene_yaml.h"
+#include "glint/render/render.h"
+
+namespace glint {
+namespace {
+
+RenderJob job_from(const std::string& yaml, Overrides o = {}) {
+    auto sources = std::make_shared<SourceFiles>();
+    return build(parse_scene(yaml, "scene.yaml", sources), o, sources);
+}
+
+Film render_job(const RenderJob& job, int spp, std::uint64_t seed = 0) {
+    Film film(job.width, job.height);
+    RenderOptions o = job.options;
+    o.spp = spp;
+    o.seed = seed;
+    render(job.scene, job.camera, *job.integrator, o, film);
+    return film;
+}
+
+// A unit sphere filling most of a 24 x 24 view, in a uniform environment of radiance 1.
+std::string furnace(const std::string& material) {
+    return R"(
+camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 45}
+film: {width: 24, height: 24}
+integrator: {type: path, max_depth: 64}
+background: {type: constant, color: [1, 1, 1]}
+objects:
+  - {type: sphere, center: [0, 0, 0], radius: 1, material: )" + material + "}\n";
+}
+
+// Every pixel, sphere or sky, sees radiance 1 when nothing is absorbed.
+void expect_furnace(const std::string& material, double tolerance) {
+    const RenderJob job = job_from(furnace(material));
+    const Film film = render_job(job, 64);
+    double sum = 0, worst = 0;
+    for (const Color& c : film.pixels()) {
+        sum += c.g;
+        worst = std::max(worst, std::abs(c.g - 1.0));
+    }
+    const double mean = sum / static_cast<double>(film.pixels().size());
+    EXPECT_NEAR(mean, 1, tolerance) << material;
+    EXPECT_LT(worst, 0.1) << material;  // 64 spp: no pixel strays far
+}
+
+TEST(Path, WhiteFurnaceDiffuseSphereIsOne) { expect_furnace("{type: diffuse, albedo: 1}", 0.002); }
+
+TEST(Path, WhiteFurnaceRoughConductorIsOne) {
+    // Reflectance 1 at every angle; roughness 0.8 (alpha 0.64) loses ~20% between microfacets
+    // in single scattering, which the multiple-scattering term must return.
+    expect_furnace("{type: conductor, reflectance: 1, roughness: 0.8}", 0.005);
+}
+
+TEST(Path, FurnaceWithHalfAlbedoReflectsHalfOnce) {
+    // A convex sphere scatters each path once: albedo 0.5 gives exactly 0.5 on the sphere.
+    const RenderJob job = job_from(furnace("{type: diffuse, albedo: 0.5}"));
+    const Film film = render_job(job, 64);
+    EXPECT_NEAR(film.at(12, 12).g, 0.5, 0.01);
+}
+
+// A small scene every strategy can render (area lights only; no deltas): a diffuse floor, a
+// rough metal sphere and a plastic sphere, lit by a quad light, a sphere light and the sky.
+constexpr const char* kStrategyScene = R"(
+camera: {type: look_at, from: [0, 2, -6], to: [0, 0.7, 0], fov: 40}
+film: {width: 16, height: 12}
+sampler: {type: independent}
+integrator: {type: path, max_depth: 4, strategy: STRATEGY}
+background: {type: constant, color: [0.2, 0.25, 0.3]}
+materials:
+  floor: {type: diffuse, albedo: [0.7, 0.7, 0.7]}
+  metal: {type: conductor, metal: gold, roughness: 0.4}
+  plastic: {type: plastic, albedo: [0.2, 0.4, 0.8], roughness: 0.3}
+  lamp: {type: diffuse, albedo: 0, emission: [6, 6, 6]}
+objects:
+  - {type: quad, corner: [-4, 0, -4], edge1: [0, 0, 8], edge2: [8, 0, 0], material: floor}
+  - {type: sphere, center: [-0.8, 0.7, 0], radius: 0.7, material: metal}
+  - {type: sphere, center: [0.9, 0.6, 0.3], radius: 0.6, material: plastic}
+  - {type: quad, corner: [-1, 3, -1], edge1: [2, 0, 0], edge2: [0, 0, 2], material: lamp}
+  - {type: sphere, center: [2.5, 2, -1], radius: 0.3, material: lamp}
+)";
+
+TEST(Path, LightSamplingBsdfSamplingAndMisAgree) {
+    // Per strategy, the image mean over independent seeds, and its standard error.
+    const auto estimate = [](const std::string& strategy) {
+        std::string yaml = kStrategyScene;
+        yaml.replace(yaml.find("STRATEGY"), 8, strategy);
+        const RenderJob job = job_from(yaml);
+        std::vector<double> means;
+        for (std::uint64_t seed = 0; seed < 12; ++seed) {
+            const Film film = render_job(job, 32, seed * 7919 + 1);
+            double sum = 0;
+            for (const Color& c : film.pixels()) sum += c.r + c.g + c.b;
+            means.push_back(sum / static_cast<double>(film.pixels().size()));
+        }
+        double m = 0, v = 0;
+        for (double x : means) m += x;
+        m /= static_cast<double>(means.size());
+        for (double x : means) v += (x - m) * (x - m);
+        v /= static_cast<double>(means.size() - 1);
+        return std::pair{m, std::sqrt(v / static_cast<double>(means.size()))};
+    };
+    const auto mis = estimate("mis"), light = estimate("light"), bsdf = estimate("bsdf");
+    const auto z = [](std::pair<double, double> a, std::pair<double, double> b) {
+        return std::abs(a.first - b.first) / std::sqrt(a.second * a.second + b.second * b.second);
+    };
+    EXPECT_LT(z(mis, light), 4) << mis.first << " vs " << light.first;
+    EXPECT_LT(z(mis, bsdf), 4) << mis.first << " vs " << bsdf.first;
+    EXPECT_LT(z(light, bsdf), 4) << light.first << " vs " << bsdf.first;
+    // And MIS is the least noisy of the three.
+    EXPECT_LT(mis.second, bsdf.second);
+    std::printf("image mean: mis %.4f +- %.4f, light %.4f +- %.4f, bsdf %.4f +- %.4f\n", mis.first,
+                mis.second, light.first, light.second, bsdf.first, bsdf.second);
+}
+
+// Relative mean squared error, (a - r)^2 / (r^2 + 0.01) averaged over pixels and channels: the
+// light's edge pixels (radiance 17 beside 0) would otherwise decide a plain RMSE alone.
+double rel_mse(const Film& a, const Film& ref) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double r = ref.pixels()[i][k], d = a.pixels()[i][k] - r;
+            sum += d * d / (r * r + 0.01);
+        }
+    }
+    return sum / (3.0 * static_cast<double>(a.pixels().size()));
+}
+
+TEST(Path, CornellBoxErrorFallsAsOneOverSqrtSpp) {
+    Overrides o;
+    o.width = 32;
+    o.height = 32;
+    auto sources = std::make_shared<SourceFiles>();
+    RenderJob job = build(
+        load_scene_file(std::string(GLINT_SOURCE_DIR) + "/scenes/cornell-box.yaml", sources), o,
+        sources);
+    job.options.sampler = SamplerType::kIndependent;  // the textbook rate; Sobol does better
+    const Film reference = render_job(job, 4096, 999);
+    // The error at each spp: the root of the relative MSE, averaged over four seeds.
+    std::vector<double> spps{4, 16, 64}, errors;
+    for (double spp : spps) {
+        double mse = 0;
+        for (std::uint64_t seed = 1; seed <= 4; ++seed)
+            mse += rel_mse(render_job(job, static_cast<int>(spp), seed), reference) / 4;
+        errors.push_back(std::sqrt(mse));
+    }
+    // Least-squares slope of log error against log spp.
+    double mx = 0, my = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < spps.size(); ++i) mx += std::log(spps[i]), my += std::log(errors[i]);
+    mx /= 3, my /= 3;
+    for (std::size_t i = 0; i < spps.size(); ++i) {
+        sxx += (std::log(spps[i]) - mx) * (std::log(spps[i]) - mx);
+        sxy += (std::log(spps[i]) - mx) * (std::log(errors[i]) - my);
+    }
+    const double slope = sxy / sxx;
+    std::printf("relative rmse at 4/16/64 spp: %.4f %.4f %.4f, slope %.3f\n", errors[0], errors[1], errors[2],
+                slope);
+    EXPECT_NEAR(slope, -0.5, 0.08);
+}
+
+}  // namespace
+}  // namespace glint
