@@ -28,6 +28,27 @@ bool any_hit(const std::vector<Shape>& shapes, const Ray& ray) {
     return false;
 }
 
+// Triangles share the per-ray part of the watertight test.
+void closest_hit_triangles(const std::vector<Triangle>& triangles, Ray& ray, std::optional<Hit>& best) {
+    if (triangles.empty()) return;
+    WatertightRay r(ray);
+    const std::uint32_t n = static_cast<std::uint32_t>(triangles.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (auto t = triangles[i].intersect(r)) {
+            r.t_max = ray.t_max = *t;
+            best = Hit{*t, ShapeKind::kTriangle, i};
+        }
+    }
+}
+
+bool any_hit_triangles(const std::vector<Triangle>& triangles, const Ray& ray) {
+    if (triangles.empty()) return false;
+    const WatertightRay r(ray);
+    for (const Triangle& t : triangles)
+        if (t.intersect(r)) return true;
+    return false;
+}
+
 }  // namespace
 
 void Scene::commit() {
@@ -85,7 +106,7 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
         if (any_flat_) {  // the article's scenes have none: skip three empty loops per ray
             closest_hit<ShapeKind::kQuad>(quads, ray, best);
             closest_hit<ShapeKind::kDisk>(disks, ray, best);
-            closest_hit<ShapeKind::kTriangle>(triangles, ray, best);
+            closest_hit_triangles(triangles, ray, best);
         }
     }
     return best;
@@ -96,7 +117,7 @@ bool Scene::occluded(const Ray& ray) const {
     if (any_hit(planes, ray)) return true;
     if (!any_bounded_ || !bounds_.hit(ray, reciprocal(ray.direction))) return false;
     return any_hit(spheres, ray) ||
-           (any_flat_ && (any_hit(quads, ray) || any_hit(disks, ray) || any_hit(triangles, ray)));
+           (any_flat_ && (any_hit(quads, ray) || any_hit(disks, ray) || any_hit_triangles(triangles, ray)));
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {

@@ -32,16 +32,18 @@ std::uint32_t sobol_1(std::uint32_t i) {
 }
 
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
-    std::uint32_t out = v;
-    // Bits below the top 24 do not reach a float; leave them.
-    for (int bit = 31; bit >= 8; --bit) {
-        // The prefix (bits above `bit`) with a sentinel 1 marking its length: one key per node
-        // of the binary permutation tree.
-        const std::uint32_t above = bit == 31 ? 0U : v >> (bit + 1);
-        const std::uint32_t key = above | (1U << (31 - bit));
-        out ^= (hash_combine(seed, key) & 1U) << bit;
-    }
-    return out;
+    // Laine and Karras's hash-based nested scramble (as refined in pbrt-v4): with the bits
+    // reversed, each step (xor with an even multiple, add, multiply by an odd number) changes a
+    // bit only as a function of the bits below it, i.e. of the more significant bits of the
+    // original fraction. That is exactly a nested uniform permutation, in six operations instead
+    // of one hash per bit.
+    v = reverse_bits(v);
+    v ^= v * 0x3d20adeaU;
+    v += seed;
+    v *= (seed >> 16) | 1U;
+    v ^= v * 0x05526c56U;
+    v ^= v * 0x53a22864U;
+    return reverse_bits(v);
 }
 
 Sample2 PixelSampler::get_2d(std::uint32_t index, std::uint32_t dimension) const {

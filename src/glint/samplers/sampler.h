@@ -21,8 +21,9 @@ enum class SamplerType { kSobol, kStratified, kIndependent };
 std::uint32_t sobol_0(std::uint32_t i);
 std::uint32_t sobol_1(std::uint32_t i);
 
-/// Nested uniform scrambling of a 32-bit binary fraction: bit b is flipped or not by a hash of
-/// the seed and the bits above b, so every subinterval is permuted independently (Owen 1995).
+/// Nested scrambling of a 32-bit binary fraction: bit b is flipped or not by a function of the
+/// seed and the bits above b, so every subinterval is permuted on its own (Owen 1995), computed
+/// with Laine and Karras's hash (sampler.cpp).
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
 
 class PixelSampler {

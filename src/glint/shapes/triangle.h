@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <optional>
 
 #include "glint/interaction.h"
@@ -7,6 +8,16 @@
 #include "glint/shapes/area_sample.h"
 
 namespace glint {
+
+/// What the watertight test derives from the ray alone (the axis permutation and the shear),
+/// computed once per ray rather than once per triangle.
+struct WatertightRay {
+    Point3 origin;
+    int kx, ky, kz;
+    Float sx, sy, sz;
+    Float t_max;
+    explicit WatertightRay(const Ray& ray);
+};
 
 /// A triangle p0 p1 p2, facing along (p1 - p0) x (p2 - p0).
 struct Triangle {
@@ -17,7 +28,8 @@ struct Triangle {
     /// moved into a frame where the ray runs along +z from the origin, and the hit is decided by
     /// the signs of three 2D edge functions, recomputed in double when one is exactly zero. Rays
     /// through a shared edge or vertex hit at least one of the triangles that share it.
-    std::optional<Float> intersect(const Ray& ray) const;
+    std::optional<Float> intersect(const WatertightRay& ray) const;
+    std::optional<Float> intersect(const Ray& ray) const { return intersect(WatertightRay(ray)); }
 
     /// The barycentric coordinates (b1, b2) of p: p = p0 + b1 (p1 - p0) + b2 (p2 - p0). (Meshes
     /// with per-vertex UVs come with the mesh importers.)
@@ -38,5 +50,40 @@ struct Triangle {
         return {p0 + e1 * b.y + e2 * (1 - b.x - b.y), normal()};
     }
 };
+
+inline std::optional<Float> Triangle::intersect(const WatertightRay& r) const {
+    const Float sx = r.sx, sy = r.sy, sz = r.sz;
+    // The vertices relative to the origin, permuted so that the ray's main axis is z.
+    const auto permuted = [&r](Point3 p) {
+        const Float v[3] = {p.x - r.origin.x, p.y - r.origin.y, p.z - r.origin.z};
+        return Vector3{v[r.kx], v[r.ky], v[r.kz]};
+    };
+    const Vector3 a = permuted(p0), b = permuted(p1), c = permuted(p2);
+    const Float ax = a.x - sx * a.z, ay = a.y - sy * a.z;
+    const Float bx = b.x - sx * b.z, by = b.y - sy * b.z;
+    const Float cx = c.x - sx * c.z, cy = c.y - sy * c.z;
+
+    Float u = cx * by - cy * bx;
+    Float v = ax * cy - ay * cx;
+    Float w = bx * ay - by * ax;
+    if (u == 0 || v == 0 || w == 0) {  // on an edge in float: decide in double
+        u = static_cast<Float>(static_cast<double>(cx) * by - static_cast<double>(cy) * bx);
+        v = static_cast<Float>(static_cast<double>(ax) * cy - static_cast<double>(ay) * cx);
+        w = static_cast<Float>(static_cast<double>(bx) * ay - static_cast<double>(by) * ax);
+    }
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
+    const Float det = u + v + w;
+    if (det == 0) return std::nullopt;
+
+    const Float az = sz * a.z, bz = sz * b.z, cz = sz * c.z;
+    const Float t_scaled = u * az + v * bz + w * cz;  // t * det
+    // The range test on t * det, so that only hits pay for the division.
+    if (det > 0 ? !(t_scaled >= kRayTMin * det && t_scaled < r.t_max * det)
+                : !(t_scaled <= kRayTMin * det && t_scaled > r.t_max * det))
+        return std::nullopt;
+    const Float t = t_scaled / det;
+    if (!(t >= kRayTMin && t < r.t_max)) return std::nullopt;  // rounding at the ends
+    return t;
+}
 
 }  // namespace glint
