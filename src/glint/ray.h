@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <limits>
 
 #include "glint/math/vector.h"
@@ -28,6 +29,22 @@ inline Ray spawn_ray(Point3 p, Normal3 n, Vector3 d,
     Float offset = 1e-4f * std::max(Float(1), max_abs_component(p));
     Vector3 push = to_vector(n) * (dot(n, d) >= 0 ? offset : -offset);
     return Ray{p + push, d, t_max};
+}
+
+/// A shadow ray from surface point p (normal n) to point q on a light's surface (normal n_q):
+/// both ends are pushed off their surfaces, towards each other, by the same amount as
+/// spawn_ray's, and the ray ends just before q. (Ending at a fraction of the distance from p
+/// instead is not enough: the push at p alone can bring the origin closer to q than the margin,
+/// and the light then blocks its own shadow ray.)
+inline Ray spawn_ray_to(Point3 p, Normal3 n, Point3 q, Normal3 n_q) {
+    const Vector3 towards = q - p;
+    const Float offset_p = 1e-4f * std::max(Float(1), max_abs_component(p));
+    const Float offset_q = 1e-4f * std::max(Float(1), max_abs_component(q));
+    const Point3 o = p + to_vector(n) * (dot(n, towards) >= 0 ? offset_p : -offset_p);
+    const Point3 end = q + to_vector(n_q) * (dot(n_q, towards) <= 0 ? offset_q : -offset_q);
+    const Vector3 d = end - o;
+    const Float dist = length(d);
+    return Ray{o, d / dist, dist * (1 - 1e-5f)};
 }
 
 }  // namespace glint

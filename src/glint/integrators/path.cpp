@@ -91,10 +91,13 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                     const Color f = bsdf.eval(wo, ls->wi) * std::abs(dot(si.n, ls->wi));
                     if (f.max_component() > 0) {
                         ++counter.rays;
-                        // Stop short of the light's surface so that it does not block itself.
-                        const float reach = std::isinf(ls->distance) ? ls->distance
-                                                                      : ls->distance * (1 - 1e-4f);
-                        if (!scene.occluded(spawn_ray(si.p, si.n, ls->wi, reach))) {
+                        const Ray shadow =
+                            ls->on_surface
+                                ? spawn_ray_to(si.p, si.n, ls->p_light, ls->n_light)
+                                : spawn_ray(si.p, si.n, ls->wi,
+                                            std::isinf(ls->distance) ? ls->distance
+                                                                     : ls->distance * (1 - 1e-4f));
+                        if (!scene.occluded(shadow)) {
                             const float light_pdf = pmf * ls->pdf;
                             const float w = ls->delta || !use_bsdf_hits
                                                 ? 1

@@ -69,9 +69,12 @@ TEST(Path, FurnaceWithHalfAlbedoReflectsHalfOnce) {
 }
 
 // A small scene every strategy can render (area lights only; no deltas): a diffuse floor, a
-// rough metal sphere and a plastic sphere, lit by a quad light, a sphere light and the sky.
+// rough metal sphere and a plastic sphere, lit by a quad light, a sphere light and the sky. In
+// units of centimetres, like the Cornell box: surface offsets then matter (a shadow ray that
+// ended a fixed fraction short of the light once hit the light itself from the sphere tops; the
+// scene sits 1000 units from the origin, where the offsets are largest).
 constexpr const char* kStrategyScene = R"(
-camera: {type: look_at, from: [0, 2, -6], to: [0, 0.7, 0], fov: 40}
+camera: {type: look_at, from: [1000, 200, -600], to: [1000, 70, 0], fov: 40}
 film: {width: 16, height: 12}
 sampler: {type: independent}
 integrator: {type: path, max_depth: 4, strategy: STRATEGY}
@@ -82,11 +85,11 @@ materials:
   plastic: {type: plastic, albedo: [0.2, 0.4, 0.8], roughness: 0.3}
   lamp: {type: diffuse, albedo: 0, emission: [6, 6, 6]}
 objects:
-  - {type: quad, corner: [-4, 0, -4], edge1: [0, 0, 8], edge2: [8, 0, 0], material: floor}
-  - {type: sphere, center: [-0.8, 0.7, 0], radius: 0.7, material: metal}
-  - {type: sphere, center: [0.9, 0.6, 0.3], radius: 0.6, material: plastic}
-  - {type: quad, corner: [-1, 3, -1], edge1: [2, 0, 0], edge2: [0, 0, 2], material: lamp}
-  - {type: sphere, center: [2.5, 2, -1], radius: 0.3, material: lamp}
+  - {type: quad, corner: [600, 0, -400], edge1: [0, 0, 800], edge2: [800, 0, 0], material: floor}
+  - {type: sphere, center: [920, 70, 0], radius: 70, material: metal}
+  - {type: sphere, center: [1090, 60, 30], radius: 60, material: plastic}
+  - {type: quad, corner: [900, 180, -100], edge1: [200, 0, 0], edge2: [0, 0, 200], material: lamp}
+  - {type: sphere, center: [1250, 200, -100], radius: 30, material: lamp}
 )";
 
 TEST(Path, LightSamplingBsdfSamplingAndMisAgree) {

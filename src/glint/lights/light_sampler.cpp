@@ -172,7 +172,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                         pdf = uniform_cone_pdf(omc);
                         const Emission& e = scene.emission_of(material);
                         if (!(e.two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{e.radiance, wi, pdf, length(q - p)};
+                        return LightLiSample{e.radiance, wi, pdf, length(q - p), false, true, q, n};
                     }
                 }
                 float area = 1;
@@ -199,7 +199,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                 const Emission& e = scene.emission_of(material);
                 if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
                 pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{e.radiance, wi, pdf, dist};
+                return LightLiSample{e.radiance, wi, pdf, dist, false, true, q, n};
             } else {
                 const LightSample s = l.sample(p);
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};

@@ -23,6 +23,11 @@ struct LightLiSample {
     float pdf = 0;
     float distance = 0;  ///< how far a shadow ray must stay clear (infinite for distant lights)
     bool delta = false;
+    /// For area lights: the sampled point and the light's normal there, where the shadow ray
+    /// must end (spawn_ray_to).
+    bool on_surface = false;
+    Point3 p_light{0, 0, 0};
+    Normal3 n_light{0, 1, 0};
 };
 
 inline constexpr std::uint32_t kNoLight = 0xffffffffU;

@@ -1,0 +1,157 @@
+# The Cornell box of scenes/cornell-box.yaml, built in Blender and rendered with Cycles on the
+# CPU, for bench/compare_cycles.sh. Same measured geometry, camera (vertical fov 39.3077 deg),
+# reflectances, one-sided quad light of radiance (17, 12, 4), box filter, no denoiser, no
+# adaptive sampling, no clamping, and the same path length: Cycles' max_bounces = 15 traces the
+# same paths as glint's max_depth = 16 (Cycles counts bounces after the first hit, glint counts
+# scattering events including it).
+#
+#   blender -b --factory-startup -P bench/cornell_cycles.py -- OUT.exr SPP THREADS [SEED]
+#
+# Prints "cycles render seconds: S" (the render alone, without Blender's start-up).
+import math
+import sys
+import time
+
+import bpy
+
+argv = sys.argv[sys.argv.index("--") + 1:]
+out, spp, threads = argv[0], int(argv[1]), int(argv[2])
+seed = int(argv[3]) if len(argv) > 3 else 0
+
+# Cornell data (right-handed, y up) to Blender (right-handed, z up): a rotation of +90 degrees
+# about x, (x, y, z) -> (x, -z, y). Handedness is kept, so the red wall stays on the left.
+def to_blender(p):
+    return (p[0], -p[2], p[1])
+
+WHITE = (0.725, 0.71, 0.68)
+RED = (0.63, 0.065, 0.05)
+GREEN = (0.14, 0.45, 0.091)
+QUADS = [
+    (WHITE, [(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]),  # floor
+    (WHITE, [(556, 548.8, 0), (556, 548.8, 559.2), (0, 548.8, 559.2), (0, 548.8, 0)]),  # ceiling
+    (WHITE, [(549.6, 0, 559.2), (0, 0, 559.2), (0, 548.8, 559.2), (556, 548.8, 559.2)]),  # back
+    (GREEN, [(0, 0, 559.2), (0, 0, 0), (0, 548.8, 0), (0, 548.8, 559.2)]),  # right wall
+    (RED, [(552.8, 0, 0), (549.6, 0, 559.2), (556, 548.8, 559.2), (556, 548.8, 0)]),  # left wall
+    (WHITE, [(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)]),
+    (WHITE, [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)]),
+    (WHITE, [(130, 0, 65), (130, 165, 65), (290, 165, 114), (290, 0, 114)]),
+    (WHITE, [(82, 0, 225), (82, 165, 225), (130, 165, 65), (130, 0, 65)]),
+    (WHITE, [(240, 0, 272), (240, 165, 272), (82, 165, 225), (82, 0, 225)]),
+    (WHITE, [(423, 330, 247), (265, 330, 296), (314, 330, 456), (472, 330, 406)]),
+    (WHITE, [(423, 0, 247), (423, 330, 247), (472, 330, 406), (472, 0, 406)]),
+    (WHITE, [(472, 0, 406), (472, 330, 406), (314, 330, 456), (314, 0, 456)]),
+    (WHITE, [(314, 0, 456), (314, 330, 456), (265, 330, 296), (265, 0, 296)]),
+    (WHITE, [(265, 0, 296), (265, 330, 296), (423, 330, 247), (423, 0, 247)]),
+]
+LIGHT = [(343, 548.7, 227), (343, 548.7, 332), (213, 548.7, 332), (213, 548.7, 227)]
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+scene = bpy.context.scene
+
+
+def diffuse_material(name, color):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nodes = m.node_tree.nodes
+    nodes.clear()
+    out_node = nodes.new("ShaderNodeOutputMaterial")
+    bsdf = nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (*color, 1)
+    bsdf.inputs["Roughness"].default_value = 0  # Lambert
+    m.node_tree.links.new(bsdf.outputs["BSDF"], out_node.inputs["Surface"])
+    return m
+
+
+def light_material():
+    # Emission on the front face only (glint's area lights are one-sided), black behind.
+    m = bpy.data.materials.new("light")
+    m.use_nodes = True
+    nodes, links = m.node_tree.nodes, m.node_tree.links
+    nodes.clear()
+    out_node = nodes.new("ShaderNodeOutputMaterial")
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = (17, 12, 4, 1)
+    emission.inputs["Strength"].default_value = 1
+    black = nodes.new("ShaderNodeBsdfDiffuse")
+    black.inputs["Color"].default_value = (0, 0, 0, 1)
+    geometry = nodes.new("ShaderNodeNewGeometry")
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(geometry.outputs["Backfacing"], mix.inputs["Fac"])
+    links.new(emission.outputs["Emission"], mix.inputs[1])
+    links.new(black.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], out_node.inputs["Surface"])
+    return m
+
+
+def add_mesh(name, quads, material, face_down=False):
+    verts, faces = [], []
+    for q in quads:
+        base = len(verts)
+        verts += [to_blender(p) for p in q]
+        faces.append(tuple(range(base, base + len(q))))
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    mesh.update()
+    if face_down and mesh.polygons[0].normal.z > 0:
+        mesh.flip_normals()
+    obj = bpy.data.objects.new(name, mesh)
+    obj.data.materials.append(material)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+materials = {}
+for color, q in QUADS:
+    if color not in materials:
+        materials[color] = diffuse_material(f"m{len(materials)}", color)
+    add_mesh("quad", [q], materials[color])
+add_mesh("light", [LIGHT], light_material(), face_down=True)
+
+world = bpy.data.worlds.new("black")
+world.use_nodes = True
+world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
+scene.world = world
+
+cam_data = bpy.data.cameras.new("camera")
+cam_data.sensor_fit = "VERTICAL"
+cam_data.angle_y = math.radians(39.3077)
+cam_data.clip_start = 1
+cam_data.clip_end = 10000
+cam = bpy.data.objects.new("camera", cam_data)
+cam.location = to_blender((278, 273, -800))
+cam.rotation_euler = (math.pi / 2, 0, math.pi)  # looks along Cornell +z (Blender -y), z up
+scene.collection.objects.link(cam)
+scene.camera = cam
+
+r = scene.render
+r.engine = "CYCLES"
+r.resolution_x = r.resolution_y = 512
+r.resolution_percentage = 100
+r.threads_mode = "FIXED"
+r.threads = threads
+r.use_persistent_data = False
+r.image_settings.file_format = "OPEN_EXR"
+r.image_settings.color_depth = "32"
+r.image_settings.exr_codec = "ZIP"
+scene.view_settings.view_transform = "Standard"
+c = scene.cycles
+c.device = "CPU"
+c.samples = spp
+c.use_adaptive_sampling = False
+c.use_denoising = False
+c.seed = seed
+c.pixel_filter_type = "BOX"
+c.max_bounces = 15
+c.diffuse_bounces = 15
+c.glossy_bounces = 15
+c.transmission_bounces = 15
+c.sample_clamp_direct = 0
+c.sample_clamp_indirect = 0
+c.caustics_reflective = True
+c.caustics_refractive = True
+c.blur_glossy = 0
+r.filepath = out
+
+start = time.time()
+bpy.ops.render.render(write_still=True)
+print(f"cycles render seconds: {time.time() - start:.3f}")
