@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench gallery sanitize clean
+.PHONY: all deps configure build demo test bench bench-cycles gallery sanitize clean
 
 all: build
 
@@ -28,6 +28,12 @@ bench:
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
 	$(MAKE) build
 	bench/compare_povray.sh $(BUILD)
+
+# The path tracer against Blender Cycles on the Cornell box (about 25 minutes on 2 cores).
+bench-cycles:
+	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
+	$(MAKE) build
+	THREADS_HIGH=2 bench/compare_cycles.sh $(BUILD) 3
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer (clang), in build-asan/.
 sanitize:

@@ -18,7 +18,7 @@ packages=(
 # Optional groups, not needed to build or test:
 # peers and timer for `make bench`,
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
-  packages+=(povray hyperfine)
+  packages+=(povray hyperfine blender)
 fi
 # clang and its sanitizer runtimes for `make sanitize`.
 if [[ "${GLINT_SANITIZE_DEPS:-0}" == 1 ]]; then

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Renders the article's figures (scenes/seed/*.yaml) and the examples in scenes/ into docs/images/.
+# Renders the article's figures (scenes/seed/*.yaml) and the examples in scenes/ into docs/images/,
+# and regenerates the committed inputs they use (the UV grid, the HDR sky).
 #   scripts/render-gallery.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 glint="${1:-build}/apps/glint/glint"
+"${1:-build}/tools/glint_make_sky" scenes/textures/sky.exr
 mkdir -p docs/images
 for scene in scenes/seed/*.yaml; do
   name=$(basename "$scene" .yaml)
@@ -15,7 +17,10 @@ done
 echo docs/images/fig14-reflections-16spp.png
 # The UV test texture first: scenes/textures.yaml uses it.
 "$glint" render scenes/textures/uv-grid.yaml -q -o scenes/textures/uv-grid.png
-for name in shapes fig14-dof textures; do
+for name in shapes fig14-dof textures materials; do
   "$glint" render "scenes/$name.yaml" -q -o "docs/images/$name.png"
   echo "docs/images/$name.png"
 done
+# The Cornell box at 1024 spp (a few minutes on 2 cores).
+"$glint" render scenes/cornell-box.yaml --spp 1024 -q -o docs/images/cornell-box.png
+echo docs/images/cornell-box.png

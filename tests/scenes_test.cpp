@@ -2,12 +2,15 @@
 // the documentation cannot drift from the format.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "glint/io/build.h"
+#include "glint/io/image_io.h"
 #include "glint/io/scene_yaml.h"
+#include "testing.h"
 
 namespace glint {
 namespace {
@@ -63,6 +66,25 @@ TEST(Scenes, ReadmeExampleLoadsAndBuilds) {
     const RenderJob job = build(parse_scene(yaml, "README.md", sources), {}, sources);
     EXPECT_EQ(job.scene.spheres.size(), 1u);
     EXPECT_EQ(job.scene.planes.size(), 1u);
+}
+
+// scenes/textures/sky.exr is committed so that scenes/materials.yaml renders from a fresh clone;
+// it must be exactly what tools/make_sky.cpp writes.
+TEST(Scenes, CommittedSkyIsWhatTheGeneratorWrites) {
+    testing::TempDir dir;
+    const std::string out = (dir / "sky.exr").string();
+    ASSERT_EQ(std::system((std::string(GLINT_MAKE_SKY) + " " + out).c_str()), 0);
+    const Image fresh = read_image(out, ImageEncoding::kLinear);
+    const Image committed =
+        read_image(fs::path(GLINT_SOURCE_DIR) / "scenes/textures/sky.exr", ImageEncoding::kLinear);
+    ASSERT_EQ(fresh.width, committed.width);
+    ASSERT_EQ(fresh.height, committed.height);
+    for (std::size_t i = 0; i < fresh.texels.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_NEAR(fresh.texels[i][k], committed.texels[i][k], 1e-5f * (1 + fresh.texels[i][k]))
+                << "texel " << i;
+        }
+    }
 }
 
 }  // namespace

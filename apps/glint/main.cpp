@@ -73,8 +73,10 @@ int run_render(const RenderArgs& args) {
 
 int main(int argc, char** argv) {
     CLI::App app{"glint: a ray tracer. Renders YAML or JSON scene files (the article's camera and "
-                 "Whitted shading with shadows and reflections; spheres, planes, quads, disks, "
-                 "triangles and boxes; image textures; depth of field) to PNG, EXR or PPM.",
+                 "Whitted shading with shadows and reflections, or physically based path "
+                 "tracing with area lights, metals, glass and HDR environments; spheres, planes, "
+                 "quads, disks, triangles, polygons and boxes; image textures; depth of field) "
+                 "to PNG, EXR or PPM.",
                  "glint"};
     app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
     app.require_subcommand(1);
@@ -90,12 +92,14 @@ int main(int argc, char** argv) {
     render->add_option("--width", args.width, "Film width in pixels (overrides the scene)");
     render->add_option("--height", args.height, "Film height in pixels (overrides the scene)");
     render->add_option("--spp", args.spp,
-                       "Samples per pixel: 1 samples the pixel centre, more are stratified "
-                       "jittered samples averaged over the pixel (anti-aliasing)");
+                       "Samples per pixel: 1 samples the pixel centre, more are low-discrepancy "
+                       "samples averaged over the pixel (anti-aliasing, and the path tracer's "
+                       "noise falls as 1/sqrt(spp))");
     render->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
     render->add_option("--seed", args.seed, "Sampler seed (overrides the scene)");
     render->add_option("--max-depth", args.max_depth,
-                       "Maximum reflection depth for whitted (the camera ray is depth 0)");
+                       "Path length: whitted's reflection depth (the camera ray is depth 0), "
+                       "path's scattering events (1 = direct light only)");
     render->add_flag("--aovs", args.aovs,
                      "Also write albedo, normal and depth (for denoisers) as EXR channels "
                      "albedo.R/G/B, N.X/Y/Z and Z; needs an .exr output");

@@ -138,14 +138,19 @@ double rel_mse(const Film& a, const Film& ref) {
     return sum / (3.0 * static_cast<double>(a.pixels().size()));
 }
 
-TEST(Path, CornellBoxErrorFallsAsOneOverSqrtSpp) {
+// scenes/cornell-box.yaml at 32 x 32.
+RenderJob cornell_box_32() {
     Overrides o;
     o.width = 32;
     o.height = 32;
     auto sources = std::make_shared<SourceFiles>();
-    RenderJob job = build(
+    return build(
         load_scene_file(std::string(GLINT_SOURCE_DIR) + "/scenes/cornell-box.yaml", sources), o,
         sources);
+}
+
+TEST(Path, CornellBoxErrorFallsAsOneOverSqrtSpp) {
+    RenderJob job = cornell_box_32();
     job.options.sampler = SamplerType::kIndependent;  // the textbook rate; Sobol does better
     const Film reference = render_job(job, 4096, 999);
     // The error at each spp: the root of the relative MSE, averaged over four seeds.
@@ -168,6 +173,46 @@ TEST(Path, CornellBoxErrorFallsAsOneOverSqrtSpp) {
     std::printf("relative rmse at 4/16/64 spp: %.4f %.4f %.4f, slope %.3f\n", errors[0], errors[1], errors[2],
                 slope);
     EXPECT_NEAR(slope, -0.5, 0.08);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Closed forms for the delta lights: a white diffuse floor of albedo a at distance h straight
+// below a point light of intensity I reflects a I / (pi h^2) towards a camera above it; under a
+// spot light the same, times the falloff (1 inside the inner cone, 0 outside the outer one).
+TEST(Path, PointAndSpotLightsMatchClosedForms) {
+    const auto centre = [](const std::string& light) {
+        const RenderJob job = job_from(R"(
+camera: {type: look_at, from: [0, 1, 0.001], to: [0, 0, 0], fov: 1}
+film: {width: 1, height: 1}
+integrator: {type: path, max_depth: 1}
+background: {type: constant, color: [0, 0, 0]}
+lights: [)" + light + R"(]
+objects:
+  - {type: quad, corner: [-5, 0, -5], edge1: [0, 0, 10], edge2: [10, 0, 0], material: {type: diffuse, albedo: 0.5}}
+)");
+        return render_job(job, 1).at(0, 0).g;
+    };
+    const float expected = 0.5f * 8 / (3.14159265f * 4);
+    EXPECT_NEAR(centre("{type: point, position: [0, 2, 0], intensity: [8, 8, 8]}"), expected, 1e-4f);
+    EXPECT_NEAR(centre("{type: spot, position: [0, 2, 0], direction: [0, -1, 0], intensity: [8, 8, 8]}"),
+                expected, 1e-4f);
+    EXPECT_EQ(centre("{type: spot, position: [0, 2, 0], direction: [1, 0, 0], intensity: [8, 8, 8]}"), 0);
+}
+
+// The Cornell data is right-handed: with `handedness: right` its red wall (x = 550) is on the
+// image's left and the green wall (x = 0) on its right.
+TEST(Path, CornellBoxRedWallIsOnTheLeft) {
+    RenderJob job = cornell_box_32();
+    job.integrator = std::make_unique<FlatIntegrator>();
+    const Film film = render_job(job, 1);
+    const Color left = film.at(2, 16), right = film.at(29, 16);
+    EXPECT_GT(left.r, 5 * left.g) << "left wall";
+    EXPECT_GT(right.g, 2 * right.r) << "right wall";
 }
 
 }  // namespace

@@ -251,3 +251,74 @@ TEST(SceneYaml, DefaultsAndOverridesApply) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneYaml, PathTracerMaterialsAndLightsParse) {
+    const std::string text =
+        "integrator: {type: path, max_depth: 7, rr_depth: 2, clamp: 10, strategy: light}\n"
+        "lights:\n"
+        "  - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: 40, "
+        "falloff_start: 30}\n"
+        "  - {type: directional, direction: [0, -1, 0], angular_diameter: 0.5}\n"
+        "materials:\n"
+        "  a: {type: diffuse, albedo: 0.5}\n"
+        "  b: {type: conductor, metal: gold, roughness: 0.3}\n"
+        "  c: {type: conductor, eta: [1, 1, 1], k: [3, 3, 3]}\n"
+        "  d: {type: conductor, reflectance: [0.9, 0.8, 0.7]}\n"
+        "  e: {type: dielectric, ior: 1.33, roughness: 0.1, thin: true}\n"
+        "  f: {type: plastic, albedo: [0.1, 0.2, 0.3], roughness: 0.2}\n"
+        "  g: {type: pbr, base_color: [1, 1, 1], metallic: 0.5, transmission: 0.2, "
+        "emission: [1, 2, 3], two_sided: true}\n"
+        "objects:\n"
+        "  - {type: polygon, vertices: [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [-0.5, 0.5, 0]], "
+        "material: g}\n";
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_scene(text, "scene.yaml", sources), {}, sources);
+    EXPECT_EQ(job.scene.triangles.size(), 3u);  // a pentagon: a fan of three
+    EXPECT_EQ(job.scene.materials.size(), 7u);
+    EXPECT_TRUE(std::holds_alternative<PbrMaterial>(job.scene.materials[6]));
+    EXPECT_EQ(job.scene.emission[6].radiance, (Color{1, 2, 3}));
+    EXPECT_TRUE(job.scene.emission[6].two_sided);
+    // Three emitting triangles and two file lights; the sky is the environment.
+    EXPECT_EQ(job.scene.light_sampler().count(), 6u);
+    const auto& spot = std::get<SpotLight>(job.scene.lights[0]);
+    EXPECT_NEAR(spot.cos_outer, std::cos(40 * 3.14159265f / 180), 1e-6f);
+    EXPECT_TRUE(std::get<DirectionalLight>(job.scene.lights[1]).soft());
+}
+
+TEST(SceneYaml, PathTracerMistakesAreReported) {
+    const std::string text =
+        "integrator: {type: path, strategy: both}\n"
+        "lights:\n"
+        "  - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: 20, "
+        "falloff_start: 30}\n"
+        "materials:\n"
+        "  a: {type: conductor, metal: gld}\n"
+        "  b: {type: conductor, metal: gold, reflectance: 1}\n"
+        "  c: {type: glass}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:36: error: unknown strategy 'both' (known: mis, light, bsdf)\n"
+              "    integrator: {type: path, strategy: both}\n" +
+                  caret(36, 4) +
+                  "scene.yaml:3:93: error: spot light: falloff_start must not exceed cone_angle\n"
+                  "      - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: "
+                  "20, falloff_start: 30}\n" +
+                  caret(93, 2) +
+                  "scene.yaml:5:31: error: unknown metal 'gld'; did you mean 'gold'? (known: "
+                  "aluminium, chromium, copper, gold, iron, platinum, silver)\n"
+                  "      a: {type: conductor, metal: gld}\n" +
+                  caret(31, 3) +
+                  "scene.yaml:6:6: error: material 'b': give one of 'metal', 'eta' and 'k', or "
+                  "'reflectance'\n"
+                  "      b: {type: conductor, metal: gold, reflectance: 1}\n" +
+                  caret(6, 46) +
+                  "scene.yaml:7:13: error: unknown material type 'glass' "
+                  "(known: article, diffuse, conductor, dielectric, plastic, pbr)\n"
+                  "      c: {type: glass}\n" +
+                  caret(13, 5));
+}
+
+}  // namespace
+}  // namespace glint
