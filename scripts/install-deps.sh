@@ -11,6 +11,9 @@ packages=(
   openimageio-tools        # idiff / oiiotool, used by tests and docs
   libtbb-dev               # parallel tile loop
   libcli11-dev             # command line
+  libtinyobjloader-dev     # OBJ + MTL import
+  libtinygltf-dev nlohmann-json3-dev  # glTF 2.0 import (tinygltf's JSON)
+  libembree-dev            # the Embree backend (--accel embree) and its benchmark
   libfmt-dev               # formatting
   libgtest-dev libgmock-dev
   libbenchmark-dev

@@ -9,12 +9,14 @@ namespace glint {
 
 using MaterialId = std::uint32_t;
 
-enum class ShapeKind : std::uint8_t { kSphere, kPlane, kQuad, kDisk, kTriangle };
+enum class ShapeKind : std::uint8_t { kSphere, kPlane, kQuad, kDisk, kTriangle, kMesh };
 
 struct Hit {
     Float t;
     ShapeKind kind;
-    std::uint32_t index;  ///< into the scene's array of that kind
+    std::uint32_t index;  ///< into the scene's array of that kind (kMesh: the instance)
+    std::uint32_t prim = 0;  ///< kMesh: the triangle within the instance's mesh
+    Float b1 = 0, b2 = 0;    ///< kMesh: barycentric weights of the triangle's 2nd and 3rd vertex
 };
 
 struct SurfaceInteraction {
@@ -23,6 +25,9 @@ struct SurfaceInteraction {
     MaterialId material;
     ShapeKind shape;            ///< which shape was hit, so that Scene::uv can compute the
     std::uint32_t shape_index;  ///< texture coordinates only when a texture needs them
+    Normal3 ns{0, 0, 0};        ///< unit shading normal (interpolated on meshes; n elsewhere)
+    std::uint32_t prim = 0;     ///< kMesh: the triangle
+    Point2 bary{};              ///< kMesh: (b1, b2)
 };
 
 }  // namespace glint

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cassert>
+#include <stdexcept>
 #include <type_traits>
 
+#include "glint/accel/embree.h"
 #include "glint/math/snap.h"
 
 namespace glint {
@@ -49,34 +51,88 @@ bool any_hit_triangles(const std::vector<Triangle>& triangles, const Ray& ray) {
     return false;
 }
 
+// Top-level primitive references: the kind in the top 3 bits, the index below.
+constexpr int kRefShift = 29;
+constexpr std::uint32_t kRefMask = (1u << kRefShift) - 1;
+std::uint32_t make_ref(ShapeKind k, std::uint32_t i) { return static_cast<std::uint32_t>(k) << kRefShift | i; }
+
+template <typename Shape>
+void closest_one(const Shape& s, ShapeKind kind, std::uint32_t i, Ray& ray, std::optional<Hit>& best) {
+    if (auto t = s.intersect(ray)) {
+        ray.t_max = *t;
+        best = Hit{*t, kind, i};
+    }
+}
+
+Bounds3 ball_bounds(Point3 c, Float r) {
+    Bounds3 b;
+    b.extend(c - Vector3{r, r, r});
+    b.extend(c + Vector3{r, r, r});
+    return b;
+}
+
 }  // namespace
 
 void Scene::commit() {
-    bounds_ = Bounds3{};
-    const auto extend_ball = [this](Point3 center, Float radius) {
-        const Vector3 r{radius, radius, radius};
-        bounds_.extend(center - r);
-        bounds_.extend(center + r);
+    if (bounded_count() > kRefMask) throw std::length_error("too many shapes and instances for one scene");
+    // Bottom level: one BVH per mesh.
+    mesh_bvhs_.assign(meshes.size(), MeshBvh{});
+    for (std::size_t m = 0; m < meshes.size(); ++m) mesh_bvhs_[m].build(meshes[m]);
+
+    // Top level: every bounded shape and every instance.
+    std::vector<Bounds3> boxes;
+    std::vector<std::uint32_t> refs;
+    boxes.reserve(bounded_count());
+    refs.reserve(bounded_count());
+    const auto add = [&](ShapeKind k, std::uint32_t i, const Bounds3& b) {
+        boxes.push_back(b);
+        refs.push_back(make_ref(k, i));
     };
-    for (const Sphere& s : spheres) extend_ball(s.center, s.radius);
-    for (const Quad& q : quads) {
-        bounds_.extend(q.corner);
-        bounds_.extend(q.corner + q.edge1);
-        bounds_.extend(q.corner + q.edge2);
-        bounds_.extend(q.corner + q.edge1 + q.edge2);
+    for (std::uint32_t i = 0; i < spheres.size(); ++i)
+        add(ShapeKind::kSphere, i, ball_bounds(spheres[i].center, spheres[i].radius));
+    for (std::uint32_t i = 0; i < quads.size(); ++i) {
+        const Quad& q = quads[i];
+        Bounds3 b;
+        b.extend(q.corner);
+        b.extend(q.corner + q.edge1);
+        b.extend(q.corner + q.edge2);
+        b.extend(q.corner + q.edge1 + q.edge2);
+        add(ShapeKind::kQuad, i, b);
     }
-    for (const Disk& d : disks) extend_ball(d.center, d.radius);  // a disk lies in its ball
-    for (const Triangle& t : triangles) {
-        bounds_.extend(t.p0);
-        bounds_.extend(t.p1);
-        bounds_.extend(t.p2);
+    for (std::uint32_t i = 0; i < disks.size(); ++i)  // a disk lies in its ball
+        add(ShapeKind::kDisk, i, ball_bounds(disks[i].center, disks[i].radius));
+    for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+        Bounds3 b;
+        b.extend(triangles[i].p0);
+        b.extend(triangles[i].p1);
+        b.extend(triangles[i].p2);
+        add(ShapeKind::kTriangle, i, b);
+    }
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+        const Instance& inst = instances[i];
+        if (inst.mesh >= meshes.size()) throw std::out_of_range("instance of a mesh that does not exist");
+        const Bounds3 local = mesh_bvhs_[inst.mesh].bounds();
+        add(ShapeKind::kMesh, i, local.empty() ? Bounds3{} : inst.transform.bounds(local));
+    }
+    BvhBuildOptions top_options;
+    top_options.max_leaf_size = 2;
+    top_.build(boxes, top_options);
+    top_refs_.resize(top_.order().size());
+    for (std::size_t i = 0; i < top_refs_.size(); ++i) top_refs_[i] = refs[top_.order()[i]];
+    bounds_ = top_.bounds();
+
+    embree_.reset();
+    if (accel == AccelKind::kEmbree) {
+#if GLINT_EMBREE
+        embree_ = std::make_shared<const EmbreeAccel>(*this);
+#else
+        throw std::runtime_error("this glint was built without Embree (configure with -DGLINT_EMBREE=ON)");
+#endif
     }
     committed_count_ = bounded_count();
-    const float radius =
-        bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
+
+    const float radius = bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
     light_sampler_.build(*this, std::max(radius, 1e-3f));
-    any_bounded_ = committed_count_ > 0;
-    any_flat_ = !quads.empty() || !disks.empty() || !triangles.empty();
     // Which textures read uv: images, and whatever combines one. Children come before their
     // parents (build adds them first), so one forward pass settles every entry.
     texture_needs_uv_.assign(textures.size(), false);
@@ -95,32 +151,175 @@ void Scene::commit() {
     }
 }
 
+std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) const {
+    const Instance& inst = instances[i];
+    const Ray local{inst.transform.to_object.apply(ray.origin),
+                    inst.transform.to_object.apply(ray.direction), ray.t_max};
+    return mesh_bvhs_[inst.mesh].closest(local);
+}
+
+bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
+    const Instance& inst = instances[i];
+    const Ray local{inst.transform.to_object.apply(ray.origin),
+                    inst.transform.to_object.apply(ray.direction), ray.t_max};
+    return mesh_bvhs_[inst.mesh].any(local);
+}
+
+void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
+                        std::optional<Hit>& best) const {
+    const std::uint32_t i = ref & kRefMask;
+    switch (static_cast<ShapeKind>(ref >> kRefShift)) {
+        case ShapeKind::kSphere: closest_one(spheres[i], ShapeKind::kSphere, i, ray, best); break;
+        case ShapeKind::kQuad: closest_one(quads[i], ShapeKind::kQuad, i, ray, best); break;
+        case ShapeKind::kDisk: closest_one(disks[i], ShapeKind::kDisk, i, ray, best); break;
+        case ShapeKind::kTriangle: {
+            WatertightRay wr = wr_in;
+            wr.t_max = ray.t_max;
+            if (const auto h = intersect_triangle(triangles[i].p0, triangles[i].p1, triangles[i].p2, wr)) {
+                ray.t_max = h->t;
+                best = Hit{h->t, ShapeKind::kTriangle, i};
+            }
+            break;
+        }
+        case ShapeKind::kMesh:
+            if (const auto h = closest_instance(i, ray)) {
+                ray.t_max = h->hit.t;
+                best = Hit{h->hit.t, ShapeKind::kMesh, i, h->prim, h->hit.b1, h->hit.b2};
+            }
+            break;
+        case ShapeKind::kPlane: break;
+    }
+}
+
+bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const {
+    const std::uint32_t i = ref & kRefMask;
+    switch (static_cast<ShapeKind>(ref >> kRefShift)) {
+        case ShapeKind::kSphere: return spheres[i].intersect(ray).has_value();
+        case ShapeKind::kQuad: return quads[i].intersect(ray).has_value();
+        case ShapeKind::kDisk: return disks[i].intersect(ray).has_value();
+        case ShapeKind::kTriangle:
+            return intersect_triangle(triangles[i].p0, triangles[i].p1, triangles[i].p2, wr).has_value();
+        case ShapeKind::kMesh: return any_instance(i, ray);
+        case ShapeKind::kPlane: return false;
+    }
+    return false;
+}
+
 std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
     assert(committed_count_ == bounded_count() && "Scene::commit() not called");
     Ray ray = ray_in;
     std::optional<Hit> best;
-    // Planes first: a plane hit shortens t_max, which the box test and the rest then use.
+    // Planes first: a plane hit shortens t_max, which the traversal then uses.
     closest_hit<ShapeKind::kPlane>(planes, ray, best);
-    if (any_bounded_ && bounds_.hit(ray, reciprocal(ray.direction))) {
-        closest_hit<ShapeKind::kSphere>(spheres, ray, best);
-        if (any_flat_) {  // the article's scenes have none: skip three empty loops per ray
-            closest_hit<ShapeKind::kQuad>(quads, ray, best);
-            closest_hit<ShapeKind::kDisk>(disks, ray, best);
-            closest_hit_triangles(triangles, ray, best);
-        }
+#if GLINT_EMBREE
+    if (embree_) {
+        embree_->closest(*this, ray, best);
+        return best;
     }
+#endif
+    if (top_.empty()) return best;
+    const WatertightRay wr(ray);
+    top_.closest(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t k = first; k < first + count; ++k) closest_top(top_refs_[k], ray, wr, best);
+    });
     return best;
 }
 
 bool Scene::occluded(const Ray& ray) const {
     assert(committed_count_ == bounded_count() && "Scene::commit() not called");
     if (any_hit(planes, ray)) return true;
-    if (!any_bounded_ || !bounds_.hit(ray, reciprocal(ray.direction))) return false;
-    return any_hit(spheres, ray) ||
-           (any_flat_ && (any_hit(quads, ray) || any_hit(disks, ray) || any_hit_triangles(triangles, ray)));
+#if GLINT_EMBREE
+    if (embree_) return embree_->occluded(ray);
+#endif
+    if (top_.empty()) return false;
+    const WatertightRay wr(ray);
+    return top_.any(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t k = first; k < first + count; ++k)
+            if (any_top(top_refs_[k], ray, wr)) return true;
+        return false;
+    });
+}
+
+std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
+    Ray ray = ray_in;
+    std::optional<Hit> best;
+    closest_hit<ShapeKind::kPlane>(planes, ray, best);
+    closest_hit<ShapeKind::kSphere>(spheres, ray, best);
+    closest_hit<ShapeKind::kQuad>(quads, ray, best);
+    closest_hit<ShapeKind::kDisk>(disks, ray, best);
+    closest_hit_triangles(triangles, ray, best);
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+        const Instance& inst = instances[i];
+        const TriangleMesh& m = meshes[inst.mesh];
+        const Ray local{inst.transform.to_object.apply(ray.origin),
+                        inst.transform.to_object.apply(ray.direction), ray.t_max};
+        WatertightRay wr(local);
+        for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+            const auto [p0, p1, p2] = m.vertices(t);
+            if (const auto h = intersect_triangle(p0, p1, p2, wr)) {
+                wr.t_max = ray.t_max = h->t;
+                best = Hit{h->t, ShapeKind::kMesh, i, t, h->b1, h->b2};
+            }
+        }
+    }
+    return best;
+}
+
+bool Scene::occluded_brute_force(const Ray& ray) const {
+    if (any_hit(planes, ray) || any_hit(spheres, ray) || any_hit(quads, ray) || any_hit(disks, ray) ||
+        any_hit_triangles(triangles, ray))
+        return true;
+    for (const Instance& inst : instances) {
+        const TriangleMesh& m = meshes[inst.mesh];
+        const Ray local{inst.transform.to_object.apply(ray.origin),
+                        inst.transform.to_object.apply(ray.direction), ray.t_max};
+        const WatertightRay wr(local);
+        for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+            const auto [p0, p1, p2] = m.vertices(t);
+            if (intersect_triangle(p0, p1, p2, wr)) return true;
+        }
+    }
+    return false;
+}
+
+bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const {
+    if (m.normals.empty()) return false;
+    const auto [p0, p1, p2] = m.vertices(prim);
+    const Vector3 ng = cross(p1 - p0, p2 - p0);
+    const Vector3 sum = to_vector(m.normals[m.indices[3 * prim]]) +
+                        to_vector(m.normals[m.indices[3 * prim + 1]]) +
+                        to_vector(m.normals[m.indices[3 * prim + 2]]);
+    return dot(sum, ng) < 0;
+}
+
+Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim) const {
+    const Instance& in = instances[inst];
+    const TriangleMesh& m = meshes[in.mesh];
+    auto [p0, p1, p2] = m.vertices(prim);
+    Triangle t{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2),
+               instance_material(inst, prim)};
+    // The object-space normal carried by the inverse transpose keeps the front side; the
+    // winding of the transformed vertices flips under a mirror. Rewind to match.
+    if (in.transform.flips() != flip_mesh_normal(m, prim)) std::swap(t.p1, t.p2);
+    return t;
+}
+
+std::size_t Scene::accel_memory_bytes() const {
+#if GLINT_EMBREE
+    if (embree_) return embree_->memory_bytes();
+#endif
+    std::size_t bytes = top_.memory_bytes() + top_refs_.size() * sizeof(std::uint32_t);
+    for (const MeshBvh& b : mesh_bvhs_) bytes += b.memory_bytes();
+    return bytes;
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
+    SurfaceInteraction si = base_interaction(ray, hit);
+    if (hit.kind != ShapeKind::kMesh) si.ns = si.n;
+    return si;
+}
+
+SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const {
     const Point3 p = ray.at(hit.t);
     switch (hit.kind) {
         case ShapeKind::kSphere: {
@@ -146,6 +345,41 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
             return {snap_to_plane(p, t.p0, t.normal()), t.normal(), t.material, hit.kind,
                     hit.index};
         }
+        case ShapeKind::kMesh: {
+            const Instance& inst = instances[hit.index];
+            const TriangleMesh& m = meshes[inst.mesh];
+            const std::uint32_t tri = hit.prim;
+            const auto [p0, p1, p2] = m.vertices(tri);
+            const Float b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
+            // The point from the barycentrics (on the triangle, whatever the ray's round-off),
+            // in object space, then carried to the world.
+            const Point3 po{b0 * p0.x + b1 * p1.x + b2 * p2.x, b0 * p0.y + b1 * p1.y + b2 * p2.y,
+                            b0 * p0.z + b1 * p1.z + b2 * p2.z};
+            SurfaceInteraction si{inst.transform.point(po), Normal3{0, 0, 1},
+                                  instance_material(hit.index, tri), hit.kind, hit.index};
+            si.prim = tri;
+            si.bary = {b1, b2};
+            Normal3 ng = normalize(inst.transform.normal(Normal3(cross(p1 - p0, p2 - p0))));
+            if (flip_mesh_normal(m, tri)) ng = -ng;
+            si.n = ng;
+            si.ns = ng;
+            if (!m.normals.empty()) {
+                const Normal3 a = m.normals[m.indices[3 * tri]], b = m.normals[m.indices[3 * tri + 1]],
+                              c = m.normals[m.indices[3 * tri + 2]];
+                const Normal3 n_obj{b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y,
+                                    b0 * a.z + b1 * b.z + b2 * c.z};
+                const Normal3 ns = inst.transform.normal(n_obj);
+                const Float len = length(ns);
+                // The shading normal is used only where the viewer is on the same side of it as
+                // of the true surface; elsewhere (grazing views of a coarse mesh) the geometric
+                // normal shades, so that no light leaks through the surface.
+                if (len > 0 && std::isfinite(len)) {
+                    const Normal3 unit = ns * (1 / len);
+                    if (dot(unit, ray.direction) * dot(ng, ray.direction) > 0) si.ns = unit;
+                }
+            }
+            return si;
+        }
     }
     return {p, Normal3{0, 1, 0}, 0, hit.kind, hit.index};  // unreachable: every kind is covered
 }
@@ -157,6 +391,14 @@ Point2 Scene::uv(const SurfaceInteraction& si) const {
         case ShapeKind::kQuad: return quads[si.shape_index].uv_at(si.p);
         case ShapeKind::kDisk: return disks[si.shape_index].uv_at(si.p);
         case ShapeKind::kTriangle: return triangles[si.shape_index].uv_at(si.p);
+        case ShapeKind::kMesh: {
+            const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+            if (m.uvs.empty()) return si.bary;
+            const Point2 a = m.uvs[m.indices[3 * si.prim]], b = m.uvs[m.indices[3 * si.prim + 1]],
+                         c = m.uvs[m.indices[3 * si.prim + 2]];
+            const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
+            return {b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y};
+        }
     }
     return {};
 }

@@ -1,14 +1,20 @@
 #pragma once
 // The render-time scene: flat arrays indexed by ids, no names, no maps, no owning pointers.
-// Shapes live in one array per kind so the intersection loops are typed (no per-primitive
-// dispatch). There is no acceleration structure yet: the article's scenes have a handful of
-// primitives, tested in loops behind one bounding box around all the bounded shapes (rays towards
-// the sky skip them all; planes are unbounded and tested first); the BVH issue replaces this.
+// Shapes live in one array per kind; meshes are stored once and placed by instances.
+//
+// Acceleration (two levels, as Embree and pbrt): a 4-wide BVH over every bounded shape and every
+// instance (accel/bvh.h), and per mesh a BVH over its triangles in object space
+// (accel/mesh_bvh.h), shared by its instances. Planes are unbounded and tested first, in a loop.
+// With `accel = AccelKind::kEmbree` (built with GLINT_EMBREE) Embree 3 replaces both levels.
 //
 // After filling or changing the arrays, call commit() before tracing (as with Embree's
-// rtcCommitScene): it computes what the intersection loops derive from them.
+// rtcCommitScene): it builds the acceleration structures and the light sampler.
+#include <memory>
 #include <optional>
 #include <vector>
+
+#include "glint/accel/bvh.h"
+#include "glint/accel/mesh_bvh.h"
 
 #include "glint/background.h"
 #include "glint/math/bounds.h"
@@ -17,6 +23,7 @@
 #include "glint/lights/light_sampler.h"
 #include "glint/materials/material.h"
 #include "glint/shapes/disk.h"
+#include "glint/shapes/mesh.h"
 #include "glint/shapes/plane.h"
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
@@ -25,27 +32,52 @@
 
 namespace glint {
 
+enum class AccelKind { kBvh, kEmbree };
+
+class EmbreeAccel;
+
 struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
     std::vector<Quad> quads;
     std::vector<Disk> disks;
     std::vector<Triangle> triangles;
+    std::vector<TriangleMesh> meshes;
+    std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Emission> emission;  ///< per material; missing entries emit nothing
     std::vector<Texture> textures;
     std::vector<Image> images;
     std::vector<Light> lights;
     Background background = SkyBackground{};
+    AccelKind accel = AccelKind::kBvh;  ///< read by commit()
 
-    /// Computes the derived data (the bounds of the bounded shapes, which textures read uv) from
-    /// the arrays.
+    /// Builds the derived data (acceleration structures, light sampler, which textures read uv)
+    /// from the arrays. Throws std::runtime_error when `accel` is kEmbree and glint was built
+    /// without Embree.
     void commit();
 
     /// Nearest hit in [kRayTMin, ray.t_max).
     std::optional<Hit> intersect(const Ray& ray) const;
     /// Whether anything lies in [kRayTMin, ray.t_max); stops at the first blocker.
     bool occluded(const Ray& ray) const;
+    /// The same answers by testing every primitive (the reference the accelerators are tested
+    /// against; needs commit() too).
+    std::optional<Hit> intersect_brute_force(const Ray& ray) const;
+    bool occluded_brute_force(const Ray& ray) const;
+
+    /// Triangle `prim` of instance `inst` in world space, wound so that its normal() is the
+    /// geometric normal the interaction reports (area lights on meshes use it).
+    Triangle world_triangle(std::uint32_t inst, std::uint32_t prim) const;
+    MaterialId instance_material(std::uint32_t inst, std::uint32_t prim) const {
+        const Instance& i = instances[inst];
+        return i.material ? *i.material : meshes[i.mesh].material_of(prim);
+    }
+    const Bvh4& top_level() const { return top_; }
+    const std::vector<MeshBvh>& mesh_bvhs() const { return mesh_bvhs_; }
+    /// Bytes held by the acceleration structures (either backend).
+    std::size_t accel_memory_bytes() const;
+    Bounds3 bounds() const { return bounds_; }
     /// The colour of texture `id` at a surface point. The uv is computed only for textures
     /// that read it (an atan2 and an acos per sphere hit otherwise wasted).
     Color texture(TextureId id, const SurfaceInteraction& si) const {
@@ -75,12 +107,24 @@ struct Scene {
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
 private:
+    friend class EmbreeAccel;
     std::size_t bounded_count() const {
-        return spheres.size() + quads.size() + disks.size() + triangles.size();
+        return spheres.size() + quads.size() + disks.size() + triangles.size() + instances.size();
     }
-    Bounds3 bounds_;  ///< around every sphere, quad, disk and triangle
-    bool any_bounded_ = false;  ///< set by commit(): any sphere, quad, disk or triangle
-    bool any_flat_ = false;     ///< set by commit(): any quad, disk or triangle
+    /// Tests top-level primitive `ref` (kind in the top bits, index below) against the ray.
+    void closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr, std::optional<Hit>& best) const;
+    bool any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const;
+    std::optional<MeshHit> closest_instance(std::uint32_t inst, const Ray& ray) const;
+    bool any_instance(std::uint32_t inst, const Ray& ray) const;
+    SurfaceInteraction base_interaction(const Ray& ray, const Hit& hit) const;
+    /// Whether a mesh triangle's geometric normal is flipped to agree with its vertex normals.
+    bool flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const;
+
+    Bounds3 bounds_;  ///< around every bounded shape and instance
+    Bvh4 top_;
+    std::vector<std::uint32_t> top_refs_;  ///< leaf order
+    std::vector<MeshBvh> mesh_bvhs_;
+    std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
     std::vector<char> texture_needs_uv_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
     LightSampler light_sampler_;

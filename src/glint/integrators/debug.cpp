@@ -20,7 +20,7 @@ std::optional<SurfaceInteraction> first_hit(const Scene& scene, const Ray& ray,
         return std::nullopt;
     }
     const SurfaceInteraction si = scene.interaction(ray, *hit);
-    if (first) *first = {surface_color(scene, si), si.n, hit->t, true};
+    if (first) *first = {surface_color(scene, si), si.ns, hit->t, true};
     return si;
 }
 }  // namespace
@@ -36,7 +36,7 @@ Color NormalsIntegrator::li(const Scene& scene, const Ray& ray, SampleStream&, R
                             FirstHit* first) const {
     const auto si = first_hit(scene, ray, counter, first);
     if (!si) return evaluate(scene.background, ray.direction);
-    const Normal3 n = si->n;
+    const Normal3 n = si->ns;  // the shading normal (interpolated on smooth meshes)
     return Color{(n.x + 1) / 2, (n.y + 1) / 2, (n.z + 1) / 2};
 }
 

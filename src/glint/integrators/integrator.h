@@ -64,7 +64,11 @@ public:
     Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
     /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
-    Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const;
+    Color direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k, RayCounter& counter) const;
+    /// With the shading normal equal to the true one.
+    Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const {
+        return direct(scene, p, n, n, k, counter);
+    }
 
 private:
     WhittedSettings settings_;

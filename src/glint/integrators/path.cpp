@@ -15,6 +15,9 @@ float power_heuristic(float pdf_a, float pdf_b) {
     return a + b > 0 ? a / (a + b) : 0;
 }
 
+// Whether direction w lies on the same side of the shading surface as of the geometric one.
+bool same_side(const SurfaceInteraction& si, Vector3 w) { return dot(si.n, w) * dot(si.ns, w) > 0; }
+
 Color clamp_radiance(Color c, float max) {
     return {std::min(c.r, max), std::min(c.g, max), std::min(c.b, max)};
 }
@@ -69,9 +72,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         }
         const SurfaceInteraction si = scene.interaction(ray, *hit);
         const Vector3 wo = -ray.direction;
-        add_emission(scene.emitted(si, wo), lights.light_of(si.shape, si.shape_index), si.p);
+        add_emission(scene.emitted(si, wo), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
         if (first && depth == 0) {
-            *first = {article_view(scene, si).color, face_forward(si.n, ray.direction), hit->t, true};
+            *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), hit->t, true};
         }
         if (depth >= settings_.max_depth) break;
 
@@ -88,7 +91,11 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             if (pmf > 0) {
                 if (const auto ls = lights.sample_li(scene, l, si.p, u_light);
                     ls && ls->pdf > 0 && ls->L.max_component() > 0) {
-                    const Color f = bsdf.eval(wo, ls->wi) * std::abs(dot(si.n, ls->wi));
+                    // A direction on different sides of the shading and the true surface is
+                    // refused (light would leak through a smooth-shaded mesh).
+                    const Color f = same_side(si, ls->wi)
+                                        ? bsdf.eval(wo, ls->wi) * std::abs(dot(si.ns, ls->wi))
+                                        : Color{0};
                     if (f.max_component() > 0) {
                         ++counter.rays;
                         const Ray shadow =
@@ -111,8 +118,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 
         // Continue the path.
         const auto bs = bsdf.sample(wo, choices.y, u_bsdf);
-        if (!bs || bs->f.max_component() <= 0) break;
-        beta *= bs->f * (std::abs(dot(si.n, bs->wi)) / bs->pdf);
+        if (!bs || bs->f.max_component() <= 0 || !same_side(si, bs->wi)) break;
+        beta *= bs->f * (std::abs(dot(si.ns, bs->wi)) / bs->pdf);
         specular = bs->specular;
         bsdf_pdf = bs->pdf;
         prev_p = si.p;

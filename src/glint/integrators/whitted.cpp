@@ -5,7 +5,7 @@
 
 namespace glint {
 
-Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Color k,
+Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k,
                                 RayCounter& counter) const {
     Color d = k * settings_.ambient;
     for (const Light& light : scene.lights) {
@@ -14,7 +14,7 @@ Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Color k
         if (cos_theta <= 0) continue;
         if (settings_.shadows) {
             ++counter.rays;
-            if (scene.occluded(spawn_ray(p, n, ls.to_light, ls.distance))) continue;
+            if (scene.occluded(spawn_ray(p, ng, ls.to_light, ls.distance))) continue;
         }
         d += k * ls.intensity * cos_theta;
     }
@@ -40,12 +40,13 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
         const SurfaceInteraction si = scene.interaction(ray, *hit);
         // Shade with the normal facing the viewer. For every surface seen from its front (all of
         // the article's figures) this is the article's N; it keeps the back of a plane and the
-        // inside of a sphere lit correctly instead of black.
-        const Normal3 n = face_forward(si.n, ray.direction);
+        // inside of a sphere lit correctly instead of black. (On smooth-shaded meshes this is the
+        // interpolated normal; rays leave off the true surface, si.n.)
+        const Normal3 n = face_forward(si.ns, ray.direction);
         const ArticleView m = article_view(scene, si);  // the article's material as is
         const Color k = m.color;
         if (first && depth == 0) *first = {k, n, hit->t, true};
-        const Color d = direct(scene, si.p, n, k, counter);
+        const Color d = direct(scene, si.p, n, si.n, k, counter);
         const float s = m.shininess;
         if (s <= 0) return result + weight * d;
         result += weight * d * (1 - s);
@@ -54,7 +55,7 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
         if (depth >= settings_.max_depth) {
             return result + weight * evaluate(scene.background, r);
         }
-        ray = spawn_ray(si.p, n, r);
+        ray = spawn_ray(si.p, si.n, r);
     }
 }
 

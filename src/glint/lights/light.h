@@ -69,10 +69,11 @@ struct SpotLight {
 };
 
 /// A shape whose material emits (Scene::emission): made by Scene::commit, one per emitting
-/// sphere, quad, disk or triangle. (Emitting planes are infinite: they are seen, not sampled.)
+/// sphere, quad, disk, triangle and mesh triangle. (Emitting planes are infinite: they are seen, not sampled.)
 struct AreaLight {
     ShapeKind kind;
-    std::uint32_t index;
+    std::uint32_t index;     ///< kMesh: the instance
+    std::uint32_t prim = 0;  ///< kMesh: the triangle
     LightSample sample(Point3) const { return {{0, 1, 0}, Color{0}, 0}; }  // not for Whitted
 };
 

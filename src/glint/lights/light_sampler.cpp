@@ -72,6 +72,20 @@ void LightSampler::build(const Scene& scene, float radius) {
     add_area(ShapeKind::kQuad, scene.quads);
     add_area(ShapeKind::kDisk, scene.disks);
     add_area(ShapeKind::kTriangle, scene.triangles);
+    instance_first_.assign(scene.instances.size(), kNoLight);
+    mesh_light_.clear();
+    for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const TriangleMesh& m = scene.meshes[scene.instances[i].mesh];
+        for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+            if (!scene.emission_of(scene.instance_material(i, t)).emits()) continue;
+            if (instance_first_[i] == kNoLight) {
+                instance_first_[i] = static_cast<std::uint32_t>(mesh_light_.size());
+                mesh_light_.resize(mesh_light_.size() + m.triangle_count(), kNoLight);
+            }
+            mesh_light_[instance_first_[i] + t] = static_cast<std::uint32_t>(lights_.size());
+            lights_.emplace_back(AreaLight{ShapeKind::kMesh, i, t});
+        }
+    }
 
     const float disk_area = kPi * radius * radius;
     std::vector<float> power;
@@ -97,6 +111,12 @@ void LightSampler::build(const Scene& scene, float radius) {
                         case ShapeKind::kQuad: area = scene.quads[l.index].area(); material = scene.quads[l.index].material; break;
                         case ShapeKind::kDisk: area = scene.disks[l.index].area(); material = scene.disks[l.index].material; break;
                         case ShapeKind::kTriangle: area = scene.triangles[l.index].area(); material = scene.triangles[l.index].material; break;
+                        case ShapeKind::kMesh: {
+                            const Triangle t = scene.world_triangle(l.index, l.prim);
+                            area = t.area();
+                            material = t.material;
+                            break;
+                        }
                         case ShapeKind::kPlane: break;
                     }
                     const Emission& e = scene.emission_of(material);
@@ -188,6 +208,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                     case ShapeKind::kQuad: from(scene.quads[l.index]); break;
                     case ShapeKind::kDisk: from(scene.disks[l.index]); break;
                     case ShapeKind::kTriangle: from(scene.triangles[l.index]); break;
+                    case ShapeKind::kMesh: from(scene.world_triangle(l.index, l.prim)); break;
                     case ShapeKind::kPlane: return std::nullopt;
                 }
                 const Vector3 d = q - p;
@@ -247,6 +268,12 @@ float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Ve
                     case ShapeKind::kQuad: area = scene.quads[l.index].area(); n = scene.quads[l.index].normal(); break;
                     case ShapeKind::kDisk: area = scene.disks[l.index].area(); n = scene.disks[l.index].normal; break;
                     case ShapeKind::kTriangle: area = scene.triangles[l.index].area(); n = scene.triangles[l.index].normal(); break;
+                    case ShapeKind::kMesh: {
+                        const Triangle t = scene.world_triangle(l.index, l.prim);
+                        area = t.area();
+                        n = t.normal();
+                        break;
+                    }
                     case ShapeKind::kPlane: return 0;
                 }
                 const Vector3 d = on_light - p;

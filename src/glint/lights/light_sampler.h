@@ -51,7 +51,11 @@ public:
                  Point3 on_light) const;
 
     /// The area light of an emitting shape, or kNoLight.
-    std::uint32_t light_of(ShapeKind kind, std::uint32_t index) const {
+    std::uint32_t light_of(ShapeKind kind, std::uint32_t index, std::uint32_t prim = 0) const {
+        if (kind == ShapeKind::kMesh) {
+            if (index >= instance_first_.size() || instance_first_[index] == kNoLight) return kNoLight;
+            return mesh_light_[instance_first_[index] + prim];
+        }
         const auto& v = shape_light_[static_cast<std::size_t>(kind)];
         return index < v.size() ? v[index] : kNoLight;
     }
@@ -67,6 +71,9 @@ private:
     bool env_ = false;
     Distribution1D distribution_;
     std::array<std::vector<std::uint32_t>, 5> shape_light_;
+    /// Mesh instances: where each emitting instance's per-triangle light ids start in
+    /// mesh_light_ (kNoLight for instances that emit nothing).
+    std::vector<std::uint32_t> instance_first_, mesh_light_;
     std::vector<std::uint32_t> distant_;
 };
 

@@ -32,6 +32,14 @@ Scene light_scene(bool env_map) {
     s.quads.push_back(Quad::make({-1, -3, -1}, {2, 0, 0.5f}, {0, 0.3f, 2}, 1));
     s.disks.push_back({{3, 0, 0}, Normal3{-1, 0, 0}, 1.2f, 1});
     s.triangles.push_back({{-2, 1, 3}, {-3, 2, 1}, {-2.5f, -1, 2}, 1});
+    // A one-triangle mesh, placed by a transform that rotates, mirrors and moves it.
+    TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0.5f}};
+    mesh.indices = {0, 1, 2};
+    mesh.material = 1;
+    s.meshes.push_back(mesh);
+    s.instances.push_back({0, Transform::translate({1, -1, -3}) * Transform::rotate(30, {1, 1, 0}) *
+                                   Transform::scale({1, -1.5f, 1})});
     DirectionalLight sun{normalize(Vector3{0.3f, -1, 0.2f}), Color{3}};
     const float s4 = std::sin(8 * kPi / 180 / 4);  // an 8-degree sun, large enough to histogram
     sun.one_minus_cos = 2 * s4 * s4;
@@ -60,6 +68,7 @@ std::optional<Point3> on_light(const Scene& s, const LightSampler& ls, std::uint
             case ShapeKind::kQuad: t = s.quads[a->index].intersect(ray); break;
             case ShapeKind::kDisk: t = s.disks[a->index].intersect(ray); break;
             case ShapeKind::kTriangle: t = s.triangles[a->index].intersect(ray); break;
+            case ShapeKind::kMesh: t = s.world_triangle(a->index, a->prim).intersect(ray); break;
             case ShapeKind::kPlane: break;
         }
         if (!t) return std::nullopt;
@@ -72,7 +81,7 @@ TEST(LightSampler, EveryLightSamplesItsOwnDensityChiSquare) {
     for (const bool env_map : {false, true}) {
         const Scene s = light_scene(env_map);
         const LightSampler& ls = s.light_sampler();
-        ASSERT_EQ(ls.count(), 6u);  // sun, four area lights, environment
+        ASSERT_EQ(ls.count(), 7u);  // sun, five area lights, environment
         const Point3 p{0.1f, 0.2f, -0.3f};
         for (std::uint32_t l = 0; l < ls.count(); ++l) {
             const auto fit = testing::fit_sphere(

@@ -22,22 +22,22 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 const float s = m.shininess;
                 ConductorLobe mirror;  // smooth, constant reflectance K; weighted by s
                 mirror.eta = k;
-                return Bsdf(si.n, {{DiffuseLobe{k}, 1 - s}, {mirror, s}});
+                return Bsdf(si.ns, {{DiffuseLobe{k}, 1 - s}, {mirror, s}});
             } else if constexpr (std::is_same_v<T, DiffuseMaterial>) {
-                return Bsdf(si.n, {{DiffuseLobe{scene.texture(m.albedo, si)}, 1.0f}});
+                return Bsdf(si.ns, {{DiffuseLobe{scene.texture(m.albedo, si)}, 1.0f}});
             } else if constexpr (std::is_same_v<T, ConductorMaterial>) {
-                if (!m.reflectance) return Bsdf(si.n, {{m.lobe, 1.0f}});
+                if (!m.reflectance) return Bsdf(si.ns, {{m.lobe, 1.0f}});
                 ConductorLobe lobe = m.lobe;
                 lobe.kind = ConductorLobe::FresnelKind::kSchlick;
                 lobe.eta = scene.texture(*m.reflectance, si);
                 lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);  // closed form
-                return Bsdf(si.n, {{lobe, 1.0f}});
+                return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, DielectricMaterial>) {
-                return Bsdf(si.n, {{m.lobe, 1.0f}});
+                return Bsdf(si.ns, {{m.lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 PlasticLobe lobe = m.coat;
                 lobe.albedo = scene.texture(m.albedo, si);
-                return Bsdf(si.n, {{lobe, 1.0f}});
+                return Bsdf(si.ns, {{lobe, 1.0f}});
             } else {
                 static_assert(std::is_same_v<T, PbrMaterial>);
                 const Color base = scene.texture(m.base_color, si);
@@ -57,7 +57,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 glass.ggx = Ggx{alpha};
                 glass.tint = base;
                 const float dielectric = 1 - m.metallic;
-                return Bsdf(si.n, {{metal, m.metallic},
+                return Bsdf(si.ns, {{metal, m.metallic},
                                    {plastic, dielectric * (1 - m.transmission)},
                                    {glass, dielectric * m.transmission}});
             }

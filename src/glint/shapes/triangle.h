@@ -19,16 +19,28 @@ struct WatertightRay {
     explicit WatertightRay(const Ray& ray);
 };
 
+/// A hit on a triangle: the distance and the barycentric weights of p1 and p2.
+struct TriangleHit {
+    Float t, b1, b2;
+};
+
+/// Watertight ray-triangle intersection (Woop, Benthin and Wald, JCGT 2013): the triangle is
+/// moved into a frame where the ray runs along +z from the origin, and the hit is decided by the
+/// signs of three 2D edge functions, recomputed in double when one is exactly zero. Rays through
+/// a shared edge or vertex hit at least one of the triangles that share it. Hits count in
+/// [kRayTMin, ray.t_max).
+std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point3 p2, const WatertightRay& ray);
+
 /// A triangle p0 p1 p2, facing along (p1 - p0) x (p2 - p0).
 struct Triangle {
     Point3 p0, p1, p2;
     MaterialId material = 0;
 
-    /// Watertight ray-triangle intersection (Woop, Benthin and Wald, JCGT 2013): the triangle is
-    /// moved into a frame where the ray runs along +z from the origin, and the hit is decided by
-    /// the signs of three 2D edge functions, recomputed in double when one is exactly zero. Rays
-    /// through a shared edge or vertex hit at least one of the triangles that share it.
-    std::optional<Float> intersect(const WatertightRay& ray) const;
+    /// intersect_triangle's distance.
+    std::optional<Float> intersect(const WatertightRay& ray) const {
+        const auto h = intersect_triangle(p0, p1, p2, ray);
+        return h ? std::optional<Float>(h->t) : std::nullopt;
+    }
     std::optional<Float> intersect(const Ray& ray) const { return intersect(WatertightRay(ray)); }
 
     /// The barycentric coordinates (b1, b2) of p: p = p0 + b1 (p1 - p0) + b2 (p2 - p0). (Meshes
@@ -51,7 +63,8 @@ struct Triangle {
     }
 };
 
-inline std::optional<Float> Triangle::intersect(const WatertightRay& r) const {
+inline std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point3 p2,
+                                                     const WatertightRay& r) {
     const Float sx = r.sx, sy = r.sy, sz = r.sz;
     // The vertices relative to the origin, permuted so that the ray's main axis is z.
     const auto permuted = [&r](Point3 p) {
@@ -83,7 +96,8 @@ inline std::optional<Float> Triangle::intersect(const WatertightRay& r) const {
         return std::nullopt;
     const Float t = t_scaled / det;
     if (!(t >= kRayTMin && t < r.t_max)) return std::nullopt;  // rounding at the ends
-    return t;
+    const Float inv_det = 1 / det;
+    return TriangleHit{t, v * inv_det, w * inv_det};
 }
 
 }  // namespace glint

@@ -1,0 +1,336 @@
+// The BVH (both levels) against brute force, watertightness through the traversal, instances
+// and their normals, degenerate input; Embree against brute force when built in.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "glint/scene.h"
+
+namespace glint {
+namespace {
+
+std::mt19937 rng(std::uint32_t seed) { return std::mt19937(seed); }
+
+float uniform(std::mt19937& g, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(g);
+}
+
+Point3 random_point(std::mt19937& g, float r) { return {uniform(g, -r, r), uniform(g, -r, r), uniform(g, -r, r)}; }
+
+Vector3 random_direction(std::mt19937& g) {
+    for (;;) {
+        const Vector3 v{uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1)};
+        const float l = length(v);
+        if (l > 0.1f && l <= 1) return v / l;
+    }
+}
+
+// A soup of small triangles in a ball: the mesh the instances below place.
+TriangleMesh random_soup(std::mt19937& g, int n) {
+    TriangleMesh m;
+    for (int i = 0; i < n; ++i) {
+        const Point3 c = random_point(g, 1);
+        for (int k = 0; k < 3; ++k) m.positions.push_back(c + to_vector(random_point(g, 0.15f)));
+        m.indices.insert(m.indices.end(), {3u * i, 3u * i + 1, 3u * i + 2});
+    }
+    return m;
+}
+
+// Every kind of bounded shape, and five instances of two meshes under rotations, non-uniform
+// scales and a mirror.
+Scene mixed_scene(AccelKind accel) {
+    auto g = rng(7);
+    Scene s;
+    s.materials.push_back(DiffuseMaterial{0});
+    s.textures.push_back(ConstantTexture{Color{0.5f}});
+    for (int i = 0; i < 40; ++i) s.spheres.push_back({random_point(g, 5), uniform(g, 0.05f, 0.5f), 0});
+    for (int i = 0; i < 20; ++i)
+        s.quads.push_back(Quad::make(random_point(g, 5), to_vector(random_point(g, 0.6f)),
+                                     to_vector(random_point(g, 0.6f)), 0));
+    for (int i = 0; i < 20; ++i)
+        s.disks.push_back({random_point(g, 5), Normal3(random_direction(g)), uniform(g, 0.1f, 0.6f), 0});
+    for (int i = 0; i < 300; ++i) {
+        const Point3 c = random_point(g, 5);
+        s.triangles.push_back({c + to_vector(random_point(g, 0.4f)), c + to_vector(random_point(g, 0.4f)),
+                               c + to_vector(random_point(g, 0.4f)), 0});
+    }
+    s.meshes.push_back(random_soup(g, 2000));
+    s.meshes.push_back(random_soup(g, 500));
+    s.instances.push_back({0, Transform{}});
+    s.instances.push_back({0, Transform::translate({3, 1, -2}) * Transform::rotate(40, {1, 2, 3}) *
+                                  Transform::scale({0.5f, 2, 1})});
+    s.instances.push_back({1, Transform::translate({-3, -2, 2}) * Transform::scale({-1, 1, 1})});
+    s.instances.push_back({1, Transform::rotate(-75, {0, 1, 0}) * Transform::translate({2, 2, 2})});
+    s.instances.push_back({0, Transform::translate({-2, 3, -3}) * Transform::scale({2, 2, 2})});
+    s.accel = accel;
+    s.commit();
+    return s;
+}
+
+std::vector<Ray> random_rays(int n) {
+    auto g = rng(11);
+    std::vector<Ray> rays;
+    for (int i = 0; i < n; ++i) {
+        Ray r{random_point(g, 7), random_direction(g)};
+        if (i % 3 == 0) r.t_max = uniform(g, 0.5f, 6);  // shadow-ray-like segments
+        if (i % 10 == 1) r.direction = {0, 0, r.direction.z > 0 ? 1.0f : -1.0f};  // axis-parallel
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+TEST(Bvh, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
+    const Scene s = mixed_scene(AccelKind::kBvh);
+    int hits = 0;
+    std::array<int, 6> kinds{};
+    for (const Ray& r : random_rays(10000)) {
+        const auto a = s.intersect(r), b = s.intersect_brute_force(r);
+        ASSERT_EQ(a.has_value(), b.has_value());
+        ASSERT_EQ(s.occluded(r), b.has_value());
+        ASSERT_EQ(s.occluded_brute_force(r), b.has_value());
+        if (!a) continue;
+        ++hits;
+        ++kinds[static_cast<int>(a->kind)];
+        // The same primitive tests run in both, so the answers are identical, not close.
+        EXPECT_EQ(a->t, b->t);
+        EXPECT_EQ(a->kind, b->kind);
+        EXPECT_EQ(a->index, b->index);
+        EXPECT_EQ(a->prim, b->prim);
+        EXPECT_EQ(a->b1, b->b1);
+    }
+    EXPECT_GT(hits, 1000);
+    for (ShapeKind k : {ShapeKind::kSphere, ShapeKind::kQuad, ShapeKind::kDisk, ShapeKind::kTriangle,
+                        ShapeKind::kMesh})
+        EXPECT_GT(kinds[static_cast<int>(k)], 20) << "kind " << static_cast<int>(k);
+}
+
+TEST(Bvh, TreeInvariants) {
+    auto g = rng(3);
+    std::vector<Bounds3> boxes(5000);
+    for (auto& b : boxes) {
+        const Point3 c = random_point(g, 10);
+        b.extend(c);
+        b.extend(c + to_vector(random_point(g, 0.5f)));
+    }
+    // Bad input is left out, not a crash: a NaN and an infinite box.
+    boxes[10].lo.x = std::numeric_limits<float>::quiet_NaN();
+    boxes[20].hi.y = std::numeric_limits<float>::infinity();
+    Bvh4 bvh;
+    bvh.build(boxes);
+    EXPECT_EQ(bvh.skipped(), 2u);
+    EXPECT_EQ(bvh.order().size(), boxes.size() - 2);
+    // Every primitive appears once, and every child box holds what is below it.
+    std::vector<int> seen(boxes.size(), 0);
+    for (std::uint32_t p : bvh.order()) ++seen[p];
+    for (std::size_t i = 0; i < boxes.size(); ++i) EXPECT_EQ(seen[i], i == 10 || i == 20 ? 0 : 1);
+    const auto contains = [](const Bvh4Node& n, int i, const Bounds3& b) {
+        return n.lo_x[i] <= b.lo.x && n.lo_y[i] <= b.lo.y && n.lo_z[i] <= b.lo.z && n.hi_x[i] >= b.hi.x &&
+               n.hi_y[i] >= b.hi.y && n.hi_z[i] >= b.hi.z;
+    };
+    std::function<Bounds3(std::uint32_t)> check = [&](std::uint32_t ref) -> Bounds3 {
+        Bounds3 all;
+        if (ref & Bvh4Node::kLeaf) {
+            EXPECT_LE(Bvh4Node::leaf_count(ref), 8u);
+            for (std::uint32_t i = 0; i < Bvh4Node::leaf_count(ref); ++i) {
+                const Bounds3& b = boxes[bvh.order()[Bvh4Node::leaf_first(ref) + i]];
+                all.extend(b.lo);
+                all.extend(b.hi);
+            }
+            return all;
+        }
+        const Bvh4Node& n = bvh.nodes()[ref];
+        for (int i = 0; i < 4; ++i) {
+            if (n.child[i] == Bvh4Node::kEmpty) continue;
+            const Bounds3 b = check(n.child[i]);
+            EXPECT_TRUE(contains(n, i, b));
+            all.extend(b.lo);
+            all.extend(b.hi);
+        }
+        return all;
+    };
+    check(0);
+    EXPECT_LT(bvh.depth(), 20);
+}
+
+TEST(Bvh, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
+    // A 32 x 32 grid of quads (two triangles each) with jittered interior vertices, tilted by an
+    // instance transform: rays aimed at every vertex and every edge midpoint must hit.
+    auto g = rng(5);
+    const int n = 32;
+    TriangleMesh m;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) {
+            const bool inner = x > 0 && y > 0 && x < n && y < n;
+            m.positions.push_back({x + (inner ? uniform(g, -0.3f, 0.3f) : 0), y + (inner ? uniform(g, -0.3f, 0.3f) : 0),
+                                   inner ? uniform(g, -0.2f, 0.2f) : 0});
+        }
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const std::uint32_t a = y * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, d, a, d, c});
+        }
+    Scene s;
+    s.materials.push_back(DiffuseMaterial{0});
+    s.textures.push_back(ConstantTexture{Color{0.5f}});
+    s.meshes.push_back(m);
+    const Transform place = Transform::rotate(33, {1, 0.5f, 0.2f}) * Transform::translate({-16, -16, 0});
+    s.instances.push_back({0, place});
+    s.commit();
+    // Only targets inside the grid: past a border vertex or edge, a miss is correct.
+    const auto on_border = [n](std::uint32_t v) {
+        const std::uint32_t x = v % (n + 1), y = v / (n + 1);
+        return x == 0 || y == 0 || x == static_cast<std::uint32_t>(n) || y == static_cast<std::uint32_t>(n);
+    };
+    int rays = 0, misses = 0;
+    const auto shoot = [&](Point3 target) {
+        for (int o = 0; o < 2; ++o) {
+            const Point3 origin{uniform(g, -30, 30), uniform(g, -30, 30), o ? 40.0f : -40.0f};
+            ++rays;
+            if (!s.intersect(Ray{origin, normalize(target - origin)})) ++misses;
+        }
+    };
+    for (const std::uint32_t* tri = m.indices.data(); tri < m.indices.data() + m.indices.size(); tri += 3) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
+            const Point3 p = place.point(m.positions[a]), q = place.point(m.positions[b]);
+            if (!on_border(a)) shoot(p);
+            if (!on_border(a) || !on_border(b)) shoot(p + (q - p) * 0.5f);
+        }
+    }
+    EXPECT_GT(rays, 20000);
+    EXPECT_EQ(misses, 0);
+}
+
+TEST(Bvh, InstanceNormalsTransformByTheInverseTranspose) {
+    // A triangle in the plane x + z = 0 (normal (1, 0, 1)/sqrt 2 by its winding), with vertex
+    // normals along the same direction, scaled by (2, 1, 1): by hand, the world normal is
+    // M^-T n = (1/2, 0, 1) normalised, while the scaled edges' cross product agrees.
+    TriangleMesh m;
+    m.positions = {{-1, -1, 1}, {1, -1, -1}, {0, 1, 0}};
+    m.indices = {0, 1, 2};
+    const Normal3 vn = normalize(Normal3{1, 0, 1});
+    m.normals = {vn, vn, vn};
+    Scene s;
+    s.materials.push_back(DiffuseMaterial{0});
+    s.textures.push_back(ConstantTexture{Color{0.5f}});
+    s.meshes.push_back(m);
+    s.instances.push_back({0, Transform::scale({2, 1, 1})});
+    s.commit();
+    const Ray r{{5, 0, 5}, normalize(Vector3{-1, 0, -1})};
+    const auto hit = s.intersect(r);
+    ASSERT_TRUE(hit);
+    const SurfaceInteraction si = s.interaction(r, *hit);
+    const float k = 1 / std::sqrt(1.25f);
+    EXPECT_NEAR(si.ns.x, 0.5f * k, 1e-5f);
+    EXPECT_NEAR(si.ns.y, 0, 1e-5f);
+    EXPECT_NEAR(si.ns.z, k, 1e-5f);
+    EXPECT_NEAR(si.n.x, 0.5f * k, 1e-5f);
+    EXPECT_NEAR(si.n.z, k, 1e-5f);
+    // The hit point is on the scaled plane x/2 + z = 0.
+    EXPECT_NEAR(si.p.x / 2 + si.p.z, 0, 1e-5f);
+}
+
+TEST(Bvh, InstancesShareTheirMeshAndItsTree) {
+    auto g = rng(9);
+    Scene s;
+    s.materials.push_back(DiffuseMaterial{0});
+    s.textures.push_back(ConstantTexture{Color{0.5f}});
+    s.meshes.push_back(random_soup(g, 10000));
+    s.instances.push_back({0, Transform{}});
+    s.commit();
+    const std::size_t one = s.accel_memory_bytes();
+    for (int i = 1; i < 100; ++i) s.instances.push_back({0, Transform::translate({3.0f * i, 0, 0})});
+    s.commit();
+    EXPECT_EQ(s.mesh_bvhs().size(), 1u);
+    // 99 more instances cost their top-level share only (well under one mesh's tree each).
+    EXPECT_LT(s.accel_memory_bytes() - one, one / 10);
+    const Ray r{{3.0f * 57, 0, -10}, {0, 0, 1}};
+    const auto hit = s.intersect(r);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->index, 57u);
+}
+
+TEST(Mesh, DegenerateAndNonFiniteTrianglesAreDroppedAndCounted) {
+    TriangleMesh m;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {nan, 0, 0}};
+    m.indices = {0, 1, 2, 0, 1, 3, 0, 0, 2, 0, 1, 4, 2, 1, 0};  // good, collinear, repeated, NaN, good
+    EXPECT_EQ(validate_and_drop_degenerate(m), 3u);
+    EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2, 2, 1, 0}));
+    TriangleMesh bad;
+    bad.positions = {{0, 0, 0}};
+    bad.indices = {0, 0, 1};
+    EXPECT_THROW(validate_and_drop_degenerate(bad), std::invalid_argument);
+}
+
+TEST(Mesh, PolygonsTriangulateAsFans) {
+    std::vector<std::uint32_t> tris, face_of;
+    EXPECT_EQ(triangulate_fans({4, 2, 3}, {0, 1, 2, 3, 4, 5, 6, 7, 8}, tris, &face_of), 1u);
+    EXPECT_EQ(tris, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 6, 7, 8}));
+    EXPECT_EQ(face_of, (std::vector<std::uint32_t>{0, 0, 2}));
+    EXPECT_THROW(triangulate_fans({5}, {0, 1, 2}, tris), std::invalid_argument);
+}
+
+TEST(Bvh, NanRaysHitNothing) {
+    const Scene s = mixed_scene(AccelKind::kBvh);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(s.intersect(Ray{{0, 0, 0}, {nan, nan, nan}}));
+    EXPECT_FALSE(s.occluded(Ray{{nan, 0, 0}, {0, 0, 1}}));
+}
+
+TEST(Transform, InverseRotationAndLookAt) {
+    const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 1, 0}) *
+                        Transform::scale({2, 3, 4});
+    const Point3 p{0.3f, -0.7f, 1.1f};
+    const Point3 back = Transform{t.to_object, t.to_world}.point(t.point(p));
+    EXPECT_NEAR(back.x, p.x, 1e-5f);
+    EXPECT_NEAR(back.y, p.y, 1e-5f);
+    EXPECT_NEAR(back.z, p.z, 1e-5f);
+    // Rotating +x by 90 degrees about +y gives -z (the right-hand rule, as pbrt's Rotate).
+    const Vector3 x = Transform::rotate(90, {0, 1, 0}).vector({1, 0, 0});
+    EXPECT_NEAR(x.x, 0, 1e-6f);
+    EXPECT_NEAR(x.z, -1, 1e-6f);
+    const auto la = Transform::look_at({1, 1, 1}, {1, 1, 5}, {0, 1, 0});
+    ASSERT_TRUE(la);
+    const Vector3 z = la->vector({0, 0, 1});
+    EXPECT_NEAR(z.z, 1, 1e-6f);
+    EXPECT_FALSE(Transform::look_at({0, 0, 0}, {0, 1, 0}, {0, 1, 0}));  // up along the view
+    EXPECT_FALSE(Transform::from(Matrix34{{{{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 1, 0}}}}));  // singular
+    EXPECT_TRUE(Transform::scale({-1, 1, 1}).flips());
+}
+
+#if GLINT_EMBREE
+TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
+    const Scene s = mixed_scene(AccelKind::kEmbree);
+    int compared = 0, differ = 0;
+    for (const Ray& r : random_rays(10000)) {
+        const auto a = s.intersect(r), b = s.intersect_brute_force(r);
+        const bool occluded = s.occluded(r);
+        // Embree's triangle test is not watertight and its interval ends differ by an ulp:
+        // allow a handful of grazing disagreements, no more.
+        if (a.has_value() != b.has_value() || occluded != b.has_value()) {
+            ++differ;
+            continue;
+        }
+        if (!a) continue;
+        ++compared;
+        if (a->kind != b->kind || a->index != b->index || a->prim != b->prim ||
+            std::abs(a->t - b->t) > 1e-4f * std::max(1.0f, b->t)) {
+            ++differ;
+            continue;
+        }
+        if (a->kind == ShapeKind::kMesh) {
+            EXPECT_NEAR(a->b1, b->b1, 1e-3f);
+            EXPECT_NEAR(a->b2, b->b2, 1e-3f);
+        }
+    }
+    EXPECT_GT(compared, 1000);
+    EXPECT_LE(differ, 5);
+    EXPECT_GT(s.accel_memory_bytes(), 0u);
+}
+#endif
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,280 @@
+#include "glint/accel/embree.h"
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "glint/scene.h"
+
+namespace glint {
+
+namespace {
+
+// Top-level geometry ids: fixed slots for the shape arrays, then one per instance.
+constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3, kFirstInstanceId = 4;
+
+template <typename Shape>
+struct UserShapes {
+    const std::vector<Shape>* shapes;
+    ShapeKind kind;
+};
+
+template <typename Shape>
+void shape_bounds(const RTCBoundsFunctionArguments* args);
+
+template <>
+void shape_bounds<Sphere>(const RTCBoundsFunctionArguments* args) {
+    const auto* u = static_cast<const UserShapes<Sphere>*>(args->geometryUserPtr);
+    const Sphere& s = (*u->shapes)[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = s.center.x - s.radius, b->lower_y = s.center.y - s.radius, b->lower_z = s.center.z - s.radius;
+    b->upper_x = s.center.x + s.radius, b->upper_y = s.center.y + s.radius, b->upper_z = s.center.z + s.radius;
+}
+
+template <>
+void shape_bounds<Disk>(const RTCBoundsFunctionArguments* args) {
+    const auto* u = static_cast<const UserShapes<Disk>*>(args->geometryUserPtr);
+    const Disk& s = (*u->shapes)[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = s.center.x - s.radius, b->lower_y = s.center.y - s.radius, b->lower_z = s.center.z - s.radius;
+    b->upper_x = s.center.x + s.radius, b->upper_y = s.center.y + s.radius, b->upper_z = s.center.z + s.radius;
+}
+
+template <>
+void shape_bounds<Quad>(const RTCBoundsFunctionArguments* args) {
+    const auto* u = static_cast<const UserShapes<Quad>*>(args->geometryUserPtr);
+    const Quad& q = (*u->shapes)[args->primID];
+    Bounds3 bb;
+    bb.extend(q.corner);
+    bb.extend(q.corner + q.edge1);
+    bb.extend(q.corner + q.edge2);
+    bb.extend(q.corner + q.edge1 + q.edge2);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = bb.lo.x, b->lower_y = bb.lo.y, b->lower_z = bb.lo.z;
+    b->upper_x = bb.hi.x, b->upper_y = bb.hi.y, b->upper_z = bb.hi.z;
+}
+
+// glint calls rtcIntersect1 / rtcOccluded1 only, so the callbacks see one ray (N == 1), laid out
+// as RTCRayHit / RTCRay.
+template <typename Shape>
+void shape_intersect(const RTCIntersectFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
+    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    const Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
+                  {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z},
+                  rh->ray.tfar};
+    if (const auto t = (*u->shapes)[args->primID].intersect(ray)) {
+        rh->ray.tfar = *t;
+        rh->hit.geomID = args->geomID;
+        rh->hit.primID = args->primID;
+        rh->hit.instID[0] = args->context->instID[0];
+        rh->hit.u = rh->hit.v = 0;
+    }
+}
+
+template <typename Shape>
+void shape_occluded(const RTCOccludedFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
+    auto* r = reinterpret_cast<RTCRay*>(args->ray);
+    const Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tfar};
+    if ((*u->shapes)[args->primID].intersect(ray)) r->tfar = -std::numeric_limits<float>::infinity();
+}
+
+std::string error_name(RTCError e) {
+    switch (e) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+        default: return "unknown error";
+    }
+}
+
+}  // namespace
+
+struct EmbreeAccel::Impl {
+    RTCDevice device = nullptr;
+    RTCScene top = nullptr;
+    std::vector<RTCScene> mesh_scenes;
+    std::atomic<long long> bytes{0};
+    UserShapes<Sphere> spheres;
+    UserShapes<Quad> quads;
+    UserShapes<Disk> disks;
+
+    void check(const char* what) const {
+        // Reading the error clears it: read once.
+        if (const RTCError e = rtcGetDeviceError(device); e != RTC_ERROR_NONE)
+            throw std::runtime_error(fmt::format("Embree: {} failed: {}", what, error_name(e)));
+    }
+    ~Impl() {
+        for (RTCScene s : mesh_scenes)
+            if (s) rtcReleaseScene(s);
+        if (top) rtcReleaseScene(top);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+bool count_memory(void* user, ssize_t bytes, bool) {
+    static_cast<std::atomic<long long>*>(user)->fetch_add(bytes);
+    return true;
+}
+
+RTCGeometry triangle_geometry(RTCDevice device, const std::vector<Point3>& positions,
+                              const std::vector<std::uint32_t>& indices) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    // Copies (rtcSetNewGeometryBuffer pads the buffers as Embree's SIMD loads need).
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), positions.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        v[3 * i] = positions[i].x;
+        v[3 * i + 1] = positions[i].y;
+        v[3 * i + 2] = positions[i].z;
+    }
+    auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(unsigned), indices.size() / 3));
+    std::memcpy(ix, indices.data(), indices.size() * sizeof(unsigned));
+    rtcCommitGeometry(g);
+    return g;
+}
+
+template <typename Shape>
+void attach_user(RTCDevice device, RTCScene scene, UserShapes<Shape>& user, unsigned id) {
+    if (user.shapes->empty()) return;
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(user.shapes->size()));
+    rtcSetGeometryUserData(g, &user);
+    rtcSetGeometryBoundsFunction(g, shape_bounds<Shape>, nullptr);
+    rtcSetGeometryIntersectFunction(g, shape_intersect<Shape>);
+    rtcSetGeometryOccludedFunction(g, shape_occluded<Shape>);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene, g, id);
+    rtcReleaseGeometry(g);
+}
+
+}  // namespace
+
+EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
+    try {
+        Impl& m = *impl_;
+        m.device = rtcNewDevice(nullptr);
+        if (!m.device) throw std::runtime_error("Embree: could not create a device");
+        rtcSetDeviceMemoryMonitorFunction(m.device, count_memory, &m.bytes);
+        for (const TriangleMesh& mesh : scene.meshes) {
+            RTCScene s = rtcNewScene(m.device);
+            m.mesh_scenes.push_back(s);
+            rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+            if (mesh.indices.empty()) {
+                rtcCommitScene(s);
+                continue;
+            }
+            RTCGeometry g = triangle_geometry(m.device, mesh.positions, mesh.indices);
+            rtcAttachGeometryByID(s, g, 0);
+            rtcReleaseGeometry(g);
+            rtcCommitScene(s);
+        }
+        m.check("building the meshes");
+        m.top = rtcNewScene(m.device);
+        if (!scene.triangles.empty()) {
+            std::vector<Point3> p;
+            std::vector<std::uint32_t> ix;
+            for (const Triangle& t : scene.triangles) {
+                ix.insert(ix.end(), {static_cast<std::uint32_t>(p.size()), static_cast<std::uint32_t>(p.size() + 1),
+                                     static_cast<std::uint32_t>(p.size() + 2)});
+                p.insert(p.end(), {t.p0, t.p1, t.p2});
+            }
+            RTCGeometry g = triangle_geometry(m.device, p, ix);
+            rtcAttachGeometryByID(m.top, g, kTrianglesId);
+            rtcReleaseGeometry(g);
+        }
+        m.spheres = {&scene.spheres, ShapeKind::kSphere};
+        m.quads = {&scene.quads, ShapeKind::kQuad};
+        m.disks = {&scene.disks, ShapeKind::kDisk};
+        attach_user(m.device, m.top, m.spheres, kSpheresId);
+        attach_user(m.device, m.top, m.quads, kQuadsId);
+        attach_user(m.device, m.top, m.disks, kDisksId);
+        for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+            const Instance& inst = scene.instances[i];
+            RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(g, m.mesh_scenes[inst.mesh]);
+            float xfm[12];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) xfm[4 * r + c] = inst.transform.to_world.m[r][c];
+            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+            rtcCommitGeometry(g);
+            rtcAttachGeometryByID(m.top, g, kFirstInstanceId + i);
+            rtcReleaseGeometry(g);
+        }
+        rtcCommitScene(m.top);
+        m.check("building the scene");
+    } catch (...) {
+        delete impl_;
+        throw;
+    }
+}
+
+EmbreeAccel::~EmbreeAccel() { delete impl_; }
+
+std::size_t EmbreeAccel::memory_bytes() const {
+    const long long b = impl_->bytes.load();
+    return b > 0 ? static_cast<std::size_t>(b) : 0;
+}
+
+void EmbreeAccel::closest(const Scene&, Ray& ray, std::optional<Hit>& best) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y, rh.ray.dir_z = ray.direction.z;
+    rh.ray.tnear = kRayTMin;
+    rh.ray.tfar = ray.t_max;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->top, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
+    // Embree counts hits up to tfar inclusive; glint's convention excludes t_max.
+    if (!(rh.ray.tfar < ray.t_max)) return;
+    ray.t_max = rh.ray.tfar;
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+        best = Hit{rh.ray.tfar, ShapeKind::kMesh, rh.hit.instID[0] - kFirstInstanceId, rh.hit.primID,
+                   rh.hit.u, rh.hit.v};
+        return;
+    }
+    switch (rh.hit.geomID) {
+        case kTrianglesId: best = Hit{rh.ray.tfar, ShapeKind::kTriangle, rh.hit.primID}; break;
+        case kSpheresId: best = Hit{rh.ray.tfar, ShapeKind::kSphere, rh.hit.primID}; break;
+        case kQuadsId: best = Hit{rh.ray.tfar, ShapeKind::kQuad, rh.hit.primID}; break;
+        case kDisksId: best = Hit{rh.ray.tfar, ShapeKind::kDisk, rh.hit.primID}; break;
+        default: break;
+    }
+}
+
+bool EmbreeAccel::occluded(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r{};
+    r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x, r.dir_y = ray.direction.y, r.dir_z = ray.direction.z;
+    r.tnear = kRayTMin;
+    // Embree's interval is closed at tfar; glint's excludes t_max: shrink by one ulp.
+    r.tfar = std::nextafter(ray.t_max, 0.0f);
+    r.mask = 0xffffffffu;
+    rtcOccluded1(impl_->top, &context, &r);
+    return r.tfar < 0;
+}
+
+}  // namespace glint
