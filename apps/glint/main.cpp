@@ -16,6 +16,7 @@
 #include "glint/io/build.h"
 #include "glint/io/image_io.h"
 #include "glint/io/scene_yaml.h"
+#include "glint/render/ray_bench.h"
 #include "glint/render/render.h"
 
 namespace {
@@ -27,7 +28,68 @@ struct RenderArgs {
     std::optional<std::uint64_t> seed;
     bool quiet = false;
     bool aovs = false;
+    std::string accel;
 };
+
+std::optional<glint::AccelKind> parse_accel(const std::string& name) {
+    if (name.empty()) return std::nullopt;
+    if (name == "bvh") return glint::AccelKind::kBvh;
+    if (name == "embree") return glint::AccelKind::kEmbree;
+    throw glint::IoError(fmt::format("--accel: unknown backend '{}' (known: bvh, embree)", name));
+}
+
+bool is_mesh_file(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".obj" || ext == ".ply";
+}
+
+// A mesh file rendered directly: the mesh under a sky, path traced, seen from the front
+// (-z side) and a little above, framed by its bounds; the camera is placed after loading.
+glint::SceneDescription mesh_file_scene(const std::string& path) {
+    glint::SceneDescription d;
+    d.path = path;
+    d.integrator.kind = glint::IntegratorKind::kPath;
+    d.film.width.value = 800;
+    d.film.height.value = 600;
+    d.sampler.spp.value = 64;
+    glint::ObjectDesc o;
+    glint::MeshFileDesc f;
+    f.file.value = std::filesystem::path(path).filename().string();
+    f.file.loc = {path, 0, 0};
+    o.shape = f;
+    o.material_given = false;
+    d.objects.push_back(o);
+    return d;
+}
+
+void frame_bounds(glint::RenderJob& job) {
+    const glint::Bounds3 b = job.scene.bounds();
+    if (b.empty()) return;
+    const glint::Point3 c = b.lo + (b.hi - b.lo) * 0.5f;
+    const float r = 0.5f * glint::length(b.hi - b.lo);
+    const float fov = 40;
+    const float dist = r / std::sin(fov * 0.5f * 3.14159265f / 180) * 1.05f;
+    const glint::Vector3 dir = glint::normalize(glint::Vector3{0.35f, 0.35f, -1});
+    job.camera = glint::Camera::look_at(c + dir * dist, c, {0, 1, 0}, fov, job.width, job.height);
+}
+
+glint::RenderJob load_job(const RenderArgs& args) {
+    auto sources = std::make_shared<glint::SourceFiles>();
+    const bool mesh = !args.scene.empty() && is_mesh_file(args.scene);
+    const glint::SceneDescription description =
+        args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
+        : mesh             ? mesh_file_scene(args.scene)
+                           : glint::load_scene_file(args.scene, sources);
+    glint::Overrides overrides{args.width,  args.height, args.spp, args.max_depth,
+                               args.threads, args.seed,   args.aovs};
+    overrides.accel = parse_accel(args.accel);
+    glint::RenderJob job = glint::build(description, overrides, sources);
+    if (mesh) frame_bounds(job);
+    if (!args.quiet)
+        for (const std::string& n : job.notes) fmt::print(stderr, "glint: note: {}\n", n);
+    return job;
+}
 
 // Where the image goes: -o, else the scene's film.filename, else <scene stem>.png in the current
 // folder (glint.png for the built-in demo).
@@ -38,14 +100,61 @@ std::filesystem::path output_path(const RenderArgs& args, const glint::RenderJob
     return std::filesystem::path(args.scene).stem().string() + ".png";
 }
 
+std::string bytes(std::uint64_t b) {
+    if (b >= (1ull << 30)) return fmt::format("{:.2f} GiB", b / double(1ull << 30));
+    if (b >= (1ull << 20)) return fmt::format("{:.2f} MiB", b / double(1ull << 20));
+    if (b >= (1ull << 10)) return fmt::format("{:.1f} KiB", b / double(1ull << 10));
+    return fmt::format("{} B", b);
+}
+
+int run_info(const RenderArgs& args) {
+    glint::RenderJob job = load_job(args);
+    const glint::SceneInfo i = glint::scene_info(job.scene);
+    fmt::print("scene        {}\n", args.scene.empty() ? "(built-in demo)" : args.scene);
+    fmt::print("triangles    {} rendered, {} stored\n", i.triangles, i.unique_triangles);
+    fmt::print("meshes       {} ({} vertices), {} instances\n", i.meshes, i.vertices, i.instances);
+    fmt::print("other shapes {}\n", i.analytic_shapes);
+    fmt::print("lights       {} (area lights included)\n", job.scene.light_sampler().count());
+    if (!i.bounds.empty())
+        fmt::print("bounds       [{:.4g}, {:.4g}, {:.4g}] .. [{:.4g}, {:.4g}, {:.4g}]\n", i.bounds.lo.x,
+                   i.bounds.lo.y, i.bounds.lo.z, i.bounds.hi.x, i.bounds.hi.y, i.bounds.hi.z);
+    fmt::print("memory       meshes {}, acceleration ({}) {}", bytes(i.mesh_bytes),
+               job.scene.accel == glint::AccelKind::kEmbree ? "embree" : "bvh", bytes(i.accel_bytes));
+    if (i.unique_triangles > 0)
+        fmt::print(" = {:.1f} bytes per stored triangle", double(i.accel_bytes) / double(i.unique_triangles));
+    fmt::print("\n");
+    if (job.scene.accel == glint::AccelKind::kBvh) fmt::print("bvh depth    {}\n", i.bvh_depth);
+    return 0;
+}
+
+int run_bench(const RenderArgs& args, int runs) {
+    glint::RenderJob job = load_job(args);
+    std::vector<glint::AccelKind> kinds{glint::AccelKind::kBvh};
+    if (args.accel == "bvh") kinds = {glint::AccelKind::kBvh};
+    else if (args.accel == "embree") kinds = {glint::AccelKind::kEmbree};
+    else if (GLINT_EMBREE) kinds.push_back(glint::AccelKind::kEmbree);
+    const int threads = job.options.threads;
+    const glint::SceneInfo info = glint::scene_info(job.scene);
+    fmt::print("{}: {} triangles ({} stored), {}x{} primary rays, {} thread{}, median of {} runs\n",
+               args.scene.empty() ? "(built-in demo)" : args.scene, info.triangles, info.unique_triangles,
+               job.width, job.height, threads > 0 ? fmt::format("{}", threads) : "all",
+               threads == 1 ? "" : "s", runs);
+    fmt::print("{:<8} {:>10} {:>12} {:>10} {:>16} {:>16}\n", "backend", "build (s)", "memory", "B/tri",
+               "primary Mrays/s", "diffuse Mrays/s");
+    for (const glint::AccelKind k : kinds) {
+        const glint::BenchResult r =
+            glint::bench_backend(job.scene, k, job.camera, job.width, job.height, threads, runs);
+        fmt::print("{:<8} {:>10.3f} {:>12} {:>10.1f} {:>16.2f} {:>16.2f}   (hits: {} primary, {} diffuse)\n",
+                   r.backend, r.build_seconds, bytes(r.accel_bytes),
+                   info.unique_triangles ? double(r.accel_bytes) / double(info.unique_triangles) : 0.0,
+                   r.primary_mrays, r.diffuse_mrays, r.primary_hits, r.diffuse_hits);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 int run_render(const RenderArgs& args) {
-    auto sources = std::make_shared<glint::SourceFiles>();
-    const glint::SceneDescription description =
-        args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
-                           : glint::load_scene_file(args.scene, sources);
-    glint::Overrides overrides{args.width,  args.height, args.spp, args.max_depth,
-                               args.threads, args.seed,   args.aovs};
-    glint::RenderJob job = glint::build(description, overrides, sources);
+    glint::RenderJob job = load_job(args);
     const std::filesystem::path out = output_path(args, job);
     glint::check_writable(out);  // fail before rendering, not after
     if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
@@ -104,6 +213,24 @@ int main(int argc, char** argv) {
                      "Also write albedo, normal and depth (for denoisers) as EXR channels "
                      "albedo.R/G/B, N.X/Y/Z and Z; needs an .exr output");
     render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+    const char* accel_help = "Acceleration structure: bvh (glint's own) or embree (Embree 3, when built in)";
+    render->add_option("--accel", args.accel, accel_help);
+
+    CLI::App* info = app.add_subcommand(
+        "info", "Print a scene's statistics: triangles, instances, bounds, memory");
+    info->add_option("SCENE", args.scene, "Scene file (.yaml, .json) or mesh (.obj, .ply)")->required();
+    info->add_option("--accel", args.accel, accel_help);
+
+    int runs = 3;
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Measure the acceleration backends side by side: build time, memory, and Mrays/s "
+                 "for primary rays and one-bounce diffuse rays (closest hit)");
+    bench->add_option("SCENE", args.scene, "Scene file (.yaml, .json) or mesh (.obj, .ply)")->required();
+    bench->add_option("--accel", args.accel, "bvh, embree, or both (default: every backend built in)");
+    bench->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
+    bench->add_option("--width", args.width, "Film width: the primary rays (overrides the scene)");
+    bench->add_option("--height", args.height, "Film height (overrides the scene)");
+    bench->add_option("--runs", runs, "Repetitions; medians are reported")->check(CLI::Range(1, 100));
 
     try {
         app.parse(argc, argv);
@@ -112,6 +239,11 @@ int main(int argc, char** argv) {
     }
 
     try {
+        if (info->parsed()) return run_info(args);
+        if (bench->parsed()) {
+            if (args.accel == "both") args.accel.clear();
+            return run_bench(args, runs);
+        }
         return run_render(args);
     } catch (const glint::SceneError& e) {
         std::fputs(e.what(), stderr);

@@ -384,6 +384,15 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
     return {p, Normal3{0, 1, 0}, 0, hit.kind, hit.index};  // unreachable: every kind is covered
 }
 
+Color Scene::vertex_color(const SurfaceInteraction& si) const {
+    if (si.shape != ShapeKind::kMesh) return Color{1};
+    const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+    if (m.colors.empty()) return Color{1};
+    const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
+    return m.colors[m.indices[3 * si.prim]] * b0 + m.colors[m.indices[3 * si.prim + 1]] * b1 +
+           m.colors[m.indices[3 * si.prim + 2]] * b2;
+}
+
 Point2 Scene::uv(const SurfaceInteraction& si) const {
     switch (si.shape) {
         case ShapeKind::kSphere: return spheres[si.shape_index].uv_at(si.p);

@@ -85,7 +85,8 @@ struct Scene {
         const Texture& t = textures[id];
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
         if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
-        return evaluate(textures, images, id, {si.p, texture_needs_uv_[id] ? uv(si) : Point2{}});
+        return evaluate(textures, images, id,
+                        {si.p, texture_needs_uv_[id] ? uv(si) : Point2{}, vertex_color(si)});
     }
     const Emission& emission_of(MaterialId m) const {
         static const Emission kNone;
@@ -100,6 +101,8 @@ struct Scene {
     /// Every light, for the path tracer; built by commit().
     const LightSampler& light_sampler() const { return light_sampler_; }
 
+    /// The interpolated vertex colour of a mesh that has them; 1 elsewhere.
+    Color vertex_color(const SurfaceInteraction& si) const;
     /// Texture coordinates of a surface point, by the hit shape's convention (shapes/*.h).
     Point2 uv(const SurfaceInteraction& si) const;
 

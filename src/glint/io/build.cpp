@@ -4,10 +4,14 @@
 
 #include <filesystem>
 #include <map>
+#include <cmath>
+#include <cstdlib>
+#include <type_traits>
 #include <utility>
 
 #include "glint/io/image_io.h"
 #include "glint/io/limits.h"
+#include "glint/io/mesh_import.h"
 
 namespace glint {
 
@@ -21,6 +25,89 @@ std::vector<Plane>& shapes_of(Scene& s, const Plane&) { return s.planes; }
 std::vector<Quad>& shapes_of(Scene& s, const Quad&) { return s.quads; }
 std::vector<Disk>& shapes_of(Scene& s, const Disk&) { return s.disks; }
 std::vector<Triangle>& shapes_of(Scene& s, const Triangle&) { return s.triangles; }
+
+// A mesh file named in a scene: an absolute path as is; a relative one in the scene file's
+// folder, then in each folder of $GLINT_MODEL_PATH (colon-separated), then in the models folder
+// found at configure time (GLINT_DEFAULT_MODEL_DIR: ../shared/models beside the checkout).
+struct FoundModel {
+    std::optional<std::filesystem::path> path;
+    std::string looked;
+};
+FoundModel find_model(const std::string& name, const std::filesystem::path& scene_dir) {
+    const std::filesystem::path p = name;
+    if (p.is_absolute()) return {std::filesystem::exists(p) ? std::optional(p) : std::nullopt, p.string()};
+    std::vector<std::filesystem::path> dirs{scene_dir.empty() ? "." : scene_dir};
+    if (const char* env = std::getenv("GLINT_MODEL_PATH")) {
+        std::string list = env;
+        for (std::size_t at = 0; at <= list.size();) {
+            const std::size_t end = std::min(list.find(':', at), list.size());
+            if (end > at) dirs.emplace_back(list.substr(at, end - at));
+            at = end + 1;
+        }
+    }
+    if (std::string(GLINT_DEFAULT_MODEL_DIR).size() > 0) dirs.emplace_back(GLINT_DEFAULT_MODEL_DIR);
+    FoundModel f;
+    for (const auto& d : dirs) {
+        f.looked += (f.looked.empty() ? "" : ", ") + d.string();
+        if (std::filesystem::exists(d / p)) {
+            f.path = d / p;
+            return f;
+        }
+    }
+    return f;
+}
+
+// Whether the 3x3 part is a rotation times a uniform scale (what spheres and disks can take);
+// the scale factor then.
+std::optional<Float> similarity_scale(const Transform& t) {
+    const auto& m = t.to_world.m;
+    Vector3 c[3];
+    for (int j = 0; j < 3; ++j) c[j] = {m[0][j], m[1][j], m[2][j]};
+    const Float k2 = dot(c[0], c[0]);
+    const Float tol = 1e-4f * k2;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (std::abs(dot(c[i], c[j]) - (i == j ? k2 : 0)) > tol) return std::nullopt;
+    return std::sqrt(k2);
+}
+
+// An analytic shape under a transform; an error message when the shape cannot take it. Mirrors
+// keep the front side (the normal is carried by the inverse transpose), so winding-defined
+// shapes swap two edges.
+std::optional<std::string> transform_shape(Sphere& s, const Transform& t) {
+    const auto k = similarity_scale(t);
+    if (!k) return "a sphere's transform must scale uniformly (rotate, translate, uniform scale)";
+    s.center = t.point(s.center);
+    s.radius *= *k;
+    return std::nullopt;
+}
+std::optional<std::string> transform_shape(Plane& p, const Transform& t) {
+    p.point = t.point(p.point);
+    p.normal = normalize(t.normal(p.normal));
+    return std::nullopt;
+}
+std::optional<std::string> transform_shape(Quad& q, const Transform& t) {
+    Vector3 e1 = t.vector(q.edge1), e2 = t.vector(q.edge2);
+    if (t.flips()) std::swap(e1, e2);
+    const Point3 corner = t.point(q.corner);
+    q = Quad::make(corner, e1, e2, q.material);
+    return std::nullopt;
+}
+std::optional<std::string> transform_shape(Disk& d, const Transform& t) {
+    const auto k = similarity_scale(t);
+    if (!k) return "a disk's transform must scale uniformly (rotate, translate, uniform scale)";
+    d.center = t.point(d.center);
+    d.normal = normalize(t.normal(d.normal));
+    d.radius *= *k;
+    return std::nullopt;
+}
+std::optional<std::string> transform_shape(Triangle& tr, const Transform& t) {
+    tr.p0 = t.point(tr.p0);
+    tr.p1 = t.point(tr.p1);
+    tr.p2 = t.point(tr.p2);
+    if (t.flips()) std::swap(tr.p1, tr.p2);
+    return std::nullopt;
+}
 
 // Adds textures and materials to the scene, loading each image file once.
 class MaterialBuilder {
@@ -80,6 +167,7 @@ private:
         switch (d.kind) {
             case TextureDesc::Kind::kConstant: break;
             case TextureDesc::Kind::kChecker: t = d.checker; break;
+            case TextureDesc::Kind::kVertexColor: t = VertexColorTexture{}; break;
             case TextureDesc::Kind::kImage:
                 t = ImageTexture{add_image(d.filename, d.encoding), d.wrap, d.size};
                 break;
@@ -215,9 +303,20 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         names.push_back(m.name);
         materials.add_material(m.material);
     }
+    // Mesh files, each imported once however many objects include it (their instances then share
+    // its meshes and its BVH).
+    struct LoadedFile {
+        std::uint32_t first_mesh = 0;
+        std::vector<ImportedNode> nodes;
+    };
+    std::map<std::string, LoadedFile> loaded;
+    const std::filesystem::path scene_dir = std::filesystem::path(d.path).parent_path();
     for (const ObjectDesc& o : d.objects) {
         MaterialId id = 0;
-        if (const auto* name = std::get_if<std::string>(&o.material.value)) {
+        const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
+        if (mesh_file && !o.material_given) {
+            id = kNoImportedMaterial;
+        } else if (const auto* name = std::get_if<std::string>(&o.material.value)) {
             const auto it = std::find(names.begin(), names.end(), *name);
             if (it == names.end()) {
                 std::string known;
@@ -235,13 +334,67 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         } else {
             id = materials.add_material(std::get<MaterialDesc>(o.material.value));
         }
+        if (mesh_file) {
+            const auto found = find_model(mesh_file->file.value, scene_dir);
+            if (!found.path) {
+                diagnostics.error(mesh_file->file.loc, fmt::format("mesh file '{}' not found (looked in: {})",
+                                                                   mesh_file->file.value, found.looked));
+                continue;
+            }
+            const std::filesystem::path path = *found.path;
+            const std::string key = path.lexically_normal().string();
+            auto it = loaded.find(key);
+            if (it == loaded.end()) {
+                ImportedFile f;
+                try {
+                    f = import_mesh_file(path);
+                } catch (const IoError& e) {
+                    diagnostics.error(mesh_file->file.loc, e.what());
+                    continue;
+                }
+                // The file's materials become scene materials; faces without one get the
+                // object's default material.
+                std::vector<MaterialId> ids;
+                for (const ImportedMaterial& m : f.materials) ids.push_back(materials.add_material(m.desc));
+                const MaterialId fallback = materials.add_material(MaterialDesc{});
+                const auto map_id = [&](MaterialId local) { return local == kNoImportedMaterial ? fallback : ids.at(local); };
+                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes};
+                for (TriangleMesh& m : f.meshes) {
+                    m.material = map_id(m.material);
+                    for (MaterialId& fm : m.face_materials) fm = map_id(fm);
+                    scene.meshes.push_back(std::move(m));
+                }
+                if (f.dropped_triangles > 0)
+                    job.notes.push_back(fmt::format("{}: dropped {} degenerate triangle{}", mesh_file->file.value,
+                                                    f.dropped_triangles, f.dropped_triangles == 1 ? "" : "s"));
+                for (std::string& n : f.notes) job.notes.push_back(std::move(n));
+                it = loaded.emplace(key, std::move(lf)).first;
+            }
+            const Transform place = o.transform.value_or(Transform{});
+            for (const ImportedNode& n : it->second.nodes) {
+                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt};
+                if (id != kNoImportedMaterial) inst.material = id;
+                scene.instances.push_back(inst);
+            }
+            continue;
+        }
         std::visit(
             [&](auto shape) {
-                shape.material = id;
-                shapes_of(scene, shape).push_back(shape);
+                using S = decltype(shape);
+                if constexpr (!std::is_same_v<S, MeshFileDesc>) {
+                    shape.material = id;
+                    if (o.transform) {
+                        if (const auto why = transform_shape(shape, *o.transform)) {
+                            diagnostics.error(o.transform_loc, *why);
+                            return;
+                        }
+                    }
+                    shapes_of(scene, shape).push_back(shape);
+                }
             },
             o.shape);
     }
+    if (overrides.accel) scene.accel = *overrides.accel;
 
     diagnostics.throw_if_errors();
     scene.commit();

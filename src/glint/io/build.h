@@ -21,6 +21,7 @@ struct Overrides {
     std::optional<long long> width, height, spp, max_depth, threads;
     std::optional<std::uint64_t> seed;
     bool aovs = false;  ///< --aovs: write the AOVs even if the scene does not ask
+    std::optional<AccelKind> accel;  ///< --accel
 };
 
 struct RenderJob {
@@ -32,6 +33,7 @@ struct RenderJob {
     DisplaySettings display;
     bool aovs = false;
     std::string filename;  ///< the scene's film.filename, or empty
+    std::vector<std::string> notes;  ///< for the user: dropped triangles, importer warnings
 };
 
 RenderJob build(const SceneDescription& description, const Overrides& overrides,

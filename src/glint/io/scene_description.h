@@ -15,6 +15,7 @@
 #include "glint/io/image_io.h"
 #include "glint/integrators/integrator.h"
 #include "glint/lights/light.h"
+#include "glint/math/transform.h"
 #include "glint/materials/material.h"
 #include "glint/samplers/sampler.h"
 #include "glint/shapes/disk.h"
@@ -89,7 +90,7 @@ struct SamplerDesc {
 /// A texture as the file describes it: a tree (scale and mix have children), turned into
 /// Texture ids by build, which also loads the images.
 struct TextureDesc {
-    enum class Kind { kConstant, kChecker, kImage, kScale, kMix };
+    enum class Kind { kConstant, kChecker, kImage, kScale, kMix, kVertexColor };
     Kind kind = Kind::kConstant;
     Color value{0.8f};                             ///< constant
     CheckerTexture checker{1, Color{1}, Color{0}};  ///< checker
@@ -125,11 +126,20 @@ struct MaterialRef {
     SourceLoc loc;
 };
 
+/// A mesh file (OBJ, PLY, glTF) to load at build time; relative to the scene file.
+struct MeshFileDesc {
+    Located<std::string> file;
+};
+
 struct ObjectDesc {
     /// Material ids are set by build. A `box` in the file arrives here as six quads.
-    std::variant<Sphere, Plane, Quad, Disk, Triangle> shape = Sphere{{0, 0, 0}, 1};
+    std::variant<Sphere, Plane, Quad, Disk, Triangle, MeshFileDesc> shape = Sphere{{0, 0, 0}, 1};
+    /// For a mesh: whether `material` was given (it then replaces the file's materials).
+    bool material_given = true;
     MaterialRef material;
     SourceLoc loc;
+    std::optional<Transform> transform;  ///< object to world
+    SourceLoc transform_loc;
 };
 
 struct NamedMaterial {

@@ -389,9 +389,13 @@ private:
             t.value = *c;
             return t;
         }
-        const auto type = type_of(node, "texture", {"constant", "checker", "image", "scale", "mix"});
+        const auto type =
+            type_of(node, "texture", {"constant", "checker", "image", "scale", "mix", "vertex_color"});
         if (!type) return std::nullopt;
-        if (*type == "constant") {
+        if (*type == "vertex_color") {
+            MapReader m(r_, node, "vertex_color texture", {"type"});
+            t.kind = TextureDesc::Kind::kVertexColor;
+        } else if (*type == "constant") {
             MapReader m(r_, node, "constant texture", {"type", "color"});
             assign(m.require("color"), t.value, color());
         } else if (*type == "checker") {
@@ -560,20 +564,20 @@ private:
         for (const YAML::Node& item : node) {
             const auto type =
                 type_of(item, "object",
-                        {"sphere", "plane", "quad", "disk", "triangle", "polygon", "box"});
+                        {"sphere", "plane", "quad", "disk", "triangle", "polygon", "box", "mesh"});
             if (!type) continue;
             const std::size_t first = out.size();
             std::optional<YAML::Node> mat;
             if (*type == "sphere") {
                 Sphere s{{0, 0, 0}, 1};
-                MapReader m(r_, item, "sphere", {"type", "center", "radius", "material"});
+                MapReader m(r_, item, "sphere", {"type", "center", "radius", "material", "transform"});
                 assign(m.require("center"), s.center, point());
                 assign(m.require("radius"), s.radius, positive("radius"));
                 out.push_back({s, {}, {}});
                 mat = m.get("material");
             } else if (*type == "plane") {
                 Plane p{{0, 0, 0}, {0, 1, 0}};
-                MapReader m(r_, item, "plane", {"type", "point", "normal", "material"});
+                MapReader m(r_, item, "plane", {"type", "point", "normal", "material", "transform"});
                 assign(m.require("point"), p.point, point());
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
@@ -583,7 +587,7 @@ private:
             } else if (*type == "quad") {
                 Point3 corner{0, 0, 0};
                 Vector3 e1{1, 0, 0}, e2{0, 1, 0};
-                MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material"});
+                MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material", "transform"});
                 assign(m.require("corner"), corner, point());
                 assign(m.require("edge1"), e1, direction("edge1"));
                 const auto edge2 = m.require("edge2");
@@ -595,7 +599,7 @@ private:
                 mat = m.get("material");
             } else if (*type == "disk") {
                 Disk d{{0, 0, 0}, {0, 1, 0}, 1};
-                MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material"});
+                MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material", "transform"});
                 assign(m.require("center"), d.center, point());
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
@@ -606,7 +610,7 @@ private:
             } else if (*type == "triangle" || *type == "polygon") {
                 // A triangle, or a convex polygon split into a fan of triangles around vertex 0.
                 const bool polygon = *type == "polygon";
-                MapReader m(r_, item, *type, {"type", "vertices", "material"});
+                MapReader m(r_, item, *type, {"type", "vertices", "material", "transform"});
                 if (const auto v = m.require("vertices")) {
                     const bool count_ok =
                         v->IsSequence() && (polygon ? v->size() >= 3 : v->size() == 3);
@@ -632,9 +636,18 @@ private:
                     }
                 }
                 mat = m.get("material");
+            } else if (*type == "mesh") {
+                MapReader m(r_, item, "mesh", {"type", "file", "material", "transform"});
+                MeshFileDesc f;
+                if (const auto n = m.require("file")) {
+                    f.file.loc = r_.loc(*n);
+                    assign(n, f.file.value, [this](const YAML::Node& v) { return r_.string(v); });
+                }
+                out.push_back({f, {}, {}});
+                mat = m.get("material");
             } else {
                 Point3 lo{0, 0, 0}, hi{1, 1, 1};
-                MapReader m(r_, item, "box", {"type", "min", "max", "material"});
+                MapReader m(r_, item, "box", {"type", "min", "max", "material", "transform"});
                 assign(m.require("min"), lo, point());
                 const auto max_node = m.require("max");
                 assign(max_node, hi, point());
@@ -645,11 +658,130 @@ private:
                 mat = m.get("material");
             }
             const MaterialRef ref = mat ? material_ref(*mat) : MaterialRef{MaterialDesc{}, r_.loc(item)};
+            std::optional<Transform> xf;
+            SourceLoc xf_loc;
+            if (item.IsMap() && item["transform"].IsDefined()) {
+                xf = transform(item["transform"]);
+                xf_loc = r_.loc(item["transform"]);
+            }
             for (std::size_t i = first; i < out.size(); ++i) {
                 out[i].material = ref;
+                out[i].material_given = mat.has_value();
                 out[i].loc = r_.loc(item);
+                out[i].transform = xf;
+                out[i].transform_loc = xf_loc;
             }
         }
+    }
+
+    // `transform`: one step or a list of steps, applied in the order listed (the first step acts
+    // on the object first). Each step is a one-key map: translate, scale (a number or three),
+    // rotate {angle (degrees), axis}, matrix (3 or 4 rows of 4; a 4th row must be 0 0 0 1), or
+    // look_at {from, to, up}.
+    std::optional<Transform> transform(const YAML::Node& node) {
+        Transform total;
+        bool ok = true;
+        const auto step = [&](const YAML::Node& st) {
+            if (!st.IsMap() || st.size() != 1) {
+                r_.error(st, fmt::format("transform: expected a one-key map (translate, scale, rotate, "
+                                         "matrix or look_at), got {}", describe(st)));
+                ok = false;
+                return;
+            }
+            const std::string key = st.begin()->first.as<std::string>();
+            const YAML::Node v = st.begin()->second;
+            std::optional<Transform> t;
+            if (key == "translate") {
+                if (const auto p = r_.triple(v)) t = Transform::translate({float((*p)[0]), float((*p)[1]), float((*p)[2])});
+            } else if (key == "scale") {
+                std::optional<std::array<double, 3>> f;
+                if (v.IsScalar()) {
+                    if (const auto k = r_.number(v)) f = std::array<double, 3>{*k, *k, *k};
+                } else {
+                    f = r_.triple(v);
+                }
+                if (f) {
+                    if ((*f)[0] == 0 || (*f)[1] == 0 || (*f)[2] == 0)
+                        r_.error(v, "transform: scale factors must not be zero");
+                    else
+                        t = Transform::scale({float((*f)[0]), float((*f)[1]), float((*f)[2])});
+                }
+            } else if (key == "rotate") {
+                MapReader m(r_, v, "rotate", {"angle", "axis"});
+                double angle = 0;
+                Vector3 axis{0, 1, 0};
+                bool got = true;
+                if (const auto a = m.require("angle")) {
+                    if (const auto x = r_.number(*a)) angle = *x; else got = false;
+                } else {
+                    got = false;
+                }
+                if (const auto a = m.require("axis")) {
+                    if (const auto x = r_.direction(*a, "axis")) axis = *x; else got = false;
+                } else {
+                    got = false;
+                }
+                if (got && m.valid()) t = Transform::rotate(static_cast<Float>(angle), axis);
+            } else if (key == "matrix") {
+                if (!v.IsSequence() || (v.size() != 3 && v.size() != 4)) {
+                    r_.error(v, fmt::format("transform: matrix expects 3 or 4 rows of 4 numbers, got {}", describe(v)));
+                } else {
+                    Matrix34 mx;
+                    bool good = true;
+                    for (std::size_t i = 0; i < v.size(); ++i) {
+                        const YAML::Node row = v[i];
+                        if (!row.IsSequence() || row.size() != 4) {
+                            r_.error(row, fmt::format("transform: matrix row {} must have 4 numbers", i + 1));
+                            good = false;
+                            continue;
+                        }
+                        for (std::size_t j = 0; j < 4; ++j) {
+                            const auto x = r_.number(row[j]);
+                            if (!x) { good = false; continue; }
+                            if (i < 3) mx.m[i][j] = static_cast<Float>(*x);
+                            else if (*x != (j == 3 ? 1.0 : 0.0)) {
+                                r_.error(row, "transform: the 4th matrix row must be 0 0 0 1 (no projections)");
+                                good = false;
+                                break;
+                            }
+                        }
+                    }
+                    if (good) {
+                        t = Transform::from(mx);
+                        if (!t) r_.error(v, "transform: the matrix is singular (not invertible)");
+                    }
+                }
+            } else if (key == "look_at") {
+                MapReader m(r_, v, "look_at", {"from", "to", "up"});
+                Point3 from{0, 0, 0}, to{0, 0, 1};
+                Vector3 up{0, 1, 0};
+                assign(m.require("from"), from, point());
+                assign(m.require("to"), to, point());
+                if (const auto u = m.get("up")) assign(u, up, direction("up"));
+                if (m.valid()) {
+                    t = Transform::look_at(from, to, up);
+                    if (!t) r_.error(v, "transform: look_at needs from != to and an up not along the view");
+                }
+            } else {
+                const std::vector<std::string> known{"translate", "scale", "rotate", "matrix", "look_at"};
+                const std::string guess = closest_match(key, known);
+                r_.error(st, fmt::format("unknown transform step '{}'{} (known: {})", key,
+                                         guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                         join(known)));
+            }
+            if (!t) {
+                ok = false;
+                return;
+            }
+            total = *t * total;
+        };
+        if (node.IsSequence()) {
+            for (const YAML::Node& st : node) step(st);
+        } else {
+            step(node);
+        }
+        if (!ok) return std::nullopt;
+        return total;
     }
 
     // The six faces of an axis-aligned box as quads whose normals (edge1 x edge2) point outward.

@@ -24,6 +24,7 @@ std::size_t validate_and_drop_degenerate(TriangleMesh& mesh) {
     check_count(mesh.normals.size(), "normals");
     check_count(mesh.uvs.size(), "texture coordinates");
     check_count(mesh.tangents.size(), "tangents");
+    check_count(mesh.colors.size(), "colours");
     if (!mesh.face_materials.empty() && mesh.face_materials.size() != mesh.indices.size() / 3)
         throw std::invalid_argument(fmt::format("{} face materials for {} triangles",
                                                 mesh.face_materials.size(), mesh.indices.size() / 3));

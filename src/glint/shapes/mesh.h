@@ -19,6 +19,7 @@
 
 #include "glint/interaction.h"
 #include "glint/math/bounds.h"
+#include "glint/math/color.h"
 #include "glint/math/transform.h"
 #include "glint/math/vector.h"
 
@@ -29,6 +30,7 @@ struct TriangleMesh {
     std::vector<Normal3> normals;                  ///< empty, or one per position
     std::vector<Point2> uvs;                       ///< empty, or one per position
     std::vector<std::array<Float, 4>> tangents;    ///< empty, or one per position
+    std::vector<Color> colors;                     ///< empty, or one per position (linear RGB)
     std::vector<std::uint32_t> indices;            ///< three per triangle
     std::vector<MaterialId> face_materials;        ///< empty (all `material`), or one per triangle
     MaterialId material = 0;
@@ -49,7 +51,7 @@ struct TriangleMesh {
     }
     std::size_t memory_bytes() const {
         return positions.size() * sizeof(Point3) + normals.size() * sizeof(Normal3) +
-               uvs.size() * sizeof(Point2) + tangents.size() * sizeof(tangents[0]) +
+               uvs.size() * sizeof(Point2) + tangents.size() * sizeof(tangents[0]) + colors.size() * sizeof(Color) +
                indices.size() * sizeof(std::uint32_t) + face_materials.size() * sizeof(MaterialId);
     }
 };

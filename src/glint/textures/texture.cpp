@@ -48,6 +48,7 @@ Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& i
     return std::visit(
         Overloaded{
             [](const ConstantTexture& t) { return t.value; },
+            [&](const VertexColorTexture&) { return ctx.vertex_color; },
             [&](const CheckerTexture& t) { return t.eval(ctx.p); },
             [&](const ImageTexture& t) {
                 return bilinear(images[t.image], {ctx.uv.x / t.size, ctx.uv.y / t.size}, t.wrap);

@@ -18,6 +18,7 @@ using ImageId = std::uint32_t;
 struct TextureContext {
     Point3 p;
     Point2 uv;
+    Color vertex_color{1};  ///< interpolated per-vertex colour on meshes that have one; 1 elsewhere
 };
 
 /// Linear RGB texels, row 0 at the top of the image. Texture coordinates follow the OBJ, pbrt and
@@ -78,7 +79,11 @@ struct MixTexture {
     TextureId a, b, amount;
 };
 
-using Texture = std::variant<ConstantTexture, CheckerTexture, ImageTexture, ScaleTexture, MixTexture>;
+/// The mesh's interpolated per-vertex colour (PLY red/green/blue); 1 on everything else.
+struct VertexColorTexture {};
+
+using Texture = std::variant<ConstantTexture, CheckerTexture, ImageTexture, ScaleTexture, MixTexture,
+                             VertexColorTexture>;
 
 /// The colour of texture `id` at `ctx`.
 Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& images, TextureId id,

@@ -1,0 +1,48 @@
+#pragma once
+// Mesh files: PLY (a reader of our own), OBJ + MTL (tinyobjloader). Each importer returns meshes
+// in their own space with materials numbered locally; build() turns them into scene materials
+// and instances. Bad input throws IoError whose message starts with the file name (and, for
+// text formats, the line): "bunny.ply:12: ...".
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "glint/io/image_io.h"
+#include "glint/io/scene_description.h"
+#include "glint/math/transform.h"
+#include "glint/shapes/mesh.h"
+
+namespace glint {
+
+struct ImportedMaterial {
+    std::string name;
+    MaterialDesc desc;  ///< texture file names are absolute or relative to the mesh file's folder
+};
+
+/// One placement of a mesh (glTF nodes; OBJ and PLY have one per mesh, untransformed).
+struct ImportedNode {
+    std::uint32_t mesh = 0;
+    Transform transform;
+};
+
+struct ImportedFile {
+    /// mesh.material / face_materials index `materials`; kNoImportedMaterial: the scene's default.
+    std::vector<TriangleMesh> meshes;
+    std::vector<ImportedMaterial> materials;
+    std::vector<ImportedNode> nodes;
+    std::size_t dropped_triangles = 0;  ///< degenerate or non-finite, left out
+    std::vector<std::string> notes;     ///< things a user should hear about (missing textures, ...)
+};
+
+inline constexpr MaterialId kNoImportedMaterial = 0xffffffffu;
+
+/// By extension: .ply, .obj (.gltf and .glb when the glTF importer is present).
+ImportedFile import_mesh_file(const std::filesystem::path& path);
+ImportedFile import_ply(const std::filesystem::path& path);
+ImportedFile import_obj(const std::filesystem::path& path);
+
+/// The PLY reader on bytes already in memory (`name` is used in messages); for tests and fuzzing.
+ImportedFile parse_ply(const std::string& bytes, const std::string& name);
+
+}  // namespace glint

@@ -1,0 +1,152 @@
+// OBJ + MTL through tinyobjloader. Each OBJ group/object becomes one mesh; faces are fans;
+// vertices are welded per distinct (position, normal, uv) index triple.
+//
+// MTL mapping (decided here; docs/scene-format.md):
+//   Ke > 0                       emission Ke on whatever the surface is
+//   d < 1, or illum 4/6/7/9      dielectric, ior Ni (1.5 when absent), tinted by Kd
+//   Ks > 0                       plastic: albedo Kd (or map_Kd), coat ior Ni, roughness from the
+//                                Phong exponent Ns as (2 / (Ns + 2))^(1/4) (so alpha = r^2 is the
+//                                Beckmann-equivalent sqrt(2 / (Ns + 2)))
+//   otherwise                    diffuse Kd (or map_Kd)
+// A map_Kd that does not exist is an error naming the material and the file; map_Bump / norm
+// (normal maps) are not applied yet, and say so in the notes.
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <tuple>
+
+#include "glint/io/mesh_import.h"
+
+namespace glint {
+
+namespace {
+
+MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::path& dir,
+                          const std::string& file, ImportedFile& out) {
+    MaterialDesc d;
+    const Color kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+    const Color ks{m.specular[0], m.specular[1], m.specular[2]};
+    const Color ke{m.emission[0], m.emission[1], m.emission[2]};
+    d.color.kind = TextureDesc::Kind::kConstant;
+    d.color.value = kd;
+    if (!m.diffuse_texname.empty()) {
+        const std::filesystem::path tex = dir / m.diffuse_texname;
+        if (!std::filesystem::exists(tex))
+            throw IoError(fmt::format("{}: material '{}': texture map_Kd '{}' not found (looked for {})", file,
+                                      m.name, m.diffuse_texname, tex.string()));
+        d.color.kind = TextureDesc::Kind::kImage;
+        d.color.filename.value = tex.string();
+        d.color.encoding = ImageEncoding::kSrgb;
+    }
+    const bool glass = m.dissolve < 1 || m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9;
+    const float ior = m.ior > 0 && m.ior != 1 ? m.ior : 1.5f;
+    if (glass) {
+        d.kind = MaterialDesc::Kind::kDielectric;
+        d.ior = ior;
+        d.tint = kd.max_component() > 0 ? kd : Color{1};
+    } else if (ks.max_component() > 0) {
+        d.kind = MaterialDesc::Kind::kPlastic;
+        d.ior = ior;
+        d.roughness = std::pow(2.0f / (std::max(m.shininess, 0.0f) + 2), 0.25f);
+    } else {
+        d.kind = MaterialDesc::Kind::kDiffuse;
+    }
+    if (ke.max_component() > 0) d.emission = Emission{ke, false};
+    if (!m.bump_texname.empty() || !m.normal_texname.empty())
+        out.notes.push_back(fmt::format("{}: material '{}': normal/bump maps are not applied yet", file, m.name));
+    return d;
+}
+
+}  // namespace
+
+ImportedFile import_obj(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;  // we split faces ourselves, keeping their material
+    config.vertex_color = false;
+    config.mtl_search_path = path.parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(file, config)) {
+        std::string e = reader.Error();
+        while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
+        throw IoError(fmt::format("{}: {}", file, e.empty() ? "cannot parse" : e));
+    }
+    ImportedFile out;
+    if (!reader.Warning().empty()) {
+        std::string w = reader.Warning();
+        while (!w.empty() && w.back() == '\n') w.pop_back();
+        // A missing .mtl is a warning in tinyobjloader; for us it is missing input.
+        if (w.find("Material file") != std::string::npos || w.find("material file") != std::string::npos)
+            throw IoError(fmt::format("{}: {}", file, w));
+        out.notes.push_back(fmt::format("{}: {}", file, w));
+    }
+    const tinyobj::attrib_t& a = reader.GetAttrib();
+    for (const tinyobj::material_t& m : reader.GetMaterials())
+        out.materials.push_back({m.name, map_material(m, path.parent_path(), file, out)});
+
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        const tinyobj::mesh_t& sm = shape.mesh;
+        if (sm.num_face_vertices.empty()) continue;
+        TriangleMesh mesh;
+        mesh.name = shape.name;
+        const bool normals = !a.normals.empty() &&
+                             std::all_of(sm.indices.begin(), sm.indices.end(), [](const tinyobj::index_t& i) { return i.normal_index >= 0; });
+        const bool uvs = !a.texcoords.empty() &&
+                         std::all_of(sm.indices.begin(), sm.indices.end(), [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
+        std::map<std::tuple<int, int, int>, std::uint32_t> weld;
+        std::vector<std::uint32_t> counts, polygon, face_of;
+        for (const tinyobj::index_t& i : sm.indices) {
+            const auto key = std::make_tuple(i.vertex_index, normals ? i.normal_index : -1, uvs ? i.texcoord_index : -1);
+            auto [it, fresh] = weld.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+            if (fresh) {
+                const std::size_t v = static_cast<std::size_t>(i.vertex_index);
+                if (i.vertex_index < 0 || 3 * v + 2 >= a.vertices.size())
+                    throw IoError(fmt::format("{}: a face of '{}' uses vertex {} of {}", file, shape.name,
+                                              i.vertex_index + 1, a.vertices.size() / 3));
+                mesh.positions.push_back({a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]});
+                if (normals) {
+                    const std::size_t n = static_cast<std::size_t>(i.normal_index);
+                    if (3 * n + 2 >= a.normals.size()) throw IoError(fmt::format("{}: normal index {} out of range", file, n + 1));
+                    mesh.normals.push_back(Normal3{a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]});
+                }
+                if (uvs) {
+                    const std::size_t t = static_cast<std::size_t>(i.texcoord_index);
+                    if (2 * t + 1 >= a.texcoords.size()) throw IoError(fmt::format("{}: texture coordinate index {} out of range", file, t + 1));
+                    mesh.uvs.push_back({a.texcoords[2 * t], a.texcoords[2 * t + 1]});
+                }
+            }
+            polygon.push_back(it->second);
+        }
+        for (unsigned char c : sm.num_face_vertices) counts.push_back(c);
+        triangulate_fans(counts, polygon, mesh.indices, &face_of);
+        bool any_material = false;
+        for (std::uint32_t f : face_of) {
+            const int id = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
+            const bool valid = id >= 0 && static_cast<std::size_t>(id) < out.materials.size();
+            mesh.face_materials.push_back(valid ? static_cast<MaterialId>(id) : kNoImportedMaterial);
+            any_material |= valid;
+        }
+        if (!any_material) {
+            mesh.face_materials.clear();
+            mesh.material = kNoImportedMaterial;
+        }
+        out.dropped_triangles += validate_and_drop_degenerate(mesh);
+        out.nodes.push_back({static_cast<std::uint32_t>(out.meshes.size()), Transform{}});
+        out.meshes.push_back(std::move(mesh));
+    }
+    if (out.meshes.empty()) throw IoError(fmt::format("{}: no faces", file));
+    return out;
+}
+
+ImportedFile import_mesh_file(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".ply") return import_ply(path);
+    if (ext == ".obj") return import_obj(path);
+    throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply)", path.string(), ext));
+}
+
+}  // namespace glint

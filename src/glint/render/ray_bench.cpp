@@ -1,0 +1,115 @@
+#include "glint/render/ray_bench.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+
+#include "glint/math/frame.h"
+#include "glint/samplers/hash.h"
+#include "glint/samplers/warp.h"
+
+namespace glint {
+
+SceneInfo scene_info(const Scene& s) {
+    SceneInfo i;
+    i.meshes = s.meshes.size();
+    i.instances = s.instances.size();
+    i.analytic_shapes = s.spheres.size() + s.planes.size() + s.quads.size() + s.disks.size() + s.triangles.size();
+    for (const TriangleMesh& m : s.meshes) {
+        i.unique_triangles += m.triangle_count();
+        i.vertices += m.positions.size();
+        i.mesh_bytes += m.memory_bytes();
+    }
+    for (const Instance& inst : s.instances) i.triangles += s.meshes[inst.mesh].triangle_count();
+    i.triangles += s.triangles.size();
+    i.accel_bytes = s.accel_memory_bytes();
+    for (const MeshBvh& b : s.mesh_bvhs()) i.bvh_depth = std::max(i.bvh_depth, b.bvh().depth());
+    i.bounds = s.bounds();
+    return i;
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, int width, int height,
+                          int threads, int runs) {
+    BenchResult r;
+    r.backend = accel == AccelKind::kEmbree ? "embree" : "bvh";
+    runs = std::max(1, runs);
+    tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+    std::vector<double> build, primary, diffuse;
+    scene.accel = accel;
+    for (int k = 0; k < runs; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        arena.execute([&] { scene.commit(); });
+        build.push_back(seconds_since(t0));
+    }
+    r.accel_bytes = scene.accel_memory_bytes();
+
+    // The rays, generated once, outside the timed loops.
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<Ray> rays(n);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            rays[static_cast<std::size_t>(y) * width + x] = camera.generate_ray(x + 0.5f, y + 0.5f);
+    std::vector<Ray> bounces;
+    bounces.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto hit = scene.intersect(rays[i]);
+        if (!hit) continue;
+        ++r.primary_hits;
+        const SurfaceInteraction si = scene.interaction(rays[i], *hit);
+        const Normal3 nf = face_forward(si.n, rays[i].direction);
+        Vector3 t, b;
+        orthonormal_basis(to_vector(nf), t, b);
+        const Sample2 u{to_unit_float(hash_combine(17, 2 * i)), to_unit_float(hash_combine(17, 2 * i + 1))};
+        const Vector3 l = sample_cosine_hemisphere(u);
+        bounces.push_back(spawn_ray(si.p, nf, t * l.x + b * l.y + to_vector(nf) * l.z));
+    }
+    r.primary_rays = n;
+    r.diffuse_rays = bounces.size();
+
+    const auto trace = [&](const std::vector<Ray>& batch) {
+        std::atomic<std::uint64_t> hits{0};
+        const auto t0 = std::chrono::steady_clock::now();
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 1024),
+                              [&](const tbb::blocked_range<std::size_t>& range) {
+                                  std::uint64_t h = 0;
+                                  for (std::size_t i = range.begin(); i < range.end(); ++i)
+                                      h += scene.intersect(batch[i]).has_value();
+                                  hits += h;
+                              });
+        });
+        return std::pair{seconds_since(t0), hits.load()};
+    };
+    for (int k = 0; k < runs; ++k) {
+        const auto [tp, hp] = trace(rays);
+        primary.push_back(static_cast<double>(rays.size()) / tp * 1e-6);
+        const auto [td, hd] = trace(bounces);
+        diffuse.push_back(static_cast<double>(bounces.size()) / td * 1e-6);
+        r.diffuse_hits = hd;
+        (void)hp;
+    }
+    r.build_seconds = median(build);
+    r.primary_mrays = median(primary);
+    r.diffuse_mrays = median(diffuse);
+    return r;
+}
+
+}  // namespace glint

@@ -1,0 +1,40 @@
+#pragma once
+// What `glint info` and `glint bench` measure: scene statistics, and per acceleration backend
+// the build time, memory and ray throughput (primary rays through every pixel centre, and one
+// cosine-distributed diffuse bounce from each primary hit, both closest-hit).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "glint/cameras/camera.h"
+#include "glint/scene.h"
+
+namespace glint {
+
+struct SceneInfo {
+    std::uint64_t triangles = 0;         ///< as rendered: every instance counted
+    std::uint64_t unique_triangles = 0;  ///< stored: each mesh once
+    std::uint64_t meshes = 0, instances = 0, analytic_shapes = 0, vertices = 0;
+    std::uint64_t mesh_bytes = 0;   ///< vertex and index arrays
+    std::uint64_t accel_bytes = 0;  ///< the committed backend's structures
+    int bvh_depth = 0;              ///< the deepest mesh BVH (our backend)
+    Bounds3 bounds;
+};
+
+SceneInfo scene_info(const Scene& scene);
+
+struct BenchResult {
+    std::string backend;
+    double build_seconds = 0;  ///< median over the runs
+    std::uint64_t accel_bytes = 0;
+    double primary_mrays = 0, diffuse_mrays = 0;  ///< medians, million rays per second
+    std::uint64_t primary_rays = 0, diffuse_rays = 0;
+    std::uint64_t primary_hits = 0, diffuse_hits = 0;  ///< equal across backends up to float noise
+};
+
+/// Commits `scene` with `accel` `runs` times (timing each build), then traces the camera's
+/// width x height primary rays and their diffuse bounces `runs` times on `threads` threads.
+BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, int width, int height,
+                          int threads, int runs);
+
+}  // namespace glint
