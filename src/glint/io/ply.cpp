@@ -167,6 +167,7 @@ private:
             }
         }
         if (!have_format) fail(line_, "the header has no 'format' line");
+        if (format_ == Format::kAscii) ++line_;  // the body starts on the next line
         // Counts against the bytes left: every binary value takes at least one byte, every ASCII
         // value at least two (a digit and a separator).
         const std::uint64_t left = b_.size() - pos_;

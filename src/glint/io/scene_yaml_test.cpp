@@ -34,7 +34,7 @@ TEST(SceneYaml, MisspeltKeyReportsLineColumnAndSuggestion) {
         "    radiuss: 1\n";
     EXPECT_EQ(errors_of(text),
               "scene.yaml:4:5: error: sphere: unknown key 'radiuss'; did you mean 'radius'? "
-              "(known: type, center, radius, material)\n"
+              "(known: type, center, radius, material, transform)\n"
               "        radiuss: 1\n" +
                   caret(5, 7) +
                   "scene.yaml:2:5: error: sphere: missing required key 'radius'\n"
@@ -114,7 +114,7 @@ TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
     const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
     EXPECT_EQ(errors_of(text),
               "scene.yaml:2:12: error: unknown object type 'sphre'; did you mean 'sphere'? "
-              "(known: sphere, plane, quad, disk, triangle, polygon, box)\n"
+              "(known: sphere, plane, quad, disk, triangle, polygon, box, mesh)\n"
               "      - {type: sphre, center: [0, 0, 1], radius: 1}\n" +
                   caret(12, 5));
 }
