@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -67,9 +69,10 @@ void frame_bounds(glint::RenderJob& job) {
     const glint::Bounds3 b = job.scene.bounds();
     if (b.empty()) return;
     const glint::Point3 c = b.lo + (b.hi - b.lo) * 0.5f;
-    const float r = 0.5f * glint::length(b.hi - b.lo);
+    const glint::Vector3 e = b.hi - b.lo;
+    const float r = 0.5f * std::max({e.x, e.y, e.z});
     const float fov = 40;
-    const float dist = r / std::sin(fov * 0.5f * 3.14159265f / 180) * 1.05f;
+    const float dist = r / std::sin(fov * 0.5f * 3.14159265f / 180) * 1.1f;
     const glint::Vector3 dir = glint::normalize(glint::Vector3{0.35f, 0.35f, -1});
     job.camera = glint::Camera::look_at(c + dir * dist, c, {0, 1, 0}, fov, job.width, job.height);
 }

@@ -12,7 +12,7 @@ namespace glint {
 
 namespace {
 
-constexpr int kBins = 16;
+constexpr int kBins = 32;
 constexpr std::uint32_t kParallelThreshold = 4096;  // primitives below which a subtree is serial
 
 float half_area(const Bounds3& b) {

@@ -14,6 +14,9 @@
 // Primitives whose bounds are not finite are left out of the tree (reported by the builder's
 // caller); a NaN ray direction hits nothing.
 #include <smmintrin.h>
+#include <xmmintrin.h>
+
+#include <cmath>
 
 #include <cstdint>
 #include <limits>
@@ -50,13 +53,17 @@ static_assert(sizeof(Bvh4Node) == 112);
 /// What a traversal derives from the ray once.
 struct BvhRay {
     __m128 o[3], inv[3];
-    int near_is_hi[3];  ///< per axis: whether the near plane is the box's hi (negative direction)
+    /// Per axis, where the near and the far planes' four floats start in a node (lo_a or hi_a,
+    /// by the sign of the direction), so that the box test needs no branch.
+    int near_offset[3], far_offset[3];
     explicit BvhRay(const Ray& ray) {
         for (int a = 0; a < 3; ++a) {
             o[a] = _mm_set1_ps(ray.origin[a]);
             const float inv_d = 1 / ray.direction[a];
             inv[a] = _mm_set1_ps(inv_d);
-            near_is_hi[a] = std::signbit(inv_d);
+            const bool negative = std::signbit(inv_d);
+            near_offset[a] = 8 * a + (negative ? 4 : 0);
+            far_offset[a] = 8 * a + (negative ? 0 : 4);
         }
     }
 };
@@ -103,15 +110,14 @@ inline constexpr int kMaxDepth = 80;
 
 /// Which of the node's four boxes the ray meets, as a 4-bit mask; tnear per lane.
 inline int hit_boxes(const Bvh4Node& n, const BvhRay& r, __m128 t_max, __m128& tnear) {
-    const float* lo[3] = {n.lo_x, n.lo_y, n.lo_z};
-    const float* hi[3] = {n.hi_x, n.hi_y, n.hi_z};
+    const float* base = n.lo_x;  // lo_x hi_x lo_y hi_y lo_z hi_z, four floats each
     __m128 t0 = _mm_setzero_ps(), t1 = t_max;
     // Far distances widened by 1 + 2 gamma(3) (pbrt's robust slab test).
     const __m128 widen = _mm_set1_ps(1 + 2 * 3 * 0.5f * std::numeric_limits<float>::epsilon() /
                                              (1 - 3 * 0.5f * std::numeric_limits<float>::epsilon()));
     for (int a = 0; a < 3; ++a) {
-        const __m128 near_plane = _mm_load_ps(r.near_is_hi[a] ? hi[a] : lo[a]);
-        const __m128 far_plane = _mm_load_ps(r.near_is_hi[a] ? lo[a] : hi[a]);
+        const __m128 near_plane = _mm_load_ps(base + r.near_offset[a]);
+        const __m128 far_plane = _mm_load_ps(base + r.far_offset[a]);
         const __m128 tn = _mm_mul_ps(_mm_sub_ps(near_plane, r.o[a]), r.inv[a]);
         const __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(far_plane, r.o[a]), r.inv[a]), widen);
         // maxps/minps return the second operand when either is NaN: the running bound is second,
@@ -154,6 +160,7 @@ void Bvh4::closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const {
             const int i = __builtin_ctz(mask);
             mask &= mask - 1;
             Entry c{n.child[i], tn[i]};
+            if (!(c.ref & Bvh4Node::kLeaf)) _mm_prefetch(reinterpret_cast<const char*>(&nodes_[c.ref]), _MM_HINT_T0);
             int j = top++;
             while (j > base && stack[j - 1].t < c.t) {
                 stack[j] = stack[j - 1];

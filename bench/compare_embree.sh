@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# glint's BVH beside Embree 3 on the bunny in the Cornell box, a million-triangle mesh (generated
+# here, not committed) and its latitude-longitude variant (fans of slivers at the poles), with
+# 1 and 2 threads: `glint bench` builds each backend and traces the same primary and one-bounce
+# diffuse rays, reporting medians of RUNS runs. Prints markdown tables (docs/benchmarks.md).
+#
+#   bench/compare_embree.sh [BUILD_DIR] [RUNS]        (defaults: build 5)
+set -euo pipefail
+build=${1:-build}
+runs=${2:-5}
+glint="$build/apps/glint/glint"
+out=${OUT:-/tmp/glint-embree-bench}
+mkdir -p "$out"
+[[ -f "$out/cube-1m.ply" ]] || "$build/tools/glint_make_mesh" "$out/cube-1m.ply" 289 cube
+[[ -f "$out/latlong-1m.ply" ]] || "$build/tools/glint_make_mesh" "$out/latlong-1m.ply" 500 latlong
+
+echo "| scene | triangles | threads | backend | build (s) | memory | bytes/triangle | primary Mrays/s | diffuse Mrays/s |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for scene in scenes/bunny.yaml "$out/cube-1m.ply" "$out/latlong-1m.ply"; do
+  for threads in 1 2; do
+    "$glint" bench "$scene" --threads "$threads" --runs "$runs" --width 640 --height 480 > "$out/run.txt" 2>/dev/null
+    tris=$(head -1 "$out/run.txt" | sed -E 's/.*: ([0-9]+) triangles.*/\1/')
+    tail -n +3 "$out/run.txt" | while read -r backend build_s mem unit bpt prim diff _; do
+      echo "| $(basename "$scene") | $tris | $threads | $backend | $build_s | $mem $unit | $bpt | $prim | $diff |"
+    done
+  done
+done
