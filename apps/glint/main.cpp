@@ -43,7 +43,7 @@ std::optional<glint::AccelKind> parse_accel(const std::string& name) {
 bool is_mesh_file(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".obj" || ext == ".ply";
+    return ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb";
 }
 
 // A mesh file rendered directly: the mesh under a sky, path traced, seen from the front
@@ -52,6 +52,7 @@ glint::SceneDescription mesh_file_scene(const std::string& path) {
     glint::SceneDescription d;
     d.path = path;
     d.integrator.kind = glint::IntegratorKind::kPath;
+    d.background = glint::SkyBackground{};  // a default environment: the sky lights the model
     d.film.width.value = 800;
     d.film.height.value = 600;
     d.sampler.spp.value = 64;
@@ -88,7 +89,15 @@ glint::RenderJob load_job(const RenderArgs& args) {
                                args.threads, args.seed,   args.aovs};
     overrides.accel = parse_accel(args.accel);
     glint::RenderJob job = glint::build(description, overrides, sources);
-    if (mesh) frame_bounds(job);
+    if (mesh) {
+        if (job.file_camera) {  // the file's own camera
+            const glint::GltfCamera& c = *job.file_camera;
+            job.camera = glint::Camera::look_at(c.position, c.position + c.direction, c.up, c.yfov_degrees,
+                                                job.width, job.height);
+        } else {
+            frame_bounds(job);
+        }
+    }
     if (!args.quiet)
         for (const std::string& n : job.notes) fmt::print(stderr, "glint: note: {}\n", n);
     return job;

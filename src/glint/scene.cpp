@@ -304,6 +304,31 @@ Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim) const {
     return t;
 }
 
+Color Scene::light_radiance(const AreaLight& l, Point3 q, Normal3 n) const {
+    MaterialId material = 0;
+    SurfaceInteraction si{q, n, 0, l.kind, l.index};
+    si.ns = n;
+    switch (l.kind) {
+        case ShapeKind::kSphere: material = spheres[l.index].material; break;
+        case ShapeKind::kQuad: material = quads[l.index].material; break;
+        case ShapeKind::kDisk: material = disks[l.index].material; break;
+        case ShapeKind::kTriangle: material = triangles[l.index].material; break;
+        case ShapeKind::kPlane: material = planes[l.index].material; break;
+        case ShapeKind::kMesh: {
+            material = instance_material(l.index, l.prim);
+            // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
+            const Instance& in = instances[l.index];
+            const auto [p0, p1, p2] = meshes[in.mesh].vertices(l.prim);
+            si.prim = l.prim;
+            si.bary = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+            break;
+        }
+    }
+    si.material = material;
+    const Emission& e = emission_of(material);
+    return e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
+}
+
 std::size_t Scene::accel_memory_bytes() const {
 #if GLINT_EMBREE
     if (embree_) return embree_->memory_bytes();
@@ -316,7 +341,51 @@ std::size_t Scene::accel_memory_bytes() const {
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
     SurfaceInteraction si = base_interaction(ray, hit);
     if (hit.kind != ShapeKind::kMesh) si.ns = si.n;
+    else if (si.material < normal_maps.size() && normal_maps[si.material]) apply_normal_map(si, ray);
     return si;
+}
+
+void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
+    const Instance& inst = instances[si.shape_index];
+    const TriangleMesh& m = meshes[inst.mesh];
+    if (m.uvs.empty()) return;  // no texture space to read the map in
+    const NormalMap& map = *normal_maps[si.material];
+    const std::uint32_t i0 = m.indices[3 * si.prim], i1 = m.indices[3 * si.prim + 1], i2 = m.indices[3 * si.prim + 2];
+    const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
+    // The tangent (direction of +u) and the bitangent's handedness: the mesh's, or from the
+    // triangle's uv gradient (dp/du, and the sign of the uv area).
+    Vector3 t;
+    Float sign = 1;
+    if (!m.tangents.empty()) {
+        const auto& a = m.tangents[i0];
+        const auto& b = m.tangents[i1];
+        const auto& c = m.tangents[i2];
+        t = inst.transform.vector(Vector3{b0 * a[0] + b1 * b[0] + b2 * c[0], b0 * a[1] + b1 * b[1] + b2 * c[1],
+                                          b0 * a[2] + b1 * b[2] + b2 * c[2]});
+        sign = a[3] < 0 ? -1 : 1;
+    } else {
+        const Vector3 e1 = m.positions[i1] - m.positions[i0], e2 = m.positions[i2] - m.positions[i0];
+        const Point2 u0 = m.uvs[i0], u1 = m.uvs[i1], u2 = m.uvs[i2];
+        const Float du1 = u1.x - u0.x, dv1 = u1.y - u0.y, du2 = u2.x - u0.x, dv2 = u2.y - u0.y;
+        const Float det = du1 * dv2 - dv1 * du2;
+        if (!(std::abs(det) > 0)) return;
+        t = inst.transform.vector((e1 * dv2 - e2 * dv1) / det);
+        sign = det < 0 ? -1 : 1;
+    }
+    const Vector3 n = to_vector(si.ns);
+    t = t - n * dot(n, t);  // Gram-Schmidt against the shading normal
+    const Float len = length(t);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    t = t / len;
+    const Vector3 b = cross(n, t) * sign;
+    const Color c = texture(map.texture, si);
+    const Vector3 local{(2 * c.r - 1) * map.scale, (2 * c.g - 1) * map.scale, 2 * c.b - 1};
+    const Vector3 bent = t * local.x + b * local.y + n * local.z;
+    const Float bl = length(bent);
+    if (!(bl > 0) || !std::isfinite(bl)) return;
+    const Normal3 ns(bent / bl);
+    // As for interpolated normals: only where the viewer sees the same side of both.
+    if (dot(ns, ray.direction) * dot(si.n, ray.direction) > 0) si.ns = ns;
 }
 
 SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const {

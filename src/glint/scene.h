@@ -46,6 +46,7 @@ struct Scene {
     std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Emission> emission;  ///< per material; missing entries emit nothing
+    std::vector<std::optional<NormalMap>> normal_maps;  ///< per material; missing: none
     std::vector<Texture> textures;
     std::vector<Image> images;
     std::vector<Light> lights;
@@ -96,8 +97,12 @@ struct Scene {
     Color emitted(const SurfaceInteraction& si, Vector3 wo) const {
         const Emission& e = emission_of(si.material);
         if (!e.emits()) return Color{0};
-        return e.two_sided || dot(si.n, wo) > 0 ? e.radiance : Color{0};
+        if (!(e.two_sided || dot(si.n, wo) > 0)) return Color{0};
+        return e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
     }
+    /// The radiance area light `l` emits at its point q (normal n): the material's emission,
+    /// times its emission texture there, if any.
+    Color light_radiance(const AreaLight& l, Point3 q, Normal3 n) const;
     /// Every light, for the path tracer; built by commit().
     const LightSampler& light_sampler() const { return light_sampler_; }
 
@@ -120,6 +125,8 @@ private:
     std::optional<MeshHit> closest_instance(std::uint32_t inst, const Ray& ray) const;
     bool any_instance(std::uint32_t inst, const Ray& ray) const;
     SurfaceInteraction base_interaction(const Ray& ray, const Hit& hit) const;
+    /// Bends si.ns by the material's normal map (meshes with texture coordinates).
+    void apply_normal_map(SurfaceInteraction& si, const Ray& ray) const;
     /// Whether a mesh triangle's geometric normal is flipped to agree with its vertex normals.
     bool flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const;
 

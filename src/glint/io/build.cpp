@@ -143,14 +143,21 @@ public:
                 scene_.materials.push_back(
                     PlasticMaterial{add_texture(d.color), make_plastic(Color{0}, d.ior, alpha)});
                 break;
-            case K::kPbr:
-                scene_.materials.push_back(PbrMaterial{add_texture(d.color), d.metallic, d.roughness,
-                                                       d.transmission, d.ior,
-                                                       diffuse_fresnel_inside(d.ior)});
+            case K::kPbr: {
+                PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
+                              diffuse_fresnel_inside(d.ior), std::nullopt};
+                if (d.metallic_roughness) p.metallic_roughness = add_texture(*d.metallic_roughness);
+                scene_.materials.push_back(p);
                 break;
+            }
         }
         scene_.emission.resize(scene_.materials.size());
         scene_.emission.back() = d.emission;
+        if (d.emission_map) scene_.emission.back().texture = add_texture(*d.emission_map);
+        if (d.normal_map) {
+            scene_.normal_maps.resize(scene_.materials.size());
+            scene_.normal_maps.back() = NormalMap{add_texture(*d.normal_map), d.normal_scale};
+        }
         return static_cast<MaterialId>(scene_.materials.size() - 1);
     }
 
@@ -168,9 +175,11 @@ private:
             case TextureDesc::Kind::kConstant: break;
             case TextureDesc::Kind::kChecker: t = d.checker; break;
             case TextureDesc::Kind::kVertexColor: t = VertexColorTexture{}; break;
-            case TextureDesc::Kind::kImage:
-                t = ImageTexture{add_image(d.filename, d.encoding), d.wrap, d.size};
+            case TextureDesc::Kind::kImage: {
+                const ImageId image = d.pixels ? add_pixels(d.pixels) : add_image(d.filename, d.encoding);
+                t = ImageTexture{image, d.wrap, d.size, d.wrap_v.value_or(d.wrap), d.uv_transform};
                 break;
+            }
             case TextureDesc::Kind::kScale:
                 t = ScaleTexture{add_texture(d.children.at(0)), add_texture(d.children.at(1))};
                 break;
@@ -181,6 +190,15 @@ private:
         }
         scene_.textures.push_back(t);
         return static_cast<TextureId>(scene_.textures.size() - 1);
+    }
+
+    // Texels an importer decoded already, each image once.
+    ImageId add_pixels(const std::shared_ptr<const Image>& pixels) {
+        if (const auto it = pixel_cache_.find(pixels.get()); it != pixel_cache_.end()) return it->second;
+        scene_.images.push_back(*pixels);
+        const auto id = static_cast<ImageId>(scene_.images.size() - 1);
+        pixel_cache_.emplace(pixels.get(), id);
+        return id;
     }
 
     // Relative paths are relative to the scene file's folder.
@@ -206,6 +224,7 @@ private:
     Diagnostics& diagnostics_;
     std::filesystem::path dir_;
     std::map<std::pair<std::string, ImageEncoding>, ImageId> cache_;
+    std::map<const Image*, ImageId> pixel_cache_;
 };
 
 // A command-line value wins over the file's; range errors point at whichever was used.
@@ -308,6 +327,8 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     struct LoadedFile {
         std::uint32_t first_mesh = 0;
         std::vector<ImportedNode> nodes;
+        std::vector<Light> lights;
+        std::optional<GltfCamera> camera;
     };
     std::map<std::string, LoadedFile> loaded;
     const std::filesystem::path scene_dir = std::filesystem::path(d.path).parent_path();
@@ -358,7 +379,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 for (const ImportedMaterial& m : f.materials) ids.push_back(materials.add_material(m.desc));
                 const MaterialId fallback = materials.add_material(MaterialDesc{});
                 const auto map_id = [&](MaterialId local) { return local == kNoImportedMaterial ? fallback : ids.at(local); };
-                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes};
+                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera};
                 for (TriangleMesh& m : f.meshes) {
                     m.material = map_id(m.material);
                     for (MaterialId& fm : m.face_materials) fm = map_id(fm);
@@ -371,6 +392,23 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 it = loaded.emplace(key, std::move(lf)).first;
             }
             const Transform place = o.transform.value_or(Transform{});
+            for (Light l : it->second.lights) {
+                std::visit(
+                    [&](auto& x) {
+                        using L = std::decay_t<decltype(x)>;
+                        if constexpr (std::is_same_v<L, PointLight> || std::is_same_v<L, SpotLight>) x.position = place.point(x.position);
+                        if constexpr (std::is_same_v<L, SpotLight> || std::is_same_v<L, DirectionalLight>) x.direction = normalize(place.vector(x.direction));
+                    },
+                    l);
+                scene.lights.push_back(l);
+            }
+            if (it->second.camera && !job.file_camera) {
+                GltfCamera c = *it->second.camera;
+                c.position = place.point(c.position);
+                c.direction = normalize(place.vector(c.direction));
+                c.up = normalize(place.vector(c.up));
+                job.file_camera = c;
+            }
             for (const ImportedNode& n : it->second.nodes) {
                 Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt};
                 if (id != kNoImportedMaterial) inst.material = id;

@@ -10,6 +10,7 @@
 #include "glint/film/tonemap.h"
 #include "glint/integrators/integrator.h"
 #include "glint/io/diagnostics.h"
+#include "glint/io/mesh_import.h"
 #include "glint/io/scene_description.h"
 #include "glint/render/render.h"
 #include "glint/scene.h"
@@ -34,6 +35,8 @@ struct RenderJob {
     bool aovs = false;
     std::string filename;  ///< the scene's film.filename, or empty
     std::vector<std::string> notes;  ///< for the user: dropped triangles, importer warnings
+    /// The first camera found in an included glTF file (used when rendering that file directly).
+    std::optional<GltfCamera> file_camera;
 };
 
 RenderJob build(const SceneDescription& description, const Overrides& overrides,

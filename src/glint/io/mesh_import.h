@@ -10,6 +10,7 @@
 
 #include "glint/io/image_io.h"
 #include "glint/io/scene_description.h"
+#include "glint/lights/light.h"
 #include "glint/math/transform.h"
 #include "glint/shapes/mesh.h"
 
@@ -26,6 +27,14 @@ struct ImportedNode {
     Transform transform;
 };
 
+/// A camera found in a file (glTF), in glint's frame.
+struct GltfCamera {
+    std::string name;
+    Point3 position;
+    Vector3 direction, up;
+    float yfov_degrees = 40;
+};
+
 struct ImportedFile {
     /// mesh.material / face_materials index `materials`; kNoImportedMaterial: the scene's default.
     std::vector<TriangleMesh> meshes;
@@ -33,12 +42,16 @@ struct ImportedFile {
     std::vector<ImportedNode> nodes;
     std::size_t dropped_triangles = 0;  ///< degenerate or non-finite, left out
     std::vector<std::string> notes;     ///< things a user should hear about (missing textures, ...)
+    std::vector<Light> lights;          ///< glTF KHR_lights_punctual, placed by their nodes
+    std::optional<GltfCamera> camera;   ///< glTF: the first perspective camera, or the one named
 };
 
 inline constexpr MaterialId kNoImportedMaterial = 0xffffffffu;
 
-/// By extension: .ply, .obj (.gltf and .glb when the glTF importer is present).
+/// By extension: .ply, .obj, .gltf, .glb.
 ImportedFile import_mesh_file(const std::filesystem::path& path);
+/// `camera`: the name of the camera to use (empty: the first one met in the node hierarchy).
+ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera = "");
 ImportedFile import_ply(const std::filesystem::path& path);
 ImportedFile import_obj(const std::filesystem::path& path);
 

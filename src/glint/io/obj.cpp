@@ -146,7 +146,8 @@ ImportedFile import_mesh_file(const std::filesystem::path& path) {
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".ply") return import_ply(path);
     if (ext == ".obj") return import_obj(path);
-    throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply)", path.string(), ext));
+    if (ext == ".gltf" || ext == ".glb") return import_gltf(path);
+    throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .gltf, .glb)", path.string(), ext));
 }
 
 }  // namespace glint

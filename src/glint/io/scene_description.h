@@ -2,7 +2,9 @@
 // SceneDescription: what a scene file says, as plain data, every value that can be wrong later
 // carrying the SourceLoc it came from. The parser fills it; io/build.h turns it into a render-time
 // Scene. Defaults here are the documented defaults of docs/scene-format.md.
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -99,6 +101,10 @@ struct TextureDesc {
     WrapMode wrap = WrapMode::kRepeat;
     Float size = 1;
     std::vector<TextureDesc> children;  ///< scale: texture, factor; mix: a, b, amount
+    // Set by importers (glTF): a separate v wrap, a uv transform, texels decoded already.
+    std::optional<WrapMode> wrap_v;
+    std::array<Float, 6> uv_transform{1, 0, 0, 0, 1, 0};
+    std::shared_ptr<const Image> pixels;  ///< used instead of `filename` when set
 };
 
 struct MaterialDesc {
@@ -118,6 +124,12 @@ struct MaterialDesc {
     float metallic = 0;
     float transmission = 0;
     Emission emission;
+    // Textures from importers (glTF): metallic in blue, roughness in green (multiplying the
+    // factors); a tangent-space normal map (+y up) with its scale; emission multiplied by a map.
+    std::optional<TextureDesc> metallic_roughness;
+    std::optional<TextureDesc> normal_map;
+    float normal_scale = 1;
+    std::optional<TextureDesc> emission_map;
 };
 
 /// An object's material: a name to resolve, or an inline description.

@@ -190,9 +190,8 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                         q = p + wi * (t ? *t : dot(s.center - p, wi));
                         n = normalize(Normal3(q - s.center));
                         pdf = uniform_cone_pdf(omc);
-                        const Emission& e = scene.emission_of(material);
-                        if (!(e.two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{e.radiance, wi, pdf, length(q - p), false, true, q, n};
+                        if (!(scene.emission_of(material).two_sided || dot(n, wi) < 0)) return std::nullopt;
+                        return LightLiSample{scene.light_radiance(l, q, n), wi, pdf, length(q - p), false, true, q, n};
                     }
                 }
                 float area = 1;
@@ -220,7 +219,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                 const Emission& e = scene.emission_of(material);
                 if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
                 pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{e.radiance, wi, pdf, dist, false, true, q, n};
+                return LightLiSample{scene.light_radiance(l, q, n), wi, pdf, dist, false, true, q, n};
             } else {
                 const LightSample s = l.sample(p);
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};

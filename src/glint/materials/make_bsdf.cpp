@@ -41,7 +41,13 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
             } else {
                 static_assert(std::is_same_v<T, PbrMaterial>);
                 const Color base = scene.texture(m.base_color, si);
-                const float alpha = m.roughness * m.roughness;
+                float metallic = m.metallic, roughness = m.roughness;
+                if (m.metallic_roughness) {
+                    const Color mr = scene.texture(*m.metallic_roughness, si);
+                    metallic *= mr.b;
+                    roughness *= mr.g;
+                }
+                const float alpha = roughness * roughness;
                 ConductorLobe metal;
                 metal.kind = ConductorLobe::FresnelKind::kSchlick;
                 metal.eta = base;
@@ -56,8 +62,8 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 glass.eta = m.ior;
                 glass.ggx = Ggx{alpha};
                 glass.tint = base;
-                const float dielectric = 1 - m.metallic;
-                return Bsdf(si.ns, {{metal, m.metallic},
+                const float dielectric = 1 - metallic;
+                return Bsdf(si.ns, {{metal, metallic},
                                    {plastic, dielectric * (1 - m.transmission)},
                                    {glass, dielectric * m.transmission}});
             }

@@ -54,6 +54,8 @@ struct PbrMaterial {
     float transmission = 0;
     float ior = 1.5f;
     float fdr_inside = 0;  ///< of the coat, precomputed
+    /// glTF's metallicRoughnessTexture: blue scales metallic, green scales roughness.
+    std::optional<TextureId> metallic_roughness;
 };
 
 using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMaterial,
@@ -63,7 +65,15 @@ using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMateria
 struct Emission {
     Color radiance{0};
     bool two_sided = false;
+    std::optional<TextureId> texture;  ///< multiplies radiance (glTF's emissiveTexture)
     bool emits() const { return radiance.max_component() > 0; }
+};
+
+/// A tangent-space normal map on a material (glTF's normalTexture): texel (r, g, b) in [0, 1]
+/// is the normal (2r - 1) s, (2g - 1) s, 2b - 1 in the frame (tangent, bitangent, normal).
+struct NormalMap {
+    TextureId texture;
+    float scale = 1;
 };
 
 }  // namespace glint

@@ -8,6 +8,11 @@ namespace {
 
 int wrap_index(int i, int n, WrapMode wrap) {
     if (wrap == WrapMode::kClamp) return std::clamp(i, 0, n - 1);
+    if (wrap == WrapMode::kMirror) {  // ... 1 0 | 0 1 ... n-1 | n-1 ... 0 | 0 ...
+        int m = i % (2 * n);
+        if (m < 0) m += 2 * n;
+        return m < n ? m : 2 * n - 1 - m;
+    }
     const int m = i % n;
     return m < 0 ? m + n : m;
 }
@@ -17,6 +22,7 @@ int wrap_index(int i, int n, WrapMode wrap) {
 float to_texels(Float u, int n, WrapMode wrap) {
     if (!std::isfinite(u)) return 0;
     if (wrap == WrapMode::kRepeat) u -= std::floor(u);
+    else if (wrap == WrapMode::kMirror) u -= 2 * std::floor(u / 2);  // one period of the mirror
     else u = std::clamp(u, Float(-1), Float(2));
     return u * static_cast<float>(n) - 0.5f;
 }
@@ -30,14 +36,14 @@ Overloaded(F...) -> Overloaded<F...>;
 
 }  // namespace
 
-Color bilinear(const Image& image, Point2 uv, WrapMode wrap) {
+Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v) {
     // v = 0 is the bottom row: flip before addressing rows.
-    const float x = to_texels(uv.x, image.width, wrap), y = to_texels(1 - uv.y, image.height, wrap);
+    const float x = to_texels(uv.x, image.width, wrap_u), y = to_texels(1 - uv.y, image.height, wrap_v);
     const float fx0 = std::floor(x), fy0 = std::floor(y);
     const float tx = x - fx0, ty = y - fy0;
     const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
-    const int xa = wrap_index(x0, image.width, wrap), xb = wrap_index(x0 + 1, image.width, wrap);
-    const int ya = wrap_index(y0, image.height, wrap), yb = wrap_index(y0 + 1, image.height, wrap);
+    const int xa = wrap_index(x0, image.width, wrap_u), xb = wrap_index(x0 + 1, image.width, wrap_u);
+    const int ya = wrap_index(y0, image.height, wrap_v), yb = wrap_index(y0 + 1, image.height, wrap_v);
     return image.texel(xa, ya) * ((1 - tx) * (1 - ty)) + image.texel(xb, ya) * (tx * (1 - ty)) +
            image.texel(xa, yb) * ((1 - tx) * ty) + image.texel(xb, yb) * (tx * ty);
 }
@@ -51,7 +57,9 @@ Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& i
             [&](const VertexColorTexture&) { return ctx.vertex_color; },
             [&](const CheckerTexture& t) { return t.eval(ctx.p); },
             [&](const ImageTexture& t) {
-                return bilinear(images[t.image], {ctx.uv.x / t.size, ctx.uv.y / t.size}, t.wrap);
+                const auto& m = t.uv_transform;
+                const Point2 uv{m[0] * ctx.uv.x + m[1] * ctx.uv.y + m[2], m[3] * ctx.uv.x + m[4] * ctx.uv.y + m[5]};
+                return bilinear(images[t.image], {uv.x / t.size, uv.y / t.size}, t.wrap, t.wrap_v);
             },
             [&](const ScaleTexture& t) {
                 return evaluate(textures, images, t.texture, ctx) *

@@ -3,6 +3,7 @@
 // surface point and its uv. Textures that combine others (scale, mix) refer to them by id; build
 // adds children before parents, so the ids form a tree and evaluation always terminates.
 #include <cmath>
+#include <array>
 #include <cstdint>
 #include <variant>
 #include <vector>
@@ -32,11 +33,12 @@ struct Image {
     }
 };
 
-enum class WrapMode { kRepeat, kClamp };
+enum class WrapMode { kRepeat, kClamp, kMirror };
 
 /// Bilinear interpolation of the four texels around uv (texel centres at u = (i + 1/2)/width
 /// and v = 1 - (j + 1/2)/height for column i, row j), with repeat or clamp addressing.
-Color bilinear(const Image& image, Point2 uv, WrapMode wrap);
+Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v);
+inline Color bilinear(const Image& image, Point2 uv, WrapMode wrap) { return bilinear(image, uv, wrap, wrap); }
 
 struct ConstantTexture {
     Color value;
@@ -62,11 +64,14 @@ struct CheckerTexture {
     }
 };
 
-/// An image over uv, covering `size` x `size` units of uv space.
+/// An image over uv, covering `size` x `size` units of uv space, after an optional affine map
+/// of uv (glTF's KHR_texture_transform): uv' = (m0 u + m1 v + m2, m3 u + m4 v + m5).
 struct ImageTexture {
     ImageId image;
-    WrapMode wrap = WrapMode::kRepeat;
+    WrapMode wrap = WrapMode::kRepeat;  ///< along u (and v, unless wrap_v says otherwise)
     Float size = 1;
+    WrapMode wrap_v = WrapMode::kRepeat;
+    std::array<Float, 6> uv_transform{1, 0, 0, 0, 1, 0};
 };
 
 /// texture * factor, per channel.

@@ -1,0 +1,437 @@
+// glTF 2.0 (.gltf and .glb) through tinygltf: the default scene's node hierarchy with its
+// transforms, meshes (triangle primitives; strips and fans converted), metallic-roughness
+// materials with their textures and samplers, KHR_materials_emissive_strength,
+// KHR_materials_transmission, KHR_materials_ior, KHR_texture_transform, KHR_lights_punctual and
+// perspective cameras.
+//
+// Frames: glTF is right-handed with +y up and cameras looking along -z; glint is left-handed. A
+// glTF file is imported with z negated (a mirror applied to every node), so a model looks as it
+// does in other viewers; winding-defined normals keep their sides (transforms.h: mirrors keep the
+// front side). UVs: glTF's v runs down the image, glint's up: v' = 1 - v.
+//
+// Decisions where glTF and a path tracer part ways: occlusion textures are read but not applied
+// (the path tracer computes occlusion); alpha modes are ignored (opaque); light intensities are
+// used as radiometric (candela -> W/sr, lux -> W/m^2) without the 683 lm/W conversion, as
+// Blender's importer does by default; emission is one-sided unless the material is doubleSided.
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <map>
+#include <numbers>
+
+#include "glint/io/mesh_import.h"
+
+namespace glint {
+
+namespace {
+
+struct Importer {
+    const tinygltf::Model& model;
+    std::string file;
+    ImportedFile out;
+    std::map<std::pair<int, bool>, std::shared_ptr<const Image>> images;  // (image, srgb)
+    std::map<int, std::uint32_t> mesh_first;   // glTF mesh -> first of our meshes
+    std::map<int, std::uint32_t> mesh_count;
+
+    [[noreturn]] void fail(const std::string& what) const { throw IoError(fmt::format("{}: {}", file, what)); }
+
+    // --- accessors ---
+    int components(int type) const {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return 1;
+            case TINYGLTF_TYPE_VEC2: return 2;
+            case TINYGLTF_TYPE_VEC3: return 3;
+            case TINYGLTF_TYPE_VEC4: return 4;
+            default: return 0;
+        }
+    }
+    static int component_size(int ct) {
+        switch (ct) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+            case TINYGLTF_COMPONENT_TYPE_SHORT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+            case TINYGLTF_COMPONENT_TYPE_INT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+            case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
+            default: return 0;
+        }
+    }
+
+    /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
+    /// [0, 1] or [-1, 1] when the accessor says so). Every range is checked against its buffer.
+    std::vector<double> read(int index, int n, const char* what) const {
+        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+            fail(fmt::format("{}: accessor {} does not exist", what, index));
+        const tinygltf::Accessor& a = model.accessors[index];
+        if (a.sparse.isSparse) fail(fmt::format("{}: sparse accessors are not supported", what));
+        const int comps = components(a.type), size = component_size(a.componentType);
+        if (comps != n || size == 0) fail(fmt::format("{}: accessor {} has the wrong type", what, index));
+        std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
+        if (a.bufferView < 0) return v;  // all zeros, as the spec says
+        if (a.bufferView >= static_cast<int>(model.bufferViews.size()))
+            fail(fmt::format("{}: buffer view {} does not exist", what, a.bufferView));
+        const tinygltf::BufferView& bv = model.bufferViews[a.bufferView];
+        if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
+            fail(fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+        const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
+        const std::size_t elem = static_cast<std::size_t>(comps * size);
+        const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
+        const std::size_t start = bv.byteOffset + a.byteOffset;
+        if (a.count > 0 && (start + (a.count - 1) * stride + elem > data.size() ||
+                            a.byteOffset + (a.count - 1) * stride + elem > bv.byteLength))
+            fail(fmt::format("{}: accessor {} reaches past the end of its buffer", what, index));
+        for (std::size_t i = 0; i < a.count; ++i) {
+            const unsigned char* p = data.data() + start + i * stride;
+            for (int c = 0; c < n; ++c) {
+                const unsigned char* q = p + c * size;
+                double x = 0;
+                switch (a.componentType) {
+                    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t t; std::memcpy(&t, q, 1); x = a.normalized ? std::max(t / 127.0, -1.0) : t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { x = a.normalized ? *q / 255.0 : *q; break; }
+                    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t t; std::memcpy(&t, q, 2); x = a.normalized ? std::max(t / 32767.0, -1.0) : t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t t; std::memcpy(&t, q, 2); x = a.normalized ? t / 65535.0 : t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_INT: { std::int32_t t; std::memcpy(&t, q, 4); x = t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t t; std::memcpy(&t, q, 4); x = t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float t; std::memcpy(&t, q, 4); x = t; break; }
+                    default: { double t; std::memcpy(&t, q, 8); x = t; break; }
+                }
+                v[i * n + c] = x;
+            }
+        }
+        return v;
+    }
+
+    // --- textures ---
+    std::shared_ptr<const Image> image(int index, bool srgb) {
+        const auto key = std::make_pair(index, srgb);
+        if (auto it = images.find(key); it != images.end()) return it->second;
+        if (index < 0 || index >= static_cast<int>(model.images.size())) fail(fmt::format("image {} does not exist", index));
+        const tinygltf::Image& im = model.images[index];
+        if (im.width <= 0 || im.height <= 0 || im.image.empty())
+            fail(fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
+        const int comps = im.component, bytes = im.bits == 16 ? 2 : 1;
+        if (comps < 1 || comps > 4 || im.image.size() < static_cast<std::size_t>(im.width) * im.height * comps * bytes)
+            fail(fmt::format("image {} has an unexpected pixel layout", index));
+        auto img = std::make_shared<Image>();
+        img->width = im.width;
+        img->height = im.height;
+        img->texels.resize(static_cast<std::size_t>(im.width) * im.height);
+        const auto decode = [srgb](float x) {
+            return srgb ? (x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f)) : x;
+        };
+        for (std::size_t i = 0; i < img->texels.size(); ++i) {
+            float c[4] = {0, 0, 0, 1};
+            for (int k = 0; k < comps; ++k) {
+                const std::size_t at = (i * comps + k) * bytes;
+                c[k] = bytes == 2 ? (im.image[at] | im.image[at + 1] << 8) / 65535.0f : im.image[at] / 255.0f;
+            }
+            if (comps < 3) c[1] = c[2] = c[0];
+            img->texels[i] = Color{decode(c[0]), decode(c[1]), decode(c[2])};
+        }
+        images.emplace(key, img);
+        return img;
+    }
+
+    static WrapMode wrap(int mode) {
+        if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return WrapMode::kClamp;
+        if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return WrapMode::kMirror;
+        return WrapMode::kRepeat;
+    }
+
+    static double number(const tinygltf::Value& v, const char* key, double fallback) {
+        if (!v.Has(key)) return fallback;
+        const tinygltf::Value& x = v.Get(key);
+        return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
+    }
+
+    /// A texture reference as an image TextureDesc (its sampler's wraps, KHR_texture_transform).
+    TextureDesc texture(int index, int tex_coord, const tinygltf::ExtensionMap& ext, bool srgb, const char* what) {
+        if (index < 0 || index >= static_cast<int>(model.textures.size()))
+            fail(fmt::format("{}: texture {} does not exist", what, index));
+        if (tex_coord != 0) out.notes.push_back(fmt::format("{}: {} uses TEXCOORD_{}; glint reads TEXCOORD_0", file, what, tex_coord));
+        const tinygltf::Texture& t = model.textures[index];
+        TextureDesc d;
+        d.kind = TextureDesc::Kind::kImage;
+        d.pixels = image(t.source, srgb);
+        d.filename.value = fmt::format("{}#image{}", file, t.source);
+        if (t.sampler >= 0 && t.sampler < static_cast<int>(model.samplers.size())) {
+            d.wrap = wrap(model.samplers[t.sampler].wrapS);
+            d.wrap_v = wrap(model.samplers[t.sampler].wrapT);
+        } else {
+            d.wrap_v = WrapMode::kRepeat;
+        }
+        if (const auto it = ext.find("KHR_texture_transform"); it != ext.end()) {
+            // glTF uv' = T(offset) R(rotation) S(scale) uv, in glTF's (v down) space; in ours,
+            // F T F with F(u, v) = (u, 1 - v).
+            const tinygltf::Value& v = it->second;
+            double off[2] = {0, 0}, sc[2] = {1, 1};
+            if (v.Has("offset") && v.Get("offset").ArrayLen() == 2)
+                for (int k = 0; k < 2; ++k) off[k] = v.Get("offset").Get(k).GetNumberAsDouble();
+            if (v.Has("scale") && v.Get("scale").ArrayLen() == 2)
+                for (int k = 0; k < 2; ++k) sc[k] = v.Get("scale").Get(k).GetNumberAsDouble();
+            const double r = number(v, "rotation", 0), c = std::cos(r), s = std::sin(r);
+            // T = [a b e; c d f] in glTF space.
+            const double a = c * sc[0], b = s * sc[1], e = off[0];
+            const double cc = -s * sc[0], dd = c * sc[1], f = off[1];
+            // F T F: u' = a u + b (1 - v) + e ; v' = 1 - (cc u + dd (1 - v) + f).
+            d.uv_transform = {Float(a), Float(-b), Float(b + e), Float(-cc), Float(dd), Float(1 - dd - f)};
+            if (v.Has("texCoord")) out.notes.push_back(fmt::format("{}: {}: KHR_texture_transform texCoord ignored", file, what));
+        }
+        return d;
+    }
+
+    static TextureDesc constant(Color c) {
+        TextureDesc d;
+        d.value = c;
+        return d;
+    }
+    static TextureDesc scaled(TextureDesc t, Color factor) {
+        if (factor.r == 1 && factor.g == 1 && factor.b == 1) return t;
+        TextureDesc d;
+        d.kind = TextureDesc::Kind::kScale;
+        d.children = {std::move(t), constant(factor)};
+        return d;
+    }
+
+    MaterialDesc material(const tinygltf::Material& m) {
+        MaterialDesc d;
+        d.kind = MaterialDesc::Kind::kPbr;
+        const auto& pbr = m.pbrMetallicRoughness;
+        const Color base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
+        d.color = pbr.baseColorTexture.index >= 0
+                      ? scaled(texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                       pbr.baseColorTexture.extensions, true, "baseColorTexture"),
+                               base)
+                      : constant(base);
+        d.metallic = float(pbr.metallicFactor);
+        d.roughness = float(pbr.roughnessFactor);
+        if (pbr.metallicRoughnessTexture.index >= 0)
+            d.metallic_roughness = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                           pbr.metallicRoughnessTexture.extensions, false, "metallicRoughnessTexture");
+        if (m.normalTexture.index >= 0) {
+            d.normal_map = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                   false, "normalTexture");
+            d.normal_scale = float(m.normalTexture.scale);
+        }
+        if (m.occlusionTexture.index >= 0)
+            (void)texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions,
+                          false, "occlusionTexture");  // checked, not applied (see the top)
+        Color emissive{float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2])};
+        const auto& ext = m.extensions;
+        if (const auto it = ext.find("KHR_materials_emissive_strength"); it != ext.end())
+            emissive = emissive * float(number(it->second, "emissiveStrength", 1));
+        if (const auto it = ext.find("KHR_materials_transmission"); it != ext.end())
+            d.transmission = float(number(it->second, "transmissionFactor", 0));
+        if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
+        if (emissive.max_component() > 0) {
+            d.emission = Emission{emissive, m.doubleSided};
+            if (m.emissiveTexture.index >= 0)
+                d.emission_map = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                         m.emissiveTexture.extensions, true, "emissiveTexture");
+        }
+        return d;
+    }
+
+    // --- meshes ---
+    void mesh(int index) {
+        const tinygltf::Mesh& gm = model.meshes[index];
+        mesh_first[index] = static_cast<std::uint32_t>(out.meshes.size());
+        std::uint32_t count = 0;
+        for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = gm.primitives[p];
+            const std::string what = fmt::format("mesh '{}' primitive {}", gm.name, p);
+            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
+                out.notes.push_back(fmt::format("{}: {}: points and lines are skipped", file, what));
+                continue;
+            }
+            const auto pos_it = prim.attributes.find("POSITION");
+            if (pos_it == prim.attributes.end()) fail(what + ": no POSITION attribute");
+            TriangleMesh m;
+            m.name = gm.name;
+            const std::vector<double> pos = read(pos_it->second, 3, what.c_str());
+            const std::size_t nv = pos.size() / 3;
+            for (std::size_t i = 0; i < nv; ++i)
+                m.positions.push_back({float(pos[3 * i]), float(pos[3 * i + 1]), float(-pos[3 * i + 2])});
+            if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+                const auto n = read(it->second, 3, what.c_str());
+                if (n.size() == pos.size())
+                    for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
+            }
+            if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+                const auto t = read(it->second, 2, what.c_str());
+                if (t.size() == 2 * nv)
+                    for (std::size_t i = 0; i < nv; ++i) m.uvs.push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
+            }
+            if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+                const auto t = read(it->second, 4, what.c_str());
+                // z negated like positions; the mirror also flips the bitangent's handedness,
+                // and so does the v flip: the two cancel, w stays.
+                if (t.size() == 4 * nv)
+                    for (std::size_t i = 0; i < nv; ++i)
+                        m.tangents.push_back({float(t[4 * i]), float(t[4 * i + 1]), float(-t[4 * i + 2]), float(t[4 * i + 3])});
+            }
+            if (const auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+                const tinygltf::Accessor& a = model.accessors.at(it->second);
+                const int n = components(a.type);
+                if (n == 3 || n == 4) {
+                    const auto c = read(it->second, n, what.c_str());
+                    for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i)
+                        m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
+                }
+            }
+            std::vector<std::uint32_t> idx;
+            if (prim.indices >= 0) {
+                for (double x : read(prim.indices, 1, what.c_str())) {
+                    if (!(x >= 0 && x < double(nv))) fail(fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
+                    idx.push_back(static_cast<std::uint32_t>(x));
+                }
+            } else {
+                for (std::uint32_t i = 0; i < nv; ++i) idx.push_back(i);
+            }
+            if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+                for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
+                    if (i % 2 == 0) m.indices.insert(m.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
+                    else m.indices.insert(m.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
+                }
+            } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+                for (std::size_t i = 1; i + 1 < idx.size(); ++i) m.indices.insert(m.indices.end(), {idx[0], idx[i], idx[i + 1]});
+            } else {
+                if (idx.size() % 3 != 0) fail(fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
+                m.indices = std::move(idx);
+            }
+            m.material = prim.material >= 0 && prim.material < static_cast<int>(out.materials.size())
+                             ? static_cast<MaterialId>(prim.material)
+                             : kNoImportedMaterial;
+            try {
+                out.dropped_triangles += validate_and_drop_degenerate(m);
+            } catch (const std::invalid_argument& e) {
+                fail(what + ": " + e.what());
+            }
+            out.meshes.push_back(std::move(m));
+            ++count;
+        }
+        mesh_count[index] = count;
+    }
+
+    static Matrix34 node_matrix(const tinygltf::Node& n) {
+        Matrix34 m;
+        if (n.matrix.size() == 16) {  // column-major
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) m.m[r][c] = float(n.matrix[c * 4 + r]);
+            return m;
+        }
+        double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+        if (n.translation.size() == 3) for (int k = 0; k < 3; ++k) t[k] = n.translation[k];
+        if (n.rotation.size() == 4) for (int k = 0; k < 4; ++k) q[k] = n.rotation[k];
+        if (n.scale.size() == 3) for (int k = 0; k < 3; ++k) s[k] = n.scale[k];
+        const double x = q[0], y = q[1], z = q[2], w = q[3];
+        const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                                {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                                {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) m.m[i][j] = float(r[i][j] * s[j]);
+            m.m[i][3] = float(t[i]);
+        }
+        return m;
+    }
+
+    std::optional<GltfCamera> camera;
+    std::string camera_name;
+
+    void visit(int index, const Matrix34& parent, int depth) {
+        if (index < 0 || index >= static_cast<int>(model.nodes.size())) fail(fmt::format("node {} does not exist", index));
+        if (depth > 64) fail("the node hierarchy is deeper than 64 (a cycle?)");
+        const tinygltf::Node& n = model.nodes[index];
+        const Matrix34 world = parent * node_matrix(n);  // glTF space
+        // To glint: M' = F M F with F = diag(1, 1, -1).
+        Matrix34 g = world;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j)
+                if ((i == 2) != (j == 2) && j != 3) g.m[i][j] = -g.m[i][j];
+        g.m[2][3] = -g.m[2][3];
+        if (n.mesh >= 0) {
+            if (n.mesh >= static_cast<int>(model.meshes.size())) fail(fmt::format("node {} uses mesh {} that does not exist", index, n.mesh));
+            if (!mesh_first.count(n.mesh)) mesh(n.mesh);
+            const auto t = Transform::from(g);
+            if (!t) {
+                out.notes.push_back(fmt::format("{}: node {} has a singular transform; skipped", file, index));
+            } else {
+                for (std::uint32_t k = 0; k < mesh_count[n.mesh]; ++k) out.nodes.push_back({mesh_first[n.mesh] + k, *t});
+            }
+        }
+        const auto place = [&](Vector3 local) { return g.apply(local); };
+        if (n.camera >= 0 && n.camera < static_cast<int>(model.cameras.size())) {
+            const tinygltf::Camera& c = model.cameras[n.camera];
+            const bool wanted = camera_name.empty() ? !camera.has_value() : c.name == camera_name;
+            if (c.type == "perspective" && wanted) {
+                GltfCamera cam;
+                cam.name = c.name;
+                cam.position = g.apply(Point3{0, 0, 0});
+                cam.direction = normalize(place({0, 0, 1}));  // glTF's -z, mirrored
+                cam.up = normalize(place({0, 1, 0}));
+                cam.yfov_degrees = float(c.perspective.yfov * 180 / std::numbers::pi);
+                camera = cam;
+            }
+        }
+        if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end() && it->second.Has("light")) {
+            const int li = it->second.Get("light").GetNumberAsInt();
+            if (li >= 0 && li < static_cast<int>(model.lights.size())) {
+                const tinygltf::Light& l = model.lights[li];
+                Color c{1};
+                if (l.color.size() == 3) c = Color{float(l.color[0]), float(l.color[1]), float(l.color[2])};
+                c = c * float(l.intensity);
+                const Point3 p = g.apply(Point3{0, 0, 0});
+                const Vector3 d = normalize(place({0, 0, 1}));  // lights shine along glTF's -z
+                if (l.type == "point") {
+                    out.lights.push_back(PointLight{p, c});
+                } else if (l.type == "spot") {
+                    const float outer = float(std::cos(l.spot.outerConeAngle));
+                    const float inner = std::max(float(std::cos(l.spot.innerConeAngle)), outer + 1e-4f);
+                    out.lights.push_back(SpotLight{p, d, c, inner, outer});
+                } else if (l.type == "directional") {
+                    out.lights.push_back(DirectionalLight{d, c});
+                }
+            }
+        }
+        for (int child : n.children) visit(child, world, depth + 1);
+    }
+};
+
+}  // namespace
+
+ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name) {
+    const std::string file = path.string();
+    if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
+                                  : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+    const auto trim = [](std::string s) {
+        while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+        return s;
+    };
+    if (!ok) throw IoError(fmt::format("{}: {}", file, err.empty() ? "cannot parse" : trim(err)));
+    Importer im{model, file, {}, {}, {}, {}};
+    im.camera_name = camera_name;
+    if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
+    for (const tinygltf::Material& m : model.materials) im.out.materials.push_back({m.name, im.material(m)});
+    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (model.scenes.empty()) {
+        for (std::size_t n = 0; n < model.nodes.size(); ++n) im.visit(static_cast<int>(n), Matrix34{}, 0);
+    } else {
+        if (scene >= static_cast<int>(model.scenes.size())) throw IoError(fmt::format("{}: scene {} does not exist", file, scene));
+        for (int n : model.scenes[scene].nodes) im.visit(n, Matrix34{}, 0);
+    }
+    if (!camera_name.empty() && !im.camera)
+        throw IoError(fmt::format("{}: no perspective camera named '{}'", file, camera_name));
+    im.out.camera = im.camera;
+    if (im.out.meshes.empty()) throw IoError(fmt::format("{}: no triangle meshes in the scene", file));
+    return std::move(im.out);
+}
+
+}  // namespace glint
