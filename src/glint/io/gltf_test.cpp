@@ -1,0 +1,199 @@
+// The glTF importer on the scene scripts/make_gltf_scene.py writes (values checked against the
+// script's numbers, worked out by hand), .gltf against .glb, and the failure modes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "glint/io/build.h"
+#include "glint/io/mesh_import.h"
+#include "glint/io/scene_yaml.h"
+#include "testing.h"
+
+namespace glint {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+class Gltf : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const std::string cmd = "python3 " + std::string(GLINT_SOURCE_DIR) + "/scripts/make_gltf_scene.py " +
+                                dir_.path().string() + " > /dev/null";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    }
+    std::string read(const std::string& name) {
+        std::ifstream in(dir_ / name, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name, std::ios::binary) << text; }
+    std::string error_of(const std::string& name) {
+        try {
+            import_gltf(dir_ / name);
+        } catch (const IoError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    }
+    testing::TempDir dir_;
+};
+
+const ImportedMaterial& named(const ImportedFile& f, const std::string& name) {
+    for (const auto& m : f.materials)
+        if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+}
+
+TEST_F(Gltf, MaterialsMapOntoPbrWithTheirTexturesAndExtensions) {
+    const ImportedFile f = import_gltf(dir_ / "textured.gltf");
+    ASSERT_EQ(f.materials.size(), 5u);
+    for (const auto& m : f.materials) EXPECT_EQ(m.desc.kind, MaterialDesc::Kind::kPbr) << m.name;
+    // tiles: base colour texture tiled 4 times by KHR_texture_transform, mirrored repeat. In
+    // glint's uv (v up): u' = 4u, v' = 1 - 4 (1 - v) = 4v - 3.
+    const MaterialDesc& tiles = named(f, "tiles").desc;
+    ASSERT_EQ(tiles.color.kind, TextureDesc::Kind::kImage);
+    EXPECT_EQ(tiles.color.uv_transform, (std::array<Float, 6>{4, 0, 0, 0, 4, -3}));
+    EXPECT_EQ(tiles.color.wrap, WrapMode::kMirror);
+    EXPECT_EQ(tiles.color.wrap_v, WrapMode::kMirror);
+    ASSERT_TRUE(tiles.color.pixels);
+    EXPECT_EQ(tiles.color.pixels->width, 64);
+    // Texel (0, 0) is (230, 200, 150) in sRGB: decoded to linear.
+    EXPECT_NEAR(tiles.color.pixels->texels[0].r, std::pow((230 / 255.0 + 0.055) / 1.055, 2.4), 1e-5);
+    EXPECT_FLOAT_EQ(tiles.roughness, 0.8f);
+    // brushed metal: factors, and the metallic-roughness map (linear, clamp in u, repeat in v).
+    const MaterialDesc& metal = named(f, "brushed metal").desc;
+    EXPECT_FLOAT_EQ(metal.metallic, 1);
+    ASSERT_TRUE(metal.metallic_roughness);
+    EXPECT_EQ(metal.metallic_roughness->wrap, WrapMode::kClamp);
+    EXPECT_EQ(metal.metallic_roughness->wrap_v, WrapMode::kRepeat);
+    EXPECT_NEAR(metal.metallic_roughness->pixels->texels[0].g, 38 / 255.0, 1e-6);  // not sRGB-decoded
+    EXPECT_FLOAT_EQ(metal.color.value.g, 0.8f);  // a factor alone is a constant
+    // glass: KHR_materials_transmission and KHR_materials_ior.
+    const MaterialDesc& glass = named(f, "glass").desc;
+    EXPECT_FLOAT_EQ(glass.transmission, 1);
+    EXPECT_FLOAT_EQ(glass.ior, 1.45f);
+    // lamp: emissive factor 1 times KHR_materials_emissive_strength 4, with its texture.
+    const MaterialDesc& lamp = named(f, "lamp").desc;
+    EXPECT_FLOAT_EQ(lamp.emission.radiance.g, 4);
+    EXPECT_TRUE(lamp.emission_map);
+    // bumpy: the normal map.
+    EXPECT_TRUE(named(f, "bumpy").desc.normal_map);
+    EXPECT_FALSE(named(f, "tiles").desc.normal_map);
+}
+
+TEST_F(Gltf, NodeHierarchyCameraAndLightArePlacedInGlintsFrame) {
+    const ImportedFile f = import_gltf(dir_ / "textured.gltf");
+    ASSERT_EQ(f.nodes.size(), 5u);
+    ASSERT_EQ(f.meshes.size(), 5u);
+    // The metal ball: (0.3, 0.5, 0) inside a group rotated 40 degrees about y and scaled 1.2,
+    // then z negated: R_y(40) (0.36, 0.6, 0) = (0.36 cos 40, 0.6, -0.36 sin 40) -> z flipped.
+    const double c = std::cos(40 * kPi / 180), s = std::sin(40 * kPi / 180);
+    int found = 0;
+    for (const ImportedNode& n : f.nodes) {
+        if (f.meshes[n.mesh].name != "metal ball") continue;
+        const Point3 p = n.transform.point({0, 0, 0});
+        EXPECT_NEAR(p.x, 0.36 * c, 1e-5);
+        EXPECT_NEAR(p.y, 0.6, 1e-5);
+        EXPECT_NEAR(p.z, 0.36 * s, 1e-5);
+        // The uniform scale 1.2 is kept: a unit vector comes out 1.2 long.
+        EXPECT_NEAR(length(n.transform.vector({1, 0, 0})), 1.2, 1e-5);
+        ++found;
+    }
+    EXPECT_EQ(found, 1);
+    // The camera at (0, 2.2, -6) turned 180 degrees about y and pitched 12 degrees down: it looks
+    // along (0, -sin 12, cos 12) in glTF, (0, -sin 12, -cos 12) in glint.
+    ASSERT_TRUE(f.camera);
+    EXPECT_EQ(f.camera->name, "main");
+    EXPECT_NEAR(f.camera->position.z, 6, 1e-5);
+    EXPECT_NEAR(f.camera->direction.y, -std::sin(12 * kPi / 180), 1e-4);
+    EXPECT_NEAR(f.camera->direction.z, -std::cos(12 * kPi / 180), 1e-4);
+    EXPECT_NEAR(f.camera->yfov_degrees, 0.7 * 180 / kPi, 1e-4);
+    // The spot light, a child of the camera: intensity 40 times its colour, cone cosines.
+    ASSERT_EQ(f.lights.size(), 1u);
+    const auto* spot = std::get_if<SpotLight>(&f.lights[0]);
+    ASSERT_TRUE(spot);
+    EXPECT_NEAR(spot->intensity.r, 40, 1e-4);
+    EXPECT_NEAR(spot->cos_outer, std::cos(0.6), 1e-6);
+    EXPECT_NEAR(spot->cos_inner, std::cos(0.3), 1e-6);
+}
+
+TEST_F(Gltf, BinaryGlbReadsAsTheTextFile) {
+    const ImportedFile a = import_gltf(dir_ / "textured.gltf");
+    const ImportedFile b = import_gltf(dir_ / "textured.glb");
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+        EXPECT_EQ(a.meshes[i].positions.size(), b.meshes[i].positions.size());
+        EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices);
+        EXPECT_EQ(a.meshes[i].uvs.size(), b.meshes[i].uvs.size());
+    }
+    EXPECT_EQ(named(a, "tiles").desc.color.pixels->texels, named(b, "tiles").desc.color.pixels->texels);
+}
+
+TEST_F(Gltf, BadFilesAreErrorsNamingTheFile) {
+    const std::string file = (dir_ / "x.gltf").string();
+    EXPECT_EQ(error_of("x.gltf"), file + ": cannot open: no such file");
+    write("x.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");  // truncated JSON
+    EXPECT_EQ(error_of("x.gltf").rfind(file + ": ", 0), 0u) << error_of("x.gltf");
+    // An accessor reaching past its buffer.
+    std::string text = read("textured.gltf");
+    const auto at = text.find("\"count\": 4");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 10, "\"count\": 400000");
+    write("x.gltf", text);
+    EXPECT_NE(error_of("x.gltf").find("reaches past the end of its buffer"), std::string::npos) << error_of("x.gltf");
+    // A missing texture file.
+    std::filesystem::remove(dir_ / "checker.png");
+    const std::string missing = error_of("textured.gltf");
+    EXPECT_NE(missing.find("checker.png"), std::string::npos) << missing;
+    // No camera of that name.
+    EXPECT_NE(std::string([&] {
+                  try {
+                      import_gltf(dir_ / "textured.glb", "side");
+                  } catch (const IoError& e) {
+                      return std::string(e.what());
+                  }
+                  return std::string();
+              }()).find("no perspective camera named 'side'"),
+              std::string::npos);
+}
+
+TEST_F(Gltf, TexturedEmissionIsTheSameSampledAsSeen) {
+    // The lamp's emission is textured: what light sampling returns at a point of the panel must
+    // equal what a ray that hits the same point sees (two independent routes to the texture).
+    write("scene.yaml", "integrator: {type: path}\nobjects:\n  - {type: mesh, file: textured.glb}\n");
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(load_scene_file((dir_ / "scene.yaml").string(), sources), {}, sources);
+    const Scene& s = job.scene;
+    const LightSampler& ls = s.light_sampler();
+    const Point3 p{0, 1.0f, -1.0f};  // in front of the panel (its lit face is at z = -1.975)
+    int compared = 0, bright = 0, dark = 0;
+    for (std::uint32_t l = 0; l < ls.count(); ++l) {
+        const auto* area = std::get_if<AreaLight>(&ls.light(l));
+        if (!area) continue;
+        for (int k = 0; k < 64; ++k) {
+            const Sample2 u{(k % 8 + 0.5f) / 8, (k / 8 + 0.5f) / 8};
+            const auto sample = ls.sample_li(s, l, p, u);
+            if (!sample) continue;
+            const Ray r{p, sample->wi};
+            const auto hit = s.intersect(r);
+            if (!hit || std::abs(hit->t - sample->distance) > 1e-3f * sample->distance) continue;  // blocked
+            const SurfaceInteraction si = s.interaction(r, *hit);
+            const Color seen = s.emitted(si, -sample->wi);
+            EXPECT_NEAR(seen.r, sample->L.r, 1e-3f * (1 + seen.r));
+            EXPECT_NEAR(seen.g, sample->L.g, 1e-3f * (1 + seen.g));
+            ++compared;
+            (seen.r > 2 ? bright : dark)++;
+        }
+    }
+    EXPECT_GT(compared, 100);
+    EXPECT_GT(bright, 10);  // both squares of the emissive checker were met
+    EXPECT_GT(dark, 10);
+}
+
+}  // namespace
+}  // namespace glint
