@@ -232,6 +232,38 @@ TEST(Bvh, InstanceNormalsTransformByTheInverseTranspose) {
     EXPECT_NEAR(si.p.x / 2 + si.p.z, 0, 1e-5f);
 }
 
+TEST(Mesh, NormalMapsTiltTheShadingNormalInTheUvFrame) {
+    // A square in z = 0 facing -z (toward the ray), u along +x and v along +y; a constant
+    // normal-map texel (0.5 + 0.5 sin a, 0.5, 0.5 + 0.5 cos a) tilts the normal by a toward the
+    // tangent +x: n' = sin a (+x) + cos a n. The bitangent is n x t; mirrored uvs (u along -x)
+    // flip the tangent.
+    for (const bool mirrored_u : {false, true}) {
+        TriangleMesh m;
+        m.positions = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+        m.indices = {0, 1, 2, 0, 2, 3};  // (p1 - p0) x (p2 - p0) = -z
+        m.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+        if (mirrored_u)
+            for (Point2& uv : m.uvs) uv.x = 1 - uv.x;
+        Scene s;
+        s.materials.push_back(DiffuseMaterial{0});
+        const float a = 0.3f;
+        s.textures.push_back(ConstantTexture{Color{0.5f + 0.5f * std::sin(a), 0.5f, 0.5f + 0.5f * std::cos(a)}});
+        s.normal_maps = {NormalMap{0, 1}};
+        s.meshes.push_back(m);
+        s.instances.push_back({0, Transform{}});
+        s.commit();
+        const Ray r{{0.3f, 0.6f, -2}, {0, 0, 1}};
+        const auto hit = s.intersect(r);
+        ASSERT_TRUE(hit);
+        const SurfaceInteraction si = s.interaction(r, *hit);
+        EXPECT_NEAR(si.n.z, -1, 1e-6f);
+        const float tx = mirrored_u ? -1.0f : 1.0f;
+        EXPECT_NEAR(si.ns.x, tx * std::sin(a), 1e-4f) << mirrored_u;
+        EXPECT_NEAR(si.ns.y, 0, 1e-4f);
+        EXPECT_NEAR(si.ns.z, -std::cos(a), 1e-4f);
+    }
+}
+
 TEST(Bvh, InstancesShareTheirMeshAndItsTree) {
     auto g = rng(9);
     Scene s;

@@ -232,6 +232,26 @@ TEST(Obj, MissingFilesAndBadFacesAreErrorsNamingThem) {
     EXPECT_EQ(error_of([&] { import_obj(dir / "d.obj"); }), (dir / "d.obj").string() + ": no faces");
 }
 
+TEST(Obj, NormMapsBecomeNormalMapsAndHeightBumpsANote) {
+    testing::TempDir dir;
+    std::filesystem::copy_file(std::filesystem::path(GLINT_SOURCE_DIR) / "scenes/textures/uv-grid.png", dir / "n.png");
+    write(dir / "m.mtl", "newmtl a\nKd 1 1 1\nnorm n.png\nnewmtl b\nKd 1 1 1\nmap_Bump n.png\n"
+                         "newmtl c\nKd 1 1 1\nmap_Bump -bm 0.5 n.png\n");
+    write(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    const ImportedFile f = import_obj(dir / "m.obj");
+    ASSERT_EQ(f.materials.size(), 3u);
+    ASSERT_TRUE(f.materials[0].desc.normal_map);
+    EXPECT_EQ(f.materials[0].desc.normal_map->encoding, ImageEncoding::kLinear);
+    EXPECT_FALSE(f.materials[1].desc.normal_map);  // a height map: not applied, and said
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("bump (height) map 'n.png' is not applied"), std::string::npos) << f.notes[0];
+    ASSERT_TRUE(f.materials[2].desc.normal_map);  // -bm marks a normal map exported as map_Bump
+    EXPECT_FLOAT_EQ(f.materials[2].desc.normal_scale, 0.5f);
+    write(dir / "m.mtl", "newmtl a\nnorm gone.png\n");
+    const std::string e = error_of([&] { import_obj(dir / "m.obj"); });
+    EXPECT_NE(e.find("normal map 'gone.png' not found"), std::string::npos) << e;
+}
+
 TEST(MeshFiles, TheBunnyReadsTheSameFromPlyAndObj) {
     const std::filesystem::path models = GLINT_TEST_MODEL_DIR;
     if (!std::filesystem::exists(models / "stanford-bunny.ply")) GTEST_SKIP() << "no " << models;

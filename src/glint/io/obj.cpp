@@ -8,8 +8,9 @@
 //                                Phong exponent Ns as (2 / (Ns + 2))^(1/4) (so alpha = r^2 is the
 //                                Beckmann-equivalent sqrt(2 / (Ns + 2)))
 //   otherwise                    diffuse Kd (or map_Kd)
-// A map_Kd that does not exist is an error naming the material and the file; map_Bump / norm
-// (normal maps) are not applied yet, and say so in the notes.
+// A map_Kd or normal map that does not exist is an error naming the material and the file.
+// `norm` is a tangent-space normal map, and so is a map_Bump with -bm or "normal" in its name;
+// other map_Bump height maps are not applied (a note says so).
 #include <tiny_obj_loader.h>
 
 #include <cmath>
@@ -54,8 +55,28 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
         d.kind = MaterialDesc::Kind::kDiffuse;
     }
     if (ke.max_component() > 0) d.emission = Emission{ke, false};
-    if (!m.bump_texname.empty() || !m.normal_texname.empty())
-        out.notes.push_back(fmt::format("{}: material '{}': normal/bump maps are not applied yet", file, m.name));
+    // `norm` (and `map_Bump` with -bm or a name containing "normal", the common export of
+    // normal maps under the bump keyword): a tangent-space normal map. A height bump map proper
+    // is not applied; the notes say so.
+    const bool bump_is_normal = !m.bump_texname.empty() &&
+                                (m.bump_texopt.bump_multiplier != 1 || m.bump_texname.find("normal") != std::string::npos ||
+                                 m.bump_texname.find("Normal") != std::string::npos);
+    const std::string normal_name = !m.normal_texname.empty() ? m.normal_texname : bump_is_normal ? m.bump_texname : "";
+    if (!normal_name.empty()) {
+        const std::filesystem::path tex = dir / normal_name;
+        if (!std::filesystem::exists(tex))
+            throw IoError(fmt::format("{}: material '{}': normal map '{}' not found (looked for {})", file, m.name,
+                                      normal_name, tex.string()));
+        TextureDesc n;
+        n.kind = TextureDesc::Kind::kImage;
+        n.filename.value = tex.string();
+        n.encoding = ImageEncoding::kLinear;
+        d.normal_map = n;
+        d.normal_scale = m.normal_texname.empty() ? m.bump_texopt.bump_multiplier : m.normal_texopt.bump_multiplier;
+    } else if (!m.bump_texname.empty()) {
+        out.notes.push_back(fmt::format("{}: material '{}': bump (height) map '{}' is not applied", file, m.name,
+                                        m.bump_texname));
+    }
     return d;
 }
 
