@@ -24,3 +24,12 @@ done
 # The Cornell box at 1024 spp (a few minutes on 2 cores).
 "$glint" render scenes/cornell-box.yaml --spp 1024 -q -o docs/images/cornell-box.png
 echo docs/images/cornell-box.png
+# The bunny in the Cornell box (the bunny comes from ../shared/models; see docs/scene-format.md).
+"$glint" render scenes/bunny.yaml --spp 256 -q -o docs/images/bunny.png
+echo docs/images/bunny.png
+# The glTF test scene, written by scripts/make_gltf_scene.py (not committed), with its own camera.
+gltf_dir=$(mktemp -d)
+python3 scripts/make_gltf_scene.py "$gltf_dir" > /dev/null
+"$glint" render "$gltf_dir/textured.glb" --spp 256 --width 480 --height 320 -q -o docs/images/gltf-textured.png
+rm -rf "$gltf_dir"
+echo docs/images/gltf-textured.png

@@ -420,7 +420,7 @@ private:
             }
             if (const auto n = m.get("wrap")) {
                 if (auto w = choice<WrapMode>(
-                        *n, "wrap", {{"repeat", WrapMode::kRepeat}, {"clamp", WrapMode::kClamp}}))
+                        *n, "wrap", {{"repeat", WrapMode::kRepeat}, {"clamp", WrapMode::kClamp}, {"mirror", WrapMode::kMirror}}))
                     t.wrap = *w;
             }
             assign(m.get("size"), t.size, positive("size"));
