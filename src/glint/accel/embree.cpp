@@ -26,22 +26,11 @@ struct UserShapes {
     ShapeKind kind;
 };
 
+// Spheres and disks: the box of the ball (a disk lies in its ball).
 template <typename Shape>
-void shape_bounds(const RTCBoundsFunctionArguments* args);
-
-template <>
-void shape_bounds<Sphere>(const RTCBoundsFunctionArguments* args) {
-    const auto* u = static_cast<const UserShapes<Sphere>*>(args->geometryUserPtr);
-    const Sphere& s = (*u->shapes)[args->primID];
-    RTCBounds* b = args->bounds_o;
-    b->lower_x = s.center.x - s.radius, b->lower_y = s.center.y - s.radius, b->lower_z = s.center.z - s.radius;
-    b->upper_x = s.center.x + s.radius, b->upper_y = s.center.y + s.radius, b->upper_z = s.center.z + s.radius;
-}
-
-template <>
-void shape_bounds<Disk>(const RTCBoundsFunctionArguments* args) {
-    const auto* u = static_cast<const UserShapes<Disk>*>(args->geometryUserPtr);
-    const Disk& s = (*u->shapes)[args->primID];
+void shape_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
+    const Shape& s = (*u->shapes)[args->primID];
     RTCBounds* b = args->bounds_o;
     b->lower_x = s.center.x - s.radius, b->lower_y = s.center.y - s.radius, b->lower_z = s.center.z - s.radius;
     b->upper_x = s.center.x + s.radius, b->upper_y = s.center.y + s.radius, b->upper_z = s.center.z + s.radius;
