@@ -202,3 +202,38 @@ TEST_F(Cli, KilledRenderLeavesTheExistingImageUntouched) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
+    const std::string make = "python3 " + std::string(GLINT_SOURCE_DIR) + "/scripts/make_gltf_scene.py '" +
+                             dir_.path().string() + "' > /dev/null";
+    ASSERT_EQ(std::system(make.c_str()), 0);
+    // A glTF file with its own camera, rendered directly.
+    Result r = run("render textured.glb --spp 1 --width 48 --height 32 -o direct.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "direct.png"));
+    EXPECT_NE(r.err.find("note: textured.glb: dropped 184 degenerate triangles"), std::string::npos) << r.err;
+    // A camera chosen by a name the file does not have: an error, no image.
+    r = run("render textured.glb --camera side -o side.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("no perspective camera named 'side'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "side.png"));
+    // info: the numbers of the generated scene (5 meshes of 4,634 triangles, 184 dropped).
+    r = run("info textured.gltf");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("triangles    4450 rendered, 4450 stored"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("meshes       5 (2502 vertices), 5 instances"), std::string::npos) << r.out;
+    // bench: one line per backend built in, with the same hit counts.
+    r = run("bench textured.glb --width 32 --height 24 --runs 1 --threads 1");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\nbvh "), std::string::npos) << r.out;
+#if GLINT_EMBREE
+    EXPECT_NE(r.out.find("\nembree "), std::string::npos) << r.out;
+#endif
+    r = run("render textured.glb --accel rtx");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--accel: unknown backend 'rtx' (known: bvh, embree)"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -31,6 +31,7 @@ struct RenderArgs {
     bool quiet = false;
     bool aovs = false;
     std::string accel;
+    std::string camera;
 };
 
 std::optional<glint::AccelKind> parse_accel(const std::string& name) {
@@ -48,7 +49,7 @@ bool is_mesh_file(const std::string& path) {
 
 // A mesh file rendered directly: the mesh under a sky, path traced, seen from the front
 // (-z side) and a little above, framed by its bounds; the camera is placed after loading.
-glint::SceneDescription mesh_file_scene(const std::string& path) {
+glint::SceneDescription mesh_file_scene(const std::string& path, const std::string& camera) {
     glint::SceneDescription d;
     d.path = path;
     d.integrator.kind = glint::IntegratorKind::kPath;
@@ -59,7 +60,8 @@ glint::SceneDescription mesh_file_scene(const std::string& path) {
     glint::ObjectDesc o;
     glint::MeshFileDesc f;
     f.file.value = std::filesystem::path(path).filename().string();
-    f.file.loc = {path, 0, 0};
+    f.file.loc = {"<command line>", 0, 0};
+    f.camera = camera;
     o.shape = f;
     o.material_given = false;
     d.objects.push_back(o);
@@ -83,7 +85,7 @@ glint::RenderJob load_job(const RenderArgs& args) {
     const bool mesh = !args.scene.empty() && is_mesh_file(args.scene);
     const glint::SceneDescription description =
         args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
-        : mesh             ? mesh_file_scene(args.scene)
+        : mesh             ? mesh_file_scene(args.scene, args.camera)
                            : glint::load_scene_file(args.scene, sources);
     glint::Overrides overrides{args.width,  args.height, args.spp, args.max_depth,
                                args.threads, args.seed,   args.aovs};
@@ -98,6 +100,8 @@ glint::RenderJob load_job(const RenderArgs& args) {
             frame_bounds(job);
         }
     }
+    if (!args.camera.empty() && !mesh)
+        throw glint::IoError("--camera chooses a camera of a glTF file rendered directly; a scene file has its own");
     if (!args.quiet)
         for (const std::string& n : job.notes) fmt::print(stderr, "glint: note: {}\n", n);
     return job;
@@ -227,6 +231,9 @@ int main(int argc, char** argv) {
     render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
     const char* accel_help = "Acceleration structure: bvh (glint's own) or embree (Embree 3, when built in)";
     render->add_option("--accel", args.accel, accel_help);
+    render->add_option("--camera", args.camera,
+                       "For a .gltf/.glb rendered directly: the camera to look through, by name "
+                       "(default: the first one)");
 
     CLI::App* info = app.add_subcommand(
         "info", "Print a scene's statistics: triangles, instances, bounds, memory");

@@ -368,7 +368,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             if (it == loaded.end()) {
                 ImportedFile f;
                 try {
-                    f = import_mesh_file(path);
+                    f = mesh_file->camera.empty() ? import_mesh_file(path) : import_gltf(path, mesh_file->camera);
                 } catch (const IoError& e) {
                     diagnostics.error(mesh_file->file.loc, e.what());
                     continue;

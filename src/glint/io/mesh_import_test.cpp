@@ -224,9 +224,12 @@ TEST(Obj, MissingFilesAndBadFacesAreErrorsNamingThem) {
     const std::string missing_texture = error_of([&] { import_obj(dir / "b.obj"); });
     EXPECT_NE(missing_texture.find("material 'wood'"), std::string::npos) << missing_texture;
     EXPECT_NE(missing_texture.find("planks.png"), std::string::npos) << missing_texture;
-    write(dir / "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    const std::string bad_face = error_of([&] { import_obj(dir / "c.obj"); });
-    EXPECT_EQ(bad_face.rfind((dir / "c.obj").string(), 0), 0u) << bad_face;
+    write(dir / "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\n\nf 1 3 2\nf 1 2 9\n");
+    EXPECT_EQ(error_of([&] { import_obj(dir / "c.obj"); }),
+              (dir / "c.obj").string() + ":9: a face uses vertex 9, but there are 3 vertices");
+    write(dir / "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");
+    EXPECT_EQ(error_of([&] { import_obj(dir / "c.obj"); }),
+              (dir / "c.obj").string() + ":5: normal index 4 out of range (1 normals)");
     EXPECT_EQ(error_of([&] { import_obj(dir / "none.obj"); }), (dir / "none.obj").string() + ": cannot open: no such file");
     write(dir / "d.obj", "# nothing\n");
     EXPECT_EQ(error_of([&] { import_obj(dir / "d.obj"); }), (dir / "d.obj").string() + ": no faces");

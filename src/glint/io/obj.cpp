@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
 #include <map>
 #include <tuple>
 
@@ -104,6 +105,24 @@ ImportedFile import_obj(const std::filesystem::path& path) {
             throw IoError(fmt::format("{}: {}", file, w));
         out.notes.push_back(fmt::format("{}: {}", file, w));
     }
+    // The line of every face, in file order (tinyobjloader keeps faces in that order across its
+    // shapes), so that a bad face is reported at its line.
+    std::vector<int> face_line;
+    {
+        std::ifstream in(path);
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            const std::size_t at = line.find_first_not_of(" \t");
+            if (at != std::string::npos && line[at] == 'f' && at + 1 < line.size() &&
+                (line[at + 1] == ' ' || line[at + 1] == '\t'))
+                face_line.push_back(n);
+        }
+    }
+    std::size_t face_base = 0;
+    const auto where = [&](std::size_t face) {
+        const std::size_t k = face_base + face;
+        return k < face_line.size() ? fmt::format("{}:{}", file, face_line[k]) : file;
+    };
     const tinyobj::attrib_t& a = reader.GetAttrib();
     for (const tinyobj::material_t& m : reader.GetMaterials())
         out.materials.push_back({m.name, map_material(m, path.parent_path(), file, out)});
@@ -119,28 +138,32 @@ ImportedFile import_obj(const std::filesystem::path& path) {
                          std::all_of(sm.indices.begin(), sm.indices.end(), [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
         std::map<std::tuple<int, int, int>, std::uint32_t> weld;
         std::vector<std::uint32_t> counts, polygon, face_of;
+        std::size_t face = 0, left_in_face = sm.num_face_vertices[0];
         for (const tinyobj::index_t& i : sm.indices) {
+            while (left_in_face == 0 && face + 1 < sm.num_face_vertices.size()) left_in_face = sm.num_face_vertices[++face];
+            --left_in_face;
             const auto key = std::make_tuple(i.vertex_index, normals ? i.normal_index : -1, uvs ? i.texcoord_index : -1);
             auto [it, fresh] = weld.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
             if (fresh) {
                 const std::size_t v = static_cast<std::size_t>(i.vertex_index);
                 if (i.vertex_index < 0 || 3 * v + 2 >= a.vertices.size())
-                    throw IoError(fmt::format("{}: a face of '{}' uses vertex {} of {}", file, shape.name,
+                    throw IoError(fmt::format("{}: a face uses vertex {}, but there are {} vertices", where(face),
                                               i.vertex_index + 1, a.vertices.size() / 3));
                 mesh.positions.push_back({a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]});
                 if (normals) {
                     const std::size_t n = static_cast<std::size_t>(i.normal_index);
-                    if (3 * n + 2 >= a.normals.size()) throw IoError(fmt::format("{}: normal index {} out of range", file, n + 1));
+                    if (3 * n + 2 >= a.normals.size()) throw IoError(fmt::format("{}: normal index {} out of range ({} normals)", where(face), n + 1, a.normals.size() / 3));
                     mesh.normals.push_back(Normal3{a.normals[3 * n], a.normals[3 * n + 1], a.normals[3 * n + 2]});
                 }
                 if (uvs) {
                     const std::size_t t = static_cast<std::size_t>(i.texcoord_index);
-                    if (2 * t + 1 >= a.texcoords.size()) throw IoError(fmt::format("{}: texture coordinate index {} out of range", file, t + 1));
+                    if (2 * t + 1 >= a.texcoords.size()) throw IoError(fmt::format("{}: texture coordinate index {} out of range ({} given)", where(face), t + 1, a.texcoords.size() / 2));
                     mesh.uvs.push_back({a.texcoords[2 * t], a.texcoords[2 * t + 1]});
                 }
             }
             polygon.push_back(it->second);
         }
+        face_base += sm.num_face_vertices.size();
         for (unsigned char c : sm.num_face_vertices) counts.push_back(c);
         triangulate_fans(counts, polygon, mesh.indices, &face_of);
         bool any_material = false;

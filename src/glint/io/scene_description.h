@@ -141,6 +141,7 @@ struct MaterialRef {
 /// A mesh file (OBJ, PLY, glTF) to load at build time; relative to the scene file.
 struct MeshFileDesc {
     Located<std::string> file;
+    std::string camera;  ///< glTF: the camera to report (`glint render model.glb --camera NAME`)
 };
 
 struct ObjectDesc {
