@@ -352,32 +352,32 @@ void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     const NormalMap& map = *normal_maps[si.material];
     const std::uint32_t i0 = m.indices[3 * si.prim], i1 = m.indices[3 * si.prim + 1], i2 = m.indices[3 * si.prim + 2];
     const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
-    // The tangent (direction of +u) and the bitangent's handedness: the mesh's, or from the
-    // triangle's uv gradient (dp/du, and the sign of the uv area).
-    Vector3 t;
-    Float sign = 1;
+    // The tangent (direction of +u): the mesh's smoothed tangents if it has them, else the
+    // triangle's dp/du. The bitangent is n x t, turned to point along +v: its handedness comes
+    // from the triangle's uv orientation in glint's own uv convention (v up), which is
+    // unambiguous, rather than from a file's tangent w (whose meaning depends on the file's
+    // frame and uv conventions).
+    const Vector3 e1 = m.positions[i1] - m.positions[i0], e2 = m.positions[i2] - m.positions[i0];
+    const Point2 u0 = m.uvs[i0], u1 = m.uvs[i1], u2 = m.uvs[i2];
+    const Float du1 = u1.x - u0.x, dv1 = u1.y - u0.y, du2 = u2.x - u0.x, dv2 = u2.y - u0.y;
+    const Float det = du1 * dv2 - dv1 * du2;
+    if (!(std::abs(det) > 0)) return;
+    const Vector3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
+    Vector3 t = inst.transform.vector(dpdu);
     if (!m.tangents.empty()) {
         const auto& a = m.tangents[i0];
         const auto& b = m.tangents[i1];
         const auto& c = m.tangents[i2];
         t = inst.transform.vector(Vector3{b0 * a[0] + b1 * b[0] + b2 * c[0], b0 * a[1] + b1 * b[1] + b2 * c[1],
                                           b0 * a[2] + b1 * b[2] + b2 * c[2]});
-        sign = a[3] < 0 ? -1 : 1;
-    } else {
-        const Vector3 e1 = m.positions[i1] - m.positions[i0], e2 = m.positions[i2] - m.positions[i0];
-        const Point2 u0 = m.uvs[i0], u1 = m.uvs[i1], u2 = m.uvs[i2];
-        const Float du1 = u1.x - u0.x, dv1 = u1.y - u0.y, du2 = u2.x - u0.x, dv2 = u2.y - u0.y;
-        const Float det = du1 * dv2 - dv1 * du2;
-        if (!(std::abs(det) > 0)) return;
-        t = inst.transform.vector((e1 * dv2 - e2 * dv1) / det);
-        sign = det < 0 ? -1 : 1;
     }
     const Vector3 n = to_vector(si.ns);
     t = t - n * dot(n, t);  // Gram-Schmidt against the shading normal
     const Float len = length(t);
     if (!(len > 0) || !std::isfinite(len)) return;
     t = t / len;
-    const Vector3 b = cross(n, t) * sign;
+    Vector3 b = cross(n, t);
+    if (dot(b, inst.transform.vector(dpdv)) < 0) b = -b;
     const Color c = texture(map.texture, si);
     const Vector3 local{(2 * c.r - 1) * map.scale, (2 * c.g - 1) * map.scale, 2 * c.b - 1};
     const Vector3 bent = t * local.x + b * local.y + n * local.z;

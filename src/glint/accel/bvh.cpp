@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 namespace glint {
 
@@ -214,6 +215,9 @@ void Bvh4::build(std::span<const Bounds3> bounds, const BvhBuildOptions& options
         if (finite_box(bounds[i])) order_.push_back(i);
     skipped_ = bounds.size() - order_.size();
     if (order_.empty()) return;
+    // Leaves address primitives with 27 bits (Bvh4Node::make_leaf).
+    if (order_.size() >= (std::size_t(1) << (32 - 1 - Bvh4Node::kCountBits)) - 16)
+        throw std::length_error("too many primitives for one BVH (at most 134 million)");
     nodes_.resize(order_.size());  // a 4-wide tree over n leaves-worth of primitives has < n nodes
     Builder builder(bounds, options, order_, nodes_);
     const Range root = builder.root_range(static_cast<std::uint32_t>(order_.size()));

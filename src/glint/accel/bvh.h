@@ -71,7 +71,8 @@ struct BvhRay {
 class Bvh4 {
 public:
     /// Builds over `bounds` (one box per primitive, ids 0..n-1). Primitives with empty or
-    /// non-finite boxes are left out; `skipped()` counts them.
+    /// non-finite boxes are left out; `skipped()` counts them. Throws std::length_error past
+    /// 2^27 - 16 primitives (what a leaf reference can address).
     void build(std::span<const Bounds3> bounds, const BvhBuildOptions& options = {});
 
     /// Primitive ids in leaf order: leaf (first, count) holds order()[first .. first + count).

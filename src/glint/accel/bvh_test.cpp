@@ -235,20 +235,25 @@ TEST(Bvh, InstanceNormalsTransformByTheInverseTranspose) {
 TEST(Mesh, NormalMapsTiltTheShadingNormalInTheUvFrame) {
     // A square in z = 0 facing -z (toward the ray), u along +x and v along +y; a constant
     // normal-map texel (0.5 + 0.5 sin a, 0.5, 0.5 + 0.5 cos a) tilts the normal by a toward the
-    // tangent +x: n' = sin a (+x) + cos a n. The bitangent is n x t; mirrored uvs (u along -x)
-    // flip the tangent.
-    for (const bool mirrored_u : {false, true}) {
+    // tangent +x: n' = sin a (+x) + cos a n. Green tilts it toward +v (+y) alike. Mirrored uvs
+    // flip the tangent or the bitangent.
+    for (const int mirror : {0, 1, 2}) {  // none, u, v
+        const bool mirrored_u = mirror == 1, mirrored_v = mirror == 2;
         TriangleMesh m;
         m.positions = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
         m.indices = {0, 1, 2, 0, 2, 3};  // (p1 - p0) x (p2 - p0) = -z
         m.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-        if (mirrored_u)
-            for (Point2& uv : m.uvs) uv.x = 1 - uv.x;
+        for (Point2& uv : m.uvs) {
+            if (mirrored_u) uv.x = 1 - uv.x;
+            if (mirrored_v) uv.y = 1 - uv.y;
+        }
         Scene s;
         s.materials.push_back(DiffuseMaterial{0});
         const float a = 0.3f;
         s.textures.push_back(ConstantTexture{Color{0.5f + 0.5f * std::sin(a), 0.5f, 0.5f + 0.5f * std::cos(a)}});
-        s.normal_maps = {NormalMap{0, 1}};
+        s.textures.push_back(ConstantTexture{Color{0.5f, 0.5f + 0.5f * std::sin(a), 0.5f + 0.5f * std::cos(a)}});
+        s.materials.push_back(DiffuseMaterial{0});
+        s.normal_maps = {NormalMap{0, 1}, NormalMap{1, 1}};
         s.meshes.push_back(m);
         s.instances.push_back({0, Transform{}});
         s.commit();
@@ -258,9 +263,18 @@ TEST(Mesh, NormalMapsTiltTheShadingNormalInTheUvFrame) {
         const SurfaceInteraction si = s.interaction(r, *hit);
         EXPECT_NEAR(si.n.z, -1, 1e-6f);
         const float tx = mirrored_u ? -1.0f : 1.0f;
-        EXPECT_NEAR(si.ns.x, tx * std::sin(a), 1e-4f) << mirrored_u;
+        EXPECT_NEAR(si.ns.x, tx * std::sin(a), 1e-4f) << mirror;
         EXPECT_NEAR(si.ns.y, 0, 1e-4f);
         EXPECT_NEAR(si.ns.z, -std::cos(a), 1e-4f);
+        // The green map on the same square (material 1): toward +v.
+        Scene& ms = s;
+        ms.instances[0].material = 1;
+        ms.commit();
+        const SurfaceInteraction sg = ms.interaction(r, *ms.intersect(r));
+        const float ty = mirrored_v ? -1.0f : 1.0f;
+        EXPECT_NEAR(sg.ns.x, 0, 1e-4f) << mirror;
+        EXPECT_NEAR(sg.ns.y, ty * std::sin(a), 1e-4f) << mirror;
+        EXPECT_NEAR(sg.ns.z, -std::cos(a), 1e-4f);
     }
 }
 

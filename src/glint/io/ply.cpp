@@ -189,13 +189,18 @@ private:
     // --- values ---
     double value(PlyType t) {
         if (format_ == Format::kAscii) return ascii_value(t);
-        const int n = type_size(t);
+        const int n = std::min(type_size(t), 8);
         if (b_.size() - pos_ < static_cast<std::size_t>(n)) fail_body("unexpected end of file");
-        unsigned char raw[8];
+        unsigned char raw[8] = {};
         std::memcpy(raw, b_.data() + pos_, n);
         pos_ += n;
         const bool swap = (format_ == Format::kBig) == (std::endian::native == std::endian::little);
-        if (swap) std::reverse(raw, raw + n);
+        if (swap)
+            for (int i = 0, j = n - 1; i < j; ++i, --j) {
+                const unsigned char x = raw[i];
+                raw[i] = raw[j];
+                raw[j] = x;
+            }
         switch (t) {
             case PlyType::kInt8: { std::int8_t v; std::memcpy(&v, raw, 1); return v; }
             case PlyType::kUInt8: return raw[0];
