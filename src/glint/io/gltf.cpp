@@ -225,7 +225,7 @@ struct Importer {
             d.transmission = float(number(it->second, "transmissionFactor", 0));
         if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
         if (emissive.max_component() > 0) {
-            d.emission = Emission{emissive, m.doubleSided};
+            d.emission = Emission{emissive, m.doubleSided, std::nullopt};
             if (m.emissiveTexture.index >= 0)
                 d.emission_map = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord,
                                          m.emissiveTexture.extensions, true, "emissiveTexture");
@@ -416,8 +416,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         return s;
     };
     if (!ok) throw IoError(fmt::format("{}: {}", file, err.empty() ? "cannot parse" : trim(err)));
-    Importer im{model, file, {}, {}, {}, {}};
-    im.camera_name = camera_name;
+    Importer im{model, file, {}, {}, {}, {}, std::nullopt, camera_name};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
     for (const tinygltf::Material& m : model.materials) im.out.materials.push_back({m.name, im.material(m)});
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;

@@ -573,7 +573,7 @@ private:
                 MapReader m(r_, item, "sphere", {"type", "center", "radius", "material", "transform"});
                 assign(m.require("center"), s.center, point());
                 assign(m.require("radius"), s.radius, positive("radius"));
-                out.push_back({s, {}, {}});
+                out.push_back(object_of(s));
                 mat = m.get("material");
             } else if (*type == "plane") {
                 Plane p{{0, 0, 0}, {0, 1, 0}};
@@ -582,7 +582,7 @@ private:
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
                 p.normal = Normal3(normalize(n));
-                out.push_back({p, {}, {}});
+                out.push_back(object_of(p));
                 mat = m.get("material");
             } else if (*type == "quad") {
                 Point3 corner{0, 0, 0};
@@ -595,7 +595,7 @@ private:
                 if (edge2 && !(length(cross(e1, e2)) > 0)) {
                     r_.error(*edge2, "quad: edge1 and edge2 must not be parallel");
                 }
-                out.push_back({Quad::make(corner, e1, e2), {}, {}});
+                out.push_back(object_of(Quad::make(corner, e1, e2)));
                 mat = m.get("material");
             } else if (*type == "disk") {
                 Disk d{{0, 0, 0}, {0, 1, 0}, 1};
@@ -605,7 +605,7 @@ private:
                 assign(m.require("normal"), n, direction("normal"));
                 d.normal = Normal3(normalize(n));
                 assign(m.require("radius"), d.radius, positive("radius"));
-                out.push_back({d, {}, {}});
+                out.push_back(object_of(d));
                 mat = m.get("material");
             } else if (*type == "triangle" || *type == "polygon") {
                 // A triangle, or a convex polygon split into a fan of triangles around vertex 0.
@@ -631,7 +631,7 @@ private:
                                                                    "are collinear (zero area)", i, i + 1)
                                                      : "triangle: the vertices are collinear (zero area)");
                             }
-                            out.push_back({Triangle{a, b, c}, {}, {}});
+                            out.push_back(object_of(Triangle{a, b, c}));
                         }
                     }
                 }
@@ -643,7 +643,7 @@ private:
                     f.file.loc = r_.loc(*n);
                     assign(n, f.file.value, [this](const YAML::Node& v) { return r_.string(v); });
                 }
-                out.push_back({f, {}, {}});
+                out.push_back(object_of(f));
                 mat = m.get("material");
             } else {
                 Point3 lo{0, 0, 0}, hi{1, 1, 1};
@@ -654,7 +654,7 @@ private:
                 if (max_node && !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z)) {
                     r_.error(*max_node, "box: max must exceed min on every axis");
                 }
-                for (const Quad& q : box_faces(lo, hi)) out.push_back({q, {}, {}});
+                for (const Quad& q : box_faces(lo, hi)) out.push_back(object_of(q));
                 mat = m.get("material");
             }
             const MaterialRef ref = mat ? material_ref(*mat) : MaterialRef{MaterialDesc{}, r_.loc(item)};
@@ -782,6 +782,14 @@ private:
         }
         if (!ok) return std::nullopt;
         return total;
+    }
+
+    // An object of this shape; material, placement and location are filled in after.
+    template <typename Shape>
+    static ObjectDesc object_of(const Shape& shape) {
+        ObjectDesc o;
+        o.shape = shape;
+        return o;
     }
 
     // The six faces of an axis-aligned box as quads whose normals (edge1 x edge2) point outward.
