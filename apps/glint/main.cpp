@@ -87,8 +87,14 @@ glint::RenderJob load_job(const RenderArgs& args) {
         args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
         : mesh             ? mesh_file_scene(args.scene, args.camera)
                            : glint::load_scene_file(args.scene, sources);
-    glint::Overrides overrides{args.width,  args.height, args.spp, args.max_depth,
-                               args.threads, args.seed,   args.aovs};
+    glint::Overrides overrides;
+    overrides.width = args.width;
+    overrides.height = args.height;
+    overrides.spp = args.spp;
+    overrides.max_depth = args.max_depth;
+    overrides.threads = args.threads;
+    overrides.seed = args.seed;
+    overrides.aovs = args.aovs;
     overrides.accel = parse_accel(args.accel);
     glint::RenderJob job = glint::build(description, overrides, sources);
     if (mesh) {

@@ -58,12 +58,12 @@ Scene mixed_scene(AccelKind accel) {
     }
     s.meshes.push_back(random_soup(g, 2000));
     s.meshes.push_back(random_soup(g, 500));
-    s.instances.push_back({0, Transform{}});
+    s.instances.push_back({0, Transform{}, std::nullopt});
     s.instances.push_back({0, Transform::translate({3, 1, -2}) * Transform::rotate(40, {1, 2, 3}) *
-                                  Transform::scale({0.5f, 2, 1})});
-    s.instances.push_back({1, Transform::translate({-3, -2, 2}) * Transform::scale({-1, 1, 1})});
-    s.instances.push_back({1, Transform::rotate(-75, {0, 1, 0}) * Transform::translate({2, 2, 2})});
-    s.instances.push_back({0, Transform::translate({-2, 3, -3}) * Transform::scale({2, 2, 2})});
+                                  Transform::scale({0.5f, 2, 1}), std::nullopt});
+    s.instances.push_back({1, Transform::translate({-3, -2, 2}) * Transform::scale({-1, 1, 1}), std::nullopt});
+    s.instances.push_back({1, Transform::rotate(-75, {0, 1, 0}) * Transform::translate({2, 2, 2}), std::nullopt});
+    s.instances.push_back({0, Transform::translate({-2, 3, -3}) * Transform::scale({2, 2, 2}), std::nullopt});
     s.accel = accel;
     s.commit();
     return s;
@@ -176,7 +176,7 @@ TEST(Bvh, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
     s.textures.push_back(ConstantTexture{Color{0.5f}});
     s.meshes.push_back(m);
     const Transform place = Transform::rotate(33, {1, 0.5f, 0.2f}) * Transform::translate({-16, -16, 0});
-    s.instances.push_back({0, place});
+    s.instances.push_back({0, place, std::nullopt});
     s.commit();
     // Only targets inside the grid: past a border vertex or edge, a miss is correct.
     const auto on_border = [n](std::uint32_t v) {
@@ -216,7 +216,7 @@ TEST(Bvh, InstanceNormalsTransformByTheInverseTranspose) {
     s.materials.push_back(DiffuseMaterial{0});
     s.textures.push_back(ConstantTexture{Color{0.5f}});
     s.meshes.push_back(m);
-    s.instances.push_back({0, Transform::scale({2, 1, 1})});
+    s.instances.push_back({0, Transform::scale({2, 1, 1}), std::nullopt});
     s.commit();
     const Ray r{{5, 0, 5}, normalize(Vector3{-1, 0, -1})};
     const auto hit = s.intersect(r);
@@ -255,7 +255,7 @@ TEST(Mesh, NormalMapsTiltTheShadingNormalInTheUvFrame) {
         s.materials.push_back(DiffuseMaterial{0});
         s.normal_maps = {NormalMap{0, 1}, NormalMap{1, 1}};
         s.meshes.push_back(m);
-        s.instances.push_back({0, Transform{}});
+        s.instances.push_back({0, Transform{}, std::nullopt});
         s.commit();
         const Ray r{{0.3f, 0.6f, -2}, {0, 0, 1}};
         const auto hit = s.intersect(r);
@@ -284,10 +284,10 @@ TEST(Bvh, InstancesShareTheirMeshAndItsTree) {
     s.materials.push_back(DiffuseMaterial{0});
     s.textures.push_back(ConstantTexture{Color{0.5f}});
     s.meshes.push_back(random_soup(g, 10000));
-    s.instances.push_back({0, Transform{}});
+    s.instances.push_back({0, Transform{}, std::nullopt});
     s.commit();
     const std::size_t one = s.accel_memory_bytes();
-    for (int i = 1; i < 100; ++i) s.instances.push_back({0, Transform::translate({3.0f * i, 0, 0})});
+    for (int i = 1; i < 100; ++i) s.instances.push_back({0, Transform::translate({3.0f * i, 0, 0}), std::nullopt});
     s.commit();
     EXPECT_EQ(s.mesh_bvhs().size(), 1u);
     // 99 more instances cost their top-level share only (well under one mesh's tree each).

@@ -27,7 +27,7 @@ Scene light_scene(bool env_map) {
     s.materials.push_back(DiffuseMaterial{0});
     s.materials.push_back(DiffuseMaterial{0});
     s.textures.push_back(ConstantTexture{Color{0.5f}});
-    s.emission = {Emission{}, Emission{Color{2, 3, 4}, true}};  // two-sided: seen from p either way
+    s.emission = {Emission{}, Emission{Color{2, 3, 4}, true, std::nullopt}};  // two-sided: seen from p either way
     s.spheres.push_back({{0, 4, 1}, 1.5f, 1});
     s.quads.push_back(Quad::make({-1, -3, -1}, {2, 0, 0.5f}, {0, 0.3f, 2}, 1));
     s.disks.push_back({{3, 0, 0}, Normal3{-1, 0, 0}, 1.2f, 1});
@@ -39,7 +39,7 @@ Scene light_scene(bool env_map) {
     mesh.material = 1;
     s.meshes.push_back(mesh);
     s.instances.push_back({0, Transform::translate({1, -1, -3}) * Transform::rotate(30, {1, 1, 0}) *
-                                   Transform::scale({1, -1.5f, 1})});
+                                   Transform::scale({1, -1.5f, 1}), std::nullopt});
     DirectionalLight sun{normalize(Vector3{0.3f, -1, 0.2f}), Color{3}};
     const float s4 = std::sin(8 * kPi / 180 / 4);  // an 8-degree sun, large enough to histogram
     sun.one_minus_cos = 2 * s4 * s4;
@@ -107,7 +107,7 @@ TEST(LightSampler, IrradianceFromSphereAndDiskMatchesClosedForms) {
     Scene s;
     s.materials = {DiffuseMaterial{0}};
     s.textures = {ConstantTexture{Color{0}}};
-    s.emission = {Emission{Color{1}, false}};
+    s.emission = {Emission{Color{1}, false, std::nullopt}};
     s.spheres.push_back({{0, 3, 0}, 1, 0});
     s.disks.push_back({{0, -2, 0}, Normal3{0, 1, 0}, 1.5f, 0});
     s.background = ConstantBackground{Color{0}};
