@@ -63,7 +63,8 @@ TEST(MeshScene, TransformsPlaceInstancesThatShareOneMesh) {
     // The mirrored quad keeps its front side: normal still +z... as its own transform's inverse
     // transpose says (a mirror in x leaves z alone).
     EXPECT_GT(s.quads.at(0).normal().z, 0);
-    // A ray down -x at y = 0.5, z = 0.25 meets the transformed tetrahedron's face x' = 10 - ...
+    // A ray straight down (-y) at x = 9.75, z = 0.25 passes through the second instance (the
+    // tetrahedron scaled by 2 along x, turned onto y, moved to x = 10), and through nothing else.
     const Ray r{{10 - 0.25f, 5, 0.25f}, {0, -1, 0}};
     const auto hit = s.intersect(r);
     ASSERT_TRUE(hit);

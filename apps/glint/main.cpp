@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -41,11 +42,7 @@ std::optional<glint::AccelKind> parse_accel(const std::string& name) {
     throw glint::IoError(fmt::format("--accel: unknown backend '{}' (known: bvh, embree)", name));
 }
 
-bool is_mesh_file(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb";
-}
+bool is_mesh_file(const std::string& path) { return glint::mesh_format(path).has_value(); }
 
 // A mesh file rendered directly: the mesh under a sky, path traced, seen from the front
 // (-z side) and a little above, framed by its bounds; the camera is placed after loading.
@@ -75,7 +72,7 @@ void frame_bounds(glint::RenderJob& job) {
     const glint::Vector3 e = b.hi - b.lo;
     const float r = 0.5f * std::max({e.x, e.y, e.z});
     const float fov = 40;
-    const float dist = r / std::sin(fov * 0.5f * 3.14159265f / 180) * 1.1f;
+    const float dist = r / std::sin(fov * 0.5f * std::numbers::pi_v<float> / 180) * 1.1f;
     const glint::Vector3 dir = glint::normalize(glint::Vector3{0.35f, 0.35f, -1});
     job.camera = glint::Camera::look_at(c + dir * dist, c, {0, 1, 0}, fov, job.width, job.height);
 }
@@ -163,9 +160,10 @@ int run_bench(const RenderArgs& args, int runs) {
                threads == 1 ? "" : "s", runs);
     fmt::print("{:<8} {:>10} {:>12} {:>10} {:>16} {:>16}\n", "backend", "build (s)", "memory", "B/tri",
                "primary Mrays/s", "diffuse Mrays/s");
+    // The rays, made once with the scene as load_job committed it, for every backend.
+    const glint::BenchRays rays = glint::bench_rays(job.scene, job.camera, job.width, job.height);
     for (const glint::AccelKind k : kinds) {
-        const glint::BenchResult r =
-            glint::bench_backend(job.scene, k, job.camera, job.width, job.height, threads, runs);
+        const glint::BenchResult r = glint::bench_backend(job.scene, k, rays, threads, runs);
         fmt::print("{:<8} {:>10.3f} {:>12} {:>10.1f} {:>16.2f} {:>16.2f}   (hits: {} primary, {} diffuse)\n",
                    r.backend, r.build_seconds, bytes(r.accel_bytes),
                    info.unique_triangles ? double(r.accel_bytes) / double(info.unique_triangles) : 0.0,

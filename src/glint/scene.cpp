@@ -133,19 +133,21 @@ void Scene::commit() {
 
     const float radius = bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
     light_sampler_.build(*this, std::max(radius, 1e-3f));
-    // Which textures read uv: images, and whatever combines one. Children come before their
-    // parents (build adds them first), so one forward pass settles every entry.
-    texture_needs_uv_.assign(textures.size(), false);
+    // What each texture reads: uv (images), the vertex colour, or what its children read.
+    // Children come before their parents (build adds them first), so one forward pass settles
+    // every entry.
+    texture_reads_.assign(textures.size(), 0);
     for (std::size_t i = 0; i < textures.size(); ++i) {
-        const auto needs = [this](TextureId id) { return static_cast<bool>(texture_needs_uv_[id]); };
-        texture_needs_uv_[i] = std::visit(
-            [&](const auto& t) -> bool {
+        texture_reads_[i] = std::visit(
+            [&](const auto& t) -> std::uint8_t {
                 using T = std::decay_t<decltype(t)>;
-                if constexpr (std::is_same_v<T, ImageTexture>) return true;
-                if constexpr (std::is_same_v<T, ScaleTexture>) return needs(t.texture) || needs(t.factor);
+                if constexpr (std::is_same_v<T, ImageTexture>) return kReadsUv;
+                if constexpr (std::is_same_v<T, VertexColorTexture>) return kReadsVertexColor;
+                if constexpr (std::is_same_v<T, ScaleTexture>)
+                    return texture_reads_[t.texture] | texture_reads_[t.factor];
                 if constexpr (std::is_same_v<T, MixTexture>)
-                    return needs(t.a) || needs(t.b) || needs(t.amount);
-                return false;
+                    return texture_reads_[t.a] | texture_reads_[t.b] | texture_reads_[t.amount];
+                return 0;
             },
             textures[i]);
     }
@@ -153,16 +155,12 @@ void Scene::commit() {
 
 std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
-    const Ray local{inst.transform.to_object.apply(ray.origin),
-                    inst.transform.to_object.apply(ray.direction), ray.t_max};
-    return mesh_bvhs_[inst.mesh].closest(local);
+    return mesh_bvhs_[inst.mesh].closest(inst.transform.object_ray(ray));
 }
 
 bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
-    const Ray local{inst.transform.to_object.apply(ray.origin),
-                    inst.transform.to_object.apply(ray.direction), ray.t_max};
-    return mesh_bvhs_[inst.mesh].any(local);
+    return mesh_bvhs_[inst.mesh].any(inst.transform.object_ray(ray));
 }
 
 void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
@@ -218,7 +216,8 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
     }
 #endif
     if (top_.empty()) return best;
-    const WatertightRay wr(ray);
+    // The lone triangles' shared set-up (a mesh's triangles have their own, in object space).
+    const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
     top_.closest(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k) closest_top(top_refs_[k], ray, wr, best);
     });
@@ -232,7 +231,7 @@ bool Scene::occluded(const Ray& ray) const {
     if (embree_) return embree_->occluded(ray);
 #endif
     if (top_.empty()) return false;
-    const WatertightRay wr(ray);
+    const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
     return top_.any(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k)
             if (any_top(top_refs_[k], ray, wr)) return true;
@@ -251,9 +250,7 @@ std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
-        const Ray local{inst.transform.to_object.apply(ray.origin),
-                        inst.transform.to_object.apply(ray.direction), ray.t_max};
-        WatertightRay wr(local);
+        WatertightRay wr(inst.transform.object_ray(ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (const auto h = intersect_triangle(p0, p1, p2, wr)) {
@@ -271,9 +268,7 @@ bool Scene::occluded_brute_force(const Ray& ray) const {
         return true;
     for (const Instance& inst : instances) {
         const TriangleMesh& m = meshes[inst.mesh];
-        const Ray local{inst.transform.to_object.apply(ray.origin),
-                        inst.transform.to_object.apply(ray.direction), ray.t_max};
-        const WatertightRay wr(local);
+        const WatertightRay wr(inst.transform.object_ray(ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (intersect_triangle(p0, p1, p2, wr)) return true;
@@ -282,10 +277,8 @@ bool Scene::occluded_brute_force(const Ray& ray) const {
     return false;
 }
 
-bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const {
+bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim, Vector3 ng) const {
     if (m.normals.empty()) return false;
-    const auto [p0, p1, p2] = m.vertices(prim);
-    const Vector3 ng = cross(p1 - p0, p2 - p0);
     const Vector3 sum = to_vector(m.normals[m.indices[3 * prim]]) +
                         to_vector(m.normals[m.indices[3 * prim + 1]]) +
                         to_vector(m.normals[m.indices[3 * prim + 2]]);
@@ -295,38 +288,28 @@ bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const {
 Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim) const {
     const Instance& in = instances[inst];
     const TriangleMesh& m = meshes[in.mesh];
-    auto [p0, p1, p2] = m.vertices(prim);
+    const auto [p0, p1, p2] = m.vertices(prim);
     Triangle t{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2),
                instance_material(inst, prim)};
     // The object-space normal carried by the inverse transpose keeps the front side; the
     // winding of the transformed vertices flips under a mirror. Rewind to match.
-    if (in.transform.flips() != flip_mesh_normal(m, prim)) std::swap(t.p1, t.p2);
+    if (in.transform.flips() != flip_mesh_normal(m, prim, cross(p1 - p0, p2 - p0))) std::swap(t.p1, t.p2);
     return t;
 }
 
-Color Scene::light_radiance(const AreaLight& l, Point3 q, Normal3 n) const {
-    MaterialId material = 0;
-    SurfaceInteraction si{q, n, 0, l.kind, l.index};
-    si.ns = n;
-    switch (l.kind) {
-        case ShapeKind::kSphere: material = spheres[l.index].material; break;
-        case ShapeKind::kQuad: material = quads[l.index].material; break;
-        case ShapeKind::kDisk: material = disks[l.index].material; break;
-        case ShapeKind::kTriangle: material = triangles[l.index].material; break;
-        case ShapeKind::kPlane: material = planes[l.index].material; break;
-        case ShapeKind::kMesh: {
-            material = instance_material(l.index, l.prim);
-            // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
-            const Instance& in = instances[l.index];
-            const auto [p0, p1, p2] = meshes[in.mesh].vertices(l.prim);
-            si.prim = l.prim;
-            si.bary = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
-            break;
-        }
-    }
-    si.material = material;
+Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const {
     const Emission& e = emission_of(material);
-    return e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
+    if (!e.texture) return e.radiance;
+    SurfaceInteraction si{q, n, material, l.kind, l.index};
+    si.ns = n;
+    if (l.kind == ShapeKind::kMesh) {
+        // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
+        const Instance& in = instances[l.index];
+        const auto [p0, p1, p2] = meshes[in.mesh].vertices(l.prim);
+        si.prim = l.prim;
+        si.bary = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+    }
+    return e.radiance * texture(*e.texture, si);
 }
 
 std::size_t Scene::accel_memory_bytes() const {
@@ -351,7 +334,6 @@ void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     if (m.uvs.empty()) return;  // no texture space to read the map in
     const NormalMap& map = *normal_maps[si.material];
     const std::uint32_t i0 = m.indices[3 * si.prim], i1 = m.indices[3 * si.prim + 1], i2 = m.indices[3 * si.prim + 2];
-    const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
     // The tangent (direction of +u): the mesh's smoothed tangents if it has them, else the
     // triangle's dp/du. The bitangent is n x t, turned to point along +v: its handedness comes
     // from the triangle's uv orientation in glint's own uv convention (v up), which is
@@ -365,11 +347,8 @@ void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     const Vector3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
     Vector3 t = inst.transform.vector(dpdu);
     if (!m.tangents.empty()) {
-        const auto& a = m.tangents[i0];
-        const auto& b = m.tangents[i1];
-        const auto& c = m.tangents[i2];
-        t = inst.transform.vector(Vector3{b0 * a[0] + b1 * b[0] + b2 * c[0], b0 * a[1] + b1 * b[1] + b2 * c[1],
-                                          b0 * a[2] + b1 * b[2] + b2 * c[2]});
+        const auto tan = m.interpolate(m.tangents, si.prim, si.bary.x, si.bary.y);
+        t = inst.transform.vector(Vector3{tan[0], tan[1], tan[2]});
     }
     const Vector3 n = to_vector(si.ns);
     t = t - n * dot(n, t);  // Gram-Schmidt against the shading normal
@@ -419,25 +398,20 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
             const TriangleMesh& m = meshes[inst.mesh];
             const std::uint32_t tri = hit.prim;
             const auto [p0, p1, p2] = m.vertices(tri);
-            const Float b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
             // The point from the barycentrics (on the triangle, whatever the ray's round-off),
             // in object space, then carried to the world.
-            const Point3 po{b0 * p0.x + b1 * p1.x + b2 * p2.x, b0 * p0.y + b1 * p1.y + b2 * p2.y,
-                            b0 * p0.z + b1 * p1.z + b2 * p2.z};
+            const Point3 po = m.interpolate(m.positions, tri, hit.b1, hit.b2);
             SurfaceInteraction si{inst.transform.point(po), Normal3{0, 0, 1},
                                   instance_material(hit.index, tri), hit.kind, hit.index};
             si.prim = tri;
-            si.bary = {b1, b2};
-            Normal3 ng = normalize(inst.transform.normal(Normal3(cross(p1 - p0, p2 - p0))));
-            if (flip_mesh_normal(m, tri)) ng = -ng;
+            si.bary = {hit.b1, hit.b2};
+            const Vector3 face = cross(p1 - p0, p2 - p0);
+            Normal3 ng = normalize(inst.transform.normal(Normal3(face)));
+            if (flip_mesh_normal(m, tri, face)) ng = -ng;
             si.n = ng;
             si.ns = ng;
             if (!m.normals.empty()) {
-                const Normal3 a = m.normals[m.indices[3 * tri]], b = m.normals[m.indices[3 * tri + 1]],
-                              c = m.normals[m.indices[3 * tri + 2]];
-                const Normal3 n_obj{b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y,
-                                    b0 * a.z + b1 * b.z + b2 * c.z};
-                const Normal3 ns = inst.transform.normal(n_obj);
+                const Normal3 ns = inst.transform.normal(m.interpolate(m.normals, tri, hit.b1, hit.b2));
                 const Float len = length(ns);
                 // The shading normal is used only where the viewer is on the same side of it as
                 // of the true surface; elsewhere (grazing views of a coarse mesh) the geometric
@@ -457,9 +431,7 @@ Color Scene::vertex_color(const SurfaceInteraction& si) const {
     if (si.shape != ShapeKind::kMesh) return Color{1};
     const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
     if (m.colors.empty()) return Color{1};
-    const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
-    return m.colors[m.indices[3 * si.prim]] * b0 + m.colors[m.indices[3 * si.prim + 1]] * b1 +
-           m.colors[m.indices[3 * si.prim + 2]] * b2;
+    return m.interpolate(m.colors, si.prim, si.bary.x, si.bary.y);
 }
 
 Point2 Scene::uv(const SurfaceInteraction& si) const {
@@ -471,11 +443,7 @@ Point2 Scene::uv(const SurfaceInteraction& si) const {
         case ShapeKind::kTriangle: return triangles[si.shape_index].uv_at(si.p);
         case ShapeKind::kMesh: {
             const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
-            if (m.uvs.empty()) return si.bary;
-            const Point2 a = m.uvs[m.indices[3 * si.prim]], b = m.uvs[m.indices[3 * si.prim + 1]],
-                         c = m.uvs[m.indices[3 * si.prim + 2]];
-            const Float b1 = si.bary.x, b2 = si.bary.y, b0 = 1 - b1 - b2;
-            return {b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y};
+            return m.uvs.empty() ? si.bary : m.interpolate(m.uvs, si.prim, si.bary.x, si.bary.y);
         }
     }
     return {};

@@ -74,20 +74,21 @@ struct Scene {
         const Instance& i = instances[inst];
         return i.material ? *i.material : meshes[i.mesh].material_of(prim);
     }
-    const Bvh4& top_level() const { return top_; }
     const std::vector<MeshBvh>& mesh_bvhs() const { return mesh_bvhs_; }
     /// Bytes held by the acceleration structures (either backend).
     std::size_t accel_memory_bytes() const;
     Bounds3 bounds() const { return bounds_; }
-    /// The colour of texture `id` at a surface point. The uv is computed only for textures
-    /// that read it (an atan2 and an acos per sphere hit otherwise wasted).
+    /// The colour of texture `id` at a surface point. The uv and the vertex colour are computed
+    /// only for textures that read them (an atan2 and an acos per sphere hit otherwise wasted).
     Color texture(TextureId id, const SurfaceInteraction& si) const {
         // The article's textures inline; the rest go through the general (recursive) evaluate.
         const Texture& t = textures[id];
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
         if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
+        const std::uint8_t reads = texture_reads_[id];
         return evaluate(textures, images, id,
-                        {si.p, texture_needs_uv_[id] ? uv(si) : Point2{}, vertex_color(si)});
+                        {si.p, reads & kReadsUv ? uv(si) : Point2{},
+                         reads & kReadsVertexColor ? vertex_color(si) : Color{1}});
     }
     const Emission& emission_of(MaterialId m) const {
         static const Emission kNone;
@@ -100,9 +101,9 @@ struct Scene {
         if (!(e.two_sided || dot(si.n, wo) > 0)) return Color{0};
         return e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
     }
-    /// The radiance area light `l` emits at its point q (normal n): the material's emission,
-    /// times its emission texture there, if any.
-    Color light_radiance(const AreaLight& l, Point3 q, Normal3 n) const;
+    /// The radiance area light `l` (of `material`) emits at its point q (normal n): the
+    /// material's emission, times its emission texture there, if any.
+    Color light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const;
     /// Every light, for the path tracer; built by commit().
     const LightSampler& light_sampler() const { return light_sampler_; }
 
@@ -128,14 +129,16 @@ private:
     /// Bends si.ns by the material's normal map (meshes with texture coordinates).
     void apply_normal_map(SurfaceInteraction& si, const Ray& ray) const;
     /// Whether a mesh triangle's geometric normal is flipped to agree with its vertex normals.
-    bool flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim) const;
+    /// `ng`: the triangle's object-space (p1 - p0) x (p2 - p0).
+    bool flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim, Vector3 ng) const;
 
     Bounds3 bounds_;  ///< around every bounded shape and instance
     Bvh4 top_;
     std::vector<std::uint32_t> top_refs_;  ///< leaf order
     std::vector<MeshBvh> mesh_bvhs_;
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
-    std::vector<char> texture_needs_uv_;  ///< per texture, set by commit()
+    static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2;
+    std::vector<std::uint8_t> texture_reads_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
     LightSampler light_sampler_;
 };

@@ -23,7 +23,6 @@ constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3,
 template <typename Shape>
 struct UserShapes {
     const std::vector<Shape>* shapes;
-    ShapeKind kind;
 };
 
 // Spheres and disks: the box of the ball (a disk lies in its ball).
@@ -189,9 +188,9 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
             rtcAttachGeometryByID(m.top, g, kTrianglesId);
             rtcReleaseGeometry(g);
         }
-        m.spheres = {&scene.spheres, ShapeKind::kSphere};
-        m.quads = {&scene.quads, ShapeKind::kQuad};
-        m.disks = {&scene.disks, ShapeKind::kDisk};
+        m.spheres = {&scene.spheres};
+        m.quads = {&scene.quads};
+        m.disks = {&scene.disks};
         attach_user(m.device, m.top, m.spheres, kSpheresId);
         attach_user(m.device, m.top, m.quads, kQuadsId);
         attach_user(m.device, m.top, m.disks, kDisksId);

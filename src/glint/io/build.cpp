@@ -377,8 +377,12 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 // object's default material.
                 std::vector<MaterialId> ids;
                 for (const ImportedMaterial& m : f.materials) ids.push_back(materials.add_material(m.desc));
-                const MaterialId fallback = materials.add_material(MaterialDesc{});
-                const auto map_id = [&](MaterialId local) { return local == kNoImportedMaterial ? fallback : ids.at(local); };
+                std::optional<MaterialId> fallback;  // added only if some face needs it
+                const auto map_id = [&](MaterialId local) {
+                    if (local != kNoImportedMaterial) return ids.at(local);
+                    if (!fallback) fallback = materials.add_material(MaterialDesc{});
+                    return *fallback;
+                };
                 LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera};
                 for (TriangleMesh& m : f.meshes) {
                     m.material = map_id(m.material);

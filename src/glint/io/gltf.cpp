@@ -117,9 +117,7 @@ struct Importer {
         img->width = im.width;
         img->height = im.height;
         img->texels.resize(static_cast<std::size_t>(im.width) * im.height);
-        const auto decode = [srgb](float x) {
-            return srgb ? (x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f)) : x;
-        };
+        const auto decode = [srgb](float x) { return srgb ? srgb_decode(x) : x; };
         for (std::size_t i = 0; i < img->texels.size(); ++i) {
             float c[4] = {0, 0, 0, 1};
             for (int k = 0; k < comps; ++k) {
@@ -407,9 +405,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warn;
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
+    const bool ok = mesh_format(path) == MeshFormat::kGlb ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
                                   : loader.LoadASCIIFromFile(&model, &err, &warn, file);
     const auto trim = [](std::string s) {
         while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();

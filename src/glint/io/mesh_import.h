@@ -48,6 +48,10 @@ struct ImportedFile {
 
 inline constexpr MaterialId kNoImportedMaterial = 0xffffffffu;
 
+enum class MeshFormat { kPly, kObj, kGltf, kGlb };
+/// The format a file's extension names (any case), if it is a mesh format.
+std::optional<MeshFormat> mesh_format(const std::filesystem::path& path);
+
 /// By extension: .ply, .obj, .gltf, .glb.
 ImportedFile import_mesh_file(const std::filesystem::path& path);
 /// `camera`: the name of the camera to use (empty: the first one met in the node hierarchy).

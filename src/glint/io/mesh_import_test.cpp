@@ -99,6 +99,18 @@ std::string binary_ply(bool big_endian) {
     return out;
 }
 
+TEST(Ply, FloatColoursAreLinear) {
+    const ImportedFile f = parse_ply(
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float red\nproperty float green\nproperty float blue\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n"
+        "0 0 0 0.5 0.25 1\n1 0 0 0 0 0\n0 1 0 1 1 1\n3 0 1 2\n",
+        "float.ply");
+    ASSERT_EQ(f.meshes.at(0).colors.size(), 3u);
+    EXPECT_EQ(f.meshes[0].colors[0].r, 0.5f);  // as written, not sRGB-decoded
+    EXPECT_EQ(f.meshes[0].colors[0].g, 0.25f);
+}
+
 TEST(Ply, BinaryLittleAndBigEndianReadTheSame) {
     for (const bool big : {false, true}) {
         const ImportedFile f = parse_ply(binary_ply(big), "tet.ply");

@@ -185,13 +185,4 @@ ImportedFile import_obj(const std::filesystem::path& path) {
     return out;
 }
 
-ImportedFile import_mesh_file(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".ply") return import_ply(path);
-    if (ext == ".obj") return import_obj(path);
-    if (ext == ".gltf" || ext == ".glb") return import_gltf(path);
-    throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .gltf, .glb)", path.string(), ext));
-}
-
 }  // namespace glint

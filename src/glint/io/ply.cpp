@@ -288,8 +288,11 @@ private:
             if (normals) mesh.normals[i] = Normal3{float(v[3]), float(v[4]), float(v[5])};
             if (uvs) mesh.uvs[i] = {float(v[6]), float(v[7])};
             if (has_colors) {
-                const float s = color_is_byte ? 1.0f / 255 : 1.0f;
-                mesh.colors[i] = srgb_to_linear_color(Color{float(v[8]) * s, float(v[9]) * s, float(v[10]) * s});
+                // 8-bit colours are sRGB-encoded; float colours are taken as linear.
+                const auto channel = [&](double x) {
+                    return color_is_byte ? srgb_decode(float(x) / 255) : float(x);
+                };
+                mesh.colors[i] = Color{channel(v[8]), channel(v[9]), channel(v[10])};
             }
         }
     }
@@ -317,13 +320,6 @@ private:
                 }
             }
         }
-    }
-
-    static Color srgb_to_linear_color(Color c) {
-        const auto f = [](float x) {
-            return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
-        };
-        return {f(c.r), f(c.g), f(c.b)};
     }
 
     const std::string& b_;

@@ -191,7 +191,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                         n = normalize(Normal3(q - s.center));
                         pdf = uniform_cone_pdf(omc);
                         if (!(scene.emission_of(material).two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{scene.light_radiance(l, q, n), wi, pdf, length(q - p), false, true, q, n};
+                        return LightLiSample{scene.light_radiance(l, material, q, n), wi, pdf, length(q - p), false, true, q, n};
                     }
                 }
                 float area = 1;
@@ -219,7 +219,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                 const Emission& e = scene.emission_of(material);
                 if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
                 pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{scene.light_radiance(l, q, n), wi, pdf, dist, false, true, q, n};
+                return LightLiSample{scene.light_radiance(l, material, q, n), wi, pdf, dist, false, true, q, n};
             } else {
                 const LightSample s = l.sample(p);
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};

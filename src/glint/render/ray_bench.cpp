@@ -46,8 +46,27 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, int width, int height,
-                          int threads, int runs) {
+BenchRays bench_rays(const Scene& scene, const Camera& camera, int width, int height) {
+    BenchRays rays;
+    rays.primary.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) rays.primary.push_back(camera.generate_ray(x + 0.5f, y + 0.5f));
+    for (std::size_t i = 0; i < rays.primary.size(); ++i) {
+        const Ray& r = rays.primary[i];
+        const auto hit = scene.intersect(r);
+        if (!hit) continue;
+        const SurfaceInteraction si = scene.interaction(r, *hit);
+        const Normal3 nf = face_forward(si.n, r.direction);
+        Vector3 t, b;
+        orthonormal_basis(to_vector(nf), t, b);
+        const Sample2 u{to_unit_float(hash_combine(17, 2 * i)), to_unit_float(hash_combine(17, 2 * i + 1))};
+        const Vector3 l = sample_cosine_hemisphere(u);
+        rays.diffuse.push_back(spawn_ray(si.p, nf, t * l.x + b * l.y + to_vector(nf) * l.z));
+    }
+    return rays;
+}
+
+BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, int threads, int runs) {
     BenchResult r;
     r.backend = accel == AccelKind::kEmbree ? "embree" : "bvh";
     runs = std::max(1, runs);
@@ -60,29 +79,8 @@ BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, i
         build.push_back(seconds_since(t0));
     }
     r.accel_bytes = scene.accel_memory_bytes();
-
-    // The rays, generated once, outside the timed loops.
-    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    std::vector<Ray> rays(n);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            rays[static_cast<std::size_t>(y) * width + x] = camera.generate_ray(x + 0.5f, y + 0.5f);
-    std::vector<Ray> bounces;
-    bounces.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto hit = scene.intersect(rays[i]);
-        if (!hit) continue;
-        ++r.primary_hits;
-        const SurfaceInteraction si = scene.interaction(rays[i], *hit);
-        const Normal3 nf = face_forward(si.n, rays[i].direction);
-        Vector3 t, b;
-        orthonormal_basis(to_vector(nf), t, b);
-        const Sample2 u{to_unit_float(hash_combine(17, 2 * i)), to_unit_float(hash_combine(17, 2 * i + 1))};
-        const Vector3 l = sample_cosine_hemisphere(u);
-        bounces.push_back(spawn_ray(si.p, nf, t * l.x + b * l.y + to_vector(nf) * l.z));
-    }
-    r.primary_rays = n;
-    r.diffuse_rays = bounces.size();
+    r.primary_rays = rays.primary.size();
+    r.diffuse_rays = rays.diffuse.size();
 
     const auto trace = [&](const std::vector<Ray>& batch) {
         std::atomic<std::uint64_t> hits{0};
@@ -96,15 +94,15 @@ BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, i
                                   hits += h;
                               });
         });
-        return std::pair{seconds_since(t0), hits.load()};
+        return std::pair{static_cast<double>(batch.size()) / seconds_since(t0) * 1e-6, hits.load()};
     };
     for (int k = 0; k < runs; ++k) {
-        const auto [tp, hp] = trace(rays);
-        primary.push_back(static_cast<double>(rays.size()) / tp * 1e-6);
-        const auto [td, hd] = trace(bounces);
-        diffuse.push_back(static_cast<double>(bounces.size()) / td * 1e-6);
+        const auto [mp, hp] = trace(rays.primary);
+        const auto [md, hd] = trace(rays.diffuse);
+        primary.push_back(mp);
+        diffuse.push_back(md);
+        r.primary_hits = hp;
         r.diffuse_hits = hd;
-        (void)hp;
     }
     r.build_seconds = median(build);
     r.primary_mrays = median(primary);

@@ -32,9 +32,16 @@ struct BenchResult {
     std::uint64_t primary_hits = 0, diffuse_hits = 0;  ///< equal across backends up to float noise
 };
 
-/// Commits `scene` with `accel` `runs` times (timing each build), then traces the camera's
-/// width x height primary rays and their diffuse bounces `runs` times on `threads` threads.
-BenchResult bench_backend(Scene& scene, AccelKind accel, const Camera& camera, int width, int height,
-                          int threads, int runs);
+/// The rays every backend traces: the camera's width x height pixel-centre rays, and from each
+/// of their hits (found with the scene as committed) one cosine-distributed bounce chosen by a
+/// fixed hash. Made once, so that the backends trace exactly the same rays.
+struct BenchRays {
+    std::vector<Ray> primary, diffuse;
+};
+BenchRays bench_rays(const Scene& scene, const Camera& camera, int width, int height);
+
+/// Commits `scene` with `accel` `runs` times (timing each build), then traces both ray sets
+/// `runs` times on `threads` threads (closest hit).
+BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, int threads, int runs);
 
 }  // namespace glint

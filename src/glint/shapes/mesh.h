@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "glint/interaction.h"
@@ -43,6 +44,25 @@ struct TriangleMesh {
     std::array<Point3, 3> vertices(std::uint32_t tri) const {
         return {positions[indices[3 * tri]], positions[indices[3 * tri + 1]],
                 positions[indices[3 * tri + 2]]};
+    }
+    /// A per-vertex attribute (positions, normals, uvs, colours, tangents) of triangle `tri` at
+    /// barycentric (b1, b2): b0 a0 + b1 a1 + b2 a2.
+    template <typename T>
+    T interpolate(const std::vector<T>& attribute, std::uint32_t tri, Float b1, Float b2) const {
+        const T& a = attribute[indices[3 * tri]];
+        const T& b = attribute[indices[3 * tri + 1]];
+        const T& c = attribute[indices[3 * tri + 2]];
+        const Float b0 = 1 - b1 - b2;
+        const auto mix = [&](Float x, Float y, Float z) { return b0 * x + b1 * y + b2 * z; };
+        if constexpr (std::is_same_v<T, Point2>) {
+            return {mix(a.x, b.x, c.x), mix(a.y, b.y, c.y)};
+        } else if constexpr (std::is_same_v<T, Color>) {
+            return {mix(a.r, b.r, c.r), mix(a.g, b.g, c.g), mix(a.b, b.b, c.b)};
+        } else if constexpr (std::is_same_v<T, std::array<Float, 4>>) {
+            return {mix(a[0], b[0], c[0]), mix(a[1], b[1], c[1]), mix(a[2], b[2], c[2]), mix(a[3], b[3], c[3])};
+        } else {  // Point3, Normal3
+            return T{mix(a.x, b.x, c.x), mix(a.y, b.y, c.y), mix(a.z, b.z, c.z)};
+        }
     }
     Bounds3 bounds() const {
         Bounds3 b;

@@ -16,6 +16,7 @@ struct WatertightRay {
     int kx, ky, kz;
     Float sx, sy, sz;
     Float t_max;
+    WatertightRay() = default;  ///< unusable until assigned (for scenes with no lone triangles)
     explicit WatertightRay(const Ray& ray);
 };
 

@@ -1,0 +1,33 @@
+#include "glint/io/mesh_import.h"
+
+#include <cctype>
+
+#include <fmt/format.h>
+
+namespace glint {
+
+std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".ply") return MeshFormat::kPly;
+    if (ext == ".obj") return MeshFormat::kObj;
+    if (ext == ".gltf") return MeshFormat::kGltf;
+    if (ext == ".glb") return MeshFormat::kGlb;
+    return std::nullopt;
+}
+
+ImportedFile import_mesh_file(const std::filesystem::path& path) {
+    const auto format = mesh_format(path);
+    if (!format)
+        throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .gltf, .glb)", path.string(),
+                                  path.extension().string()));
+    switch (*format) {
+        case MeshFormat::kPly: return import_ply(path);
+        case MeshFormat::kObj: return import_obj(path);
+        case MeshFormat::kGltf:
+        case MeshFormat::kGlb: return import_gltf(path);
+    }
+    return {};  // unreachable: every format is covered
+}
+
+}  // namespace glint
