@@ -1,9 +1,11 @@
 #pragma once
-// glint's own bounding volume hierarchy: a 4-wide BVH, built top-down with a binned surface area
-// heuristic (Wald 2007) directly into 4-wide nodes (each node splits its primitives up to three
-// times, always splitting the child with the largest area, as in Embree's BVH4 builder), in
-// parallel with oneTBB below the top levels. Traversal tests the four child boxes of a node at
-// once with SSE (x86-64-v2, the project's baseline ISA) and visits hit children nearest first.
+// glint's own bounding volume hierarchy: a W-wide BVH (W = 4 or 8), built top-down with a binned
+// surface area heuristic (Wald 2007) directly into W-wide nodes (each node splits its primitives
+// up to W - 1 times, always splitting the child with the largest area, as in Embree's builders),
+// in parallel with oneTBB below the top levels; optionally with spatial splits (SBVH). The
+// 4-wide traversal here tests the four child boxes of a node at once with SSE (x86-64-v2, the
+// project's baseline ISA) and visits hit children nearest first; the 8-wide trees of meshes are
+// traversed with AVX2 or AVX-512 where the CPU has them (mesh_bvh_kernels.h).
 //
 // The structure knows only boxes: it orders an array of primitive ids so that every leaf is a
 // contiguous range, and hands ranges to a callback, so one class serves both levels of the scene
@@ -32,13 +34,31 @@ struct BvhBuildOptions {
     int max_leaf_size = 8;      ///< primitives per leaf at most
     float traversal_cost = 1;   ///< SAH cost of visiting a node, relative to one primitive test
     bool parallel = true;       ///< build subtrees on oneTBB tasks
+    /// Leaves are tested `block_size` primitives at a time (MeshBvh: packets of four triangles):
+    /// the SAH counts a leaf of n primitives as ceil(n / block_size) tests.
+    int block_size = 1;
+    /// Spatial splits (Stich, Friedrich and Dietrich 2009, "SBVH"): where the best object split
+    /// leaves children that overlap by more than `split_alpha` of the root's area, also try
+    /// splitting the node's space with a plane, clipping the primitives that straddle it (a
+    /// primitive may then sit in several leaves). Needs a clipper (Bvh::build's third argument).
+    bool spatial_splits = false;
+    float split_alpha = 1e-5f;
+    float max_duplication = 1.0f;  ///< at most (1 + this) x n references in all
 };
 
-struct alignas(16) Bvh4Node {
-    // The four children's boxes, one SIMD lane per child: empty lanes have lo = +inf, hi = -inf.
-    float lo_x[4], hi_x[4], lo_y[4], hi_y[4], lo_z[4], hi_z[4];
-    std::uint32_t child[4];  ///< an inner node index, or a leaf (kLeaf bit set)
+/// Clips primitive `prim`, whose part in the node is bounded by `box`, by the plane
+/// x[axis] = pos: the bounds of its parts on either side (each within `box`).
+using BvhClipper = void (*)(const void* context, std::uint32_t prim, const Bounds3& box, int axis,
+                            float pos, Bounds3& left, Bounds3& right);
 
+/// A node of a W-wide BVH: the children's boxes, one SIMD lane per child (empty lanes have
+/// lo = +inf, hi = -inf), then the children's references.
+template <int W>
+struct alignas(W * 4) BvhNode {
+    float lo_x[W], hi_x[W], lo_y[W], hi_y[W], lo_z[W], hi_z[W];
+    std::uint32_t child[W];  ///< an inner node index, or a leaf (kLeaf bit set)
+
+    static constexpr int kWidth = W;
     static constexpr std::uint32_t kLeaf = 0x80000000u;
     static constexpr std::uint32_t kEmpty = 0xffffffffu;  ///< a leaf with no primitives
     static constexpr int kCountBits = 4;                 ///< leaf: count in the low bits
@@ -48,9 +68,11 @@ struct alignas(16) Bvh4Node {
     static std::uint32_t leaf_first(std::uint32_t c) { return (c & ~kLeaf) >> kCountBits; }
     static std::uint32_t leaf_count(std::uint32_t c) { return c & ((1u << kCountBits) - 1); }
 };
-static_assert(sizeof(Bvh4Node) == 112);
+using Bvh4Node = BvhNode<4>;
+using Bvh8Node = BvhNode<8>;
+static_assert(sizeof(Bvh4Node) == 112 && sizeof(Bvh8Node) == 224);
 
-/// What a traversal derives from the ray once.
+/// What a 4-wide traversal derives from the ray once.
 struct BvhRay {
     __m128 o[3], inv[3];
     /// Per axis, where the near and the far planes' four floats start in a node (lo_a or hi_a,
@@ -68,41 +90,66 @@ struct BvhRay {
     }
 };
 
-class Bvh4 {
+/// A W-wide BVH over boxes. The 4-wide tree has its traversal here (SSE, the baseline ISA); the
+/// 8-wide one is traversed by the AVX2 and AVX-512 kernels in mesh_bvh_kernels.h.
+template <int W>
+class Bvh {
 public:
+    using Node = BvhNode<W>;
+
     /// Builds over `bounds` (one box per primitive, ids 0..n-1). Primitives with empty or
     /// non-finite boxes are left out; `skipped()` counts them. Throws std::length_error past
-    /// 2^27 - 16 primitives (what a leaf reference can address).
-    void build(std::span<const Bounds3> bounds, const BvhBuildOptions& options = {});
+    /// 2^27 - 16 primitives (what a leaf reference can address). With
+    /// `options.spatial_splits` and a clipper, order() may name a primitive more than once.
+    void build(std::span<const Bounds3> bounds, const BvhBuildOptions& options = {},
+               BvhClipper clipper = nullptr, const void* clip_context = nullptr);
 
     /// Primitive ids in leaf order: leaf (first, count) holds order()[first .. first + count).
     const std::vector<std::uint32_t>& order() const { return order_; }
-    const std::vector<Bvh4Node>& nodes() const { return nodes_; }
+    const std::vector<Node>& nodes() const { return nodes_; }
+    std::uint32_t root() const { return root_; }
     Bounds3 bounds() const { return bounds_; }
     std::size_t skipped() const { return skipped_; }
     int depth() const { return depth_; }
-    bool empty() const { return root_ == Bvh4Node::kEmpty; }
+    bool empty() const { return root_ == Node::kEmpty; }
     std::size_t memory_bytes() const {
-        return nodes_.size() * sizeof(Bvh4Node) + order_.size() * sizeof(std::uint32_t);
+        return nodes_.size() * sizeof(Node) + order_.size() * sizeof(std::uint32_t);
     }
+    /// Replaces every leaf reference (first, count) by f(first, count) (another leaf reference):
+    /// for owners that repack the leaves' primitives (MeshBvh's triangle packets).
+    template <typename F>
+    void remap_leaves(F&& f) {
+        if (root_ != Node::kEmpty && (root_ & Node::kLeaf))
+            root_ = f(Node::leaf_first(root_), Node::leaf_count(root_));
+        for (Node& n : nodes_)
+            for (std::uint32_t& c : n.child)
+                if ((c & Node::kLeaf) && c != Node::kEmpty) c = f(Node::leaf_first(c), Node::leaf_count(c));
+    }
+    /// The expected cost of a random ray by the surface area heuristic: inner nodes weigh
+    /// `traversal_cost`, leaves their primitive count, each by its area over the root's.
+    double sah_cost(float traversal_cost = 1) const;
 
-    /// Closest-hit traversal: calls `leaf(first, count)` for every leaf whose box the ray meets
-    /// within (0, t_max], nearest box first; the callback tests its primitives and lowers t_max
-    /// (a reference it shares with the caller) when it finds a hit.
+    /// Closest-hit traversal (W = 4): calls `leaf(first, count)` for every leaf whose box the
+    /// ray meets within (0, t_max], nearest box first; the callback tests its primitives and
+    /// lowers t_max (a reference it shares with the caller) when it finds a hit.
     template <typename Leaf>
     void closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const;
-    /// Any-hit traversal: stops as soon as `leaf(first, count)` returns true.
+    /// Any-hit traversal (W = 4): stops as soon as `leaf(first, count)` returns true.
     template <typename Leaf>
     bool any(const BvhRay& r, float t_max, Leaf&& leaf) const;
 
 private:
-    std::vector<Bvh4Node> nodes_;
+    std::vector<Node> nodes_;
     std::vector<std::uint32_t> order_;
-    std::uint32_t root_ = Bvh4Node::kEmpty;
+    std::uint32_t root_ = Node::kEmpty;
     Bounds3 bounds_;
     std::size_t skipped_ = 0;
     int depth_ = 0;
 };
+using Bvh4 = Bvh<4>;
+using Bvh8 = Bvh<8>;
+extern template class Bvh<4>;
+extern template class Bvh<8>;
 
 namespace bvh_detail {
 
@@ -132,8 +179,10 @@ inline int hit_boxes(const Bvh4Node& n, const BvhRay& r, __m128 t_max, __m128& t
 
 }  // namespace bvh_detail
 
+template <int W>
 template <typename Leaf>
-void Bvh4::closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const {
+void Bvh<W>::closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const {
+    static_assert(W == 4, "the 8-wide tree is traversed by the kernels in mesh_bvh_kernels.h");
     if (root_ == Bvh4Node::kEmpty) return;
     struct Entry {
         std::uint32_t ref;
@@ -172,8 +221,10 @@ void Bvh4::closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const {
     }
 }
 
+template <int W>
 template <typename Leaf>
-bool Bvh4::any(const BvhRay& r, float t_max, Leaf&& leaf) const {
+bool Bvh<W>::any(const BvhRay& r, float t_max, Leaf&& leaf) const {
+    static_assert(W == 4, "the 8-wide tree is traversed by the kernels in mesh_bvh_kernels.h");
     if (root_ == Bvh4Node::kEmpty) return false;
     std::uint32_t stack[bvh_detail::kStackSize];
     int top = 0;

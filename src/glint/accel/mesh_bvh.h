@@ -1,9 +1,12 @@
 #pragma once
 // The bottom level: one BVH per mesh, in the mesh's object space, shared by all its instances.
-// The triangles' vertices are copied into leaf order (36 bytes each) so that a leaf's triangles
-// are contiguous in memory and the traversal never goes through the index buffer.
-#include <array>
+// The tree is 8-wide where the CPU has AVX2 (traversed with AVX2, or with AVX-512 where present)
+// and 4-wide with SSE otherwise, chosen when the BVH is built (SimdIsa). Leaves hold packets of
+// four triangles (their vertices copied in leaf order, one SIMD lane per triangle), tested at once
+// with the watertight test of shapes/triangle.h, lane for lane the same arithmetic, so every ISA
+// gives the same hits bit for bit.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "glint/accel/bvh.h"
@@ -17,48 +20,60 @@ struct MeshHit {
     std::uint32_t prim;
 };
 
+/// Four triangles, structure of arrays: p[vertex][axis][lane]. A leaf's last packet repeats its
+/// last triangle in the unused lanes (a repeated triangle gives the same hit, so it changes
+/// nothing).
+struct alignas(16) TrianglePacket {
+    float p[3][3][4];
+    std::uint32_t prim[4];
+};
+static_assert(sizeof(TrianglePacket) == 160);
+
+/// The instruction sets the mesh traversal has kernels for.
+enum class SimdIsa { kSse4, kAvx2, kAvx512 };
+const char* simd_isa_name(SimdIsa isa);
+/// The best kernel this CPU runs (AVX-512 needs F, VL, BW and DQ; AVX2 needs FMA and BMI2 too),
+/// lowered by the environment variable GLINT_ISA (sse4, avx2 or avx512) when set; an unknown
+/// value throws std::runtime_error, one above the CPU's is lowered to the CPU's.
+SimdIsa default_simd_isa();
+bool cpu_supports(SimdIsa isa);
+
+/// What a traversal kernel reads: the nodes (Bvh4Node for SSE, Bvh8Node otherwise), the root
+/// reference and the packets; leaf references count packets.
+struct MeshTraversal {
+    const void* nodes;
+    std::uint32_t root;
+    const TrianglePacket* packets;
+};
+
 class MeshBvh {
 public:
-    void build(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
+    void build(const TriangleMesh& mesh, const BvhBuildOptions& options = {},
+               SimdIsa isa = default_simd_isa());
 
     /// Nearest triangle in [kRayTMin, ray.t_max) along an object-space ray (any direction
     /// length; t is in the ray's own parametrisation).
-    std::optional<MeshHit> closest(const Ray& ray) const {
-        const BvhRay br(ray);
-        WatertightRay wr(ray);
-        std::optional<MeshHit> best;
-        bvh_.closest(br, wr.t_max, [&](std::uint32_t first, std::uint32_t count) {
-            for (std::uint32_t i = first; i < first + count; ++i) {
-                const auto& v = vertices_[i];
-                if (const auto h = intersect_triangle(v[0], v[1], v[2], wr)) {
-                    wr.t_max = h->t;
-                    best = MeshHit{*h, bvh_.order()[i]};
-                }
-            }
-        });
-        return best;
-    }
-    bool any(const Ray& ray) const {
-        const BvhRay br(ray);
-        const WatertightRay wr(ray);
-        return bvh_.any(br, ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
-            for (std::uint32_t i = first; i < first + count; ++i) {
-                const auto& v = vertices_[i];
-                if (intersect_triangle(v[0], v[1], v[2], wr)) return true;
-            }
-            return false;
-        });
-    }
+    std::optional<MeshHit> closest(const Ray& ray) const;
+    bool any(const Ray& ray) const;
 
-    Bounds3 bounds() const { return bvh_.bounds(); }
-    const Bvh4& bvh() const { return bvh_; }
+    Bounds3 bounds() const { return width_ == 8 ? bvh8_.bounds() : bvh4_.bounds(); }
+    int depth() const { return width_ == 8 ? bvh8_.depth() : bvh4_.depth(); }
+    int width() const { return width_; }
+    SimdIsa isa() const { return isa_; }
+    /// Triangle references in the leaves (more than the triangles with spatial splits).
+    std::size_t references() const { return width_ == 8 ? bvh8_.order().size() : bvh4_.order().size(); }
+    double sah_cost() const { return width_ == 8 ? bvh8_.sah_cost() : bvh4_.sah_cost(); }
     std::size_t memory_bytes() const {
-        return bvh_.memory_bytes() + vertices_.size() * sizeof(vertices_[0]);
+        return bvh4_.memory_bytes() + bvh8_.memory_bytes() + packets_.size() * sizeof(TrianglePacket);
     }
 
 private:
-    Bvh4 bvh_;
-    std::vector<std::array<Point3, 3>> vertices_;  ///< leaf order
+    MeshTraversal view() const;
+    Bvh4 bvh4_;
+    Bvh8 bvh8_;
+    std::vector<TrianglePacket> packets_;
+    SimdIsa isa_ = SimdIsa::kSse4;
+    int width_ = 4;
 };
 
 }  // namespace glint

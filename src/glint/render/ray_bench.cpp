@@ -27,7 +27,7 @@ SceneInfo scene_info(const Scene& s) {
     for (const Instance& inst : s.instances) i.triangles += s.meshes[inst.mesh].triangle_count();
     i.triangles += s.triangles.size();
     i.accel_bytes = s.accel_memory_bytes();
-    for (const MeshBvh& b : s.mesh_bvhs()) i.bvh_depth = std::max(i.bvh_depth, b.bvh().depth());
+    for (const MeshBvh& b : s.mesh_bvhs()) i.bvh_depth = std::max(i.bvh_depth, b.depth());
     i.bounds = s.bounds();
     return i;
 }

@@ -1,0 +1,315 @@
+// One mesh traversal kernel: included by mesh_bvh_sse4.cpp, mesh_bvh_avx2.cpp and
+// mesh_bvh_avx512.cpp with GLINT_KERNEL_ISA (the entry points' suffix) and GLINT_KERNEL_WIDTH
+// (4 or 8 children per node) defined. Everything but the two entry points is in an anonymous
+// namespace, and the code calls no inline function with external linkage (only intrinsics and
+// plain field reads), so nothing compiled here for a wider ISA can stand in for baseline code.
+//
+// The arithmetic is that of the scalar code, operation for operation and in the same order
+// (the files are compiled with -ffp-contract=off so that no multiply-add is fused): box tests as
+// bvh_detail::hit_boxes, triangle tests as intersect_triangle in shapes/triangle.h.
+#include <immintrin.h>
+
+#include <cstdint>
+#include <limits>
+
+#include "glint/accel/mesh_bvh_kernels.h"
+
+#define GLINT_CAT2(a, b) a##b
+#define GLINT_CAT(a, b) GLINT_CAT2(a, b)
+
+namespace glint {
+namespace {
+
+constexpr int W = GLINT_KERNEL_WIDTH;
+using Node = BvhNode<W>;
+constexpr int kStack = 256;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+inline std::uint32_t leaf_first(std::uint32_t c) { return (c & ~Node::kLeaf) >> Node::kCountBits; }
+inline std::uint32_t leaf_count(std::uint32_t c) { return c & ((1u << Node::kCountBits) - 1); }
+
+// The node's box test, W lanes at once.
+#if GLINT_KERNEL_WIDTH == 8
+using VecW = __m256;
+inline VecW set1(float x) { return _mm256_set1_ps(x); }
+inline VecW load(const float* p) { return _mm256_load_ps(p); }
+inline VecW sub(VecW a, VecW b) { return _mm256_sub_ps(a, b); }
+inline VecW mul(VecW a, VecW b) { return _mm256_mul_ps(a, b); }
+inline VecW vmax(VecW a, VecW b) { return _mm256_max_ps(a, b); }
+inline VecW vmin(VecW a, VecW b) { return _mm256_min_ps(a, b); }
+inline void store(float* p, VecW a) { _mm256_store_ps(p, a); }
+#if defined(__AVX512VL__)
+inline unsigned le_mask(VecW a, VecW b) { return _mm256_cmp_ps_mask(a, b, _CMP_LE_OQ); }
+#else
+inline unsigned le_mask(VecW a, VecW b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ)));
+}
+#endif
+#else
+using VecW = __m128;
+inline VecW set1(float x) { return _mm_set1_ps(x); }
+inline VecW load(const float* p) { return _mm_load_ps(p); }
+inline VecW sub(VecW a, VecW b) { return _mm_sub_ps(a, b); }
+inline VecW mul(VecW a, VecW b) { return _mm_mul_ps(a, b); }
+inline VecW vmax(VecW a, VecW b) { return _mm_max_ps(a, b); }
+inline VecW vmin(VecW a, VecW b) { return _mm_min_ps(a, b); }
+inline void store(float* p, VecW a) { _mm_store_ps(p, a); }
+inline unsigned le_mask(VecW a, VecW b) { return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b))); }
+#endif
+
+struct BoxRay {
+    VecW o[3], inv[3];
+    int near_offset[3], far_offset[3];
+};
+
+inline BoxRay make_box_ray(const Ray& ray) {
+    BoxRay r;
+    const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+    const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+    for (int a = 0; a < 3; ++a) {
+        r.o[a] = set1(o[a]);
+        const float inv_d = 1 / d[a];
+        r.inv[a] = set1(inv_d);
+        const bool negative = __builtin_signbit(inv_d);
+        r.near_offset[a] = 2 * W * a + (negative ? W : 0);
+        r.far_offset[a] = 2 * W * a + (negative ? 0 : W);
+    }
+    return r;
+}
+
+// 1 + 2 gamma(3), as in bvh_detail::hit_boxes.
+constexpr float kWiden = 1 + 2 * 3 * 0.5f * std::numeric_limits<float>::epsilon() /
+                                 (1 - 3 * 0.5f * std::numeric_limits<float>::epsilon());
+
+inline unsigned hit_boxes(const Node& n, const BoxRay& r, float t_max, float* tnear) {
+    const float* base = n.lo_x;
+    VecW t0 = set1(0), t1 = set1(t_max);
+    const VecW widen = set1(kWiden);
+    for (int a = 0; a < 3; ++a) {
+        const VecW tn = mul(sub(load(base + r.near_offset[a]), r.o[a]), r.inv[a]);
+        const VecW tf = mul(mul(sub(load(base + r.far_offset[a]), r.o[a]), r.inv[a]), widen);
+        t0 = vmax(tn, t0);  // a NaN slab distance leaves the running bound (second operand)
+        t1 = vmin(tf, t1);
+    }
+    store(tnear, t0);
+    return le_mask(t0, t1);
+}
+
+// The watertight test on a packet of four triangles.
+struct TriRay {
+    int kx, ky, kz;
+    float ox, oy, oz;  // the origin's permuted coordinates
+    __m128 sx, sy, sz;
+    const WatertightRay* scalar;
+};
+
+inline TriRay make_tri_ray(const WatertightRay& wr) {
+    const float o[3] = {wr.origin.x, wr.origin.y, wr.origin.z};
+    return {wr.kx, wr.ky, wr.kz, o[wr.kx], o[wr.ky], o[wr.kz], _mm_set1_ps(wr.sx), _mm_set1_ps(wr.sy),
+            _mm_set1_ps(wr.sz), &wr};
+}
+
+struct PacketResult {
+    __m128 t, b1, b2;
+    unsigned hit;  ///< lanes with a hit in [kRayTMin, t_max)
+    bool exact;    ///< an edge function was zero in some lane: the caller redoes the packet in scalar
+};
+
+inline PacketResult test_packet(const TrianglePacket& p, const TriRay& r, float t_max, bool need_uv) {
+    PacketResult res{};
+    const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
+    // Vertices relative to the origin in the permuted frame, then sheared.
+    __m128 vx[3], vy[3], vz[3];
+    for (int v = 0; v < 3; ++v) {
+        const __m128 x = _mm_sub_ps(_mm_load_ps(p.p[v][r.kx]), ox);
+        const __m128 y = _mm_sub_ps(_mm_load_ps(p.p[v][r.ky]), oy);
+        vz[v] = _mm_sub_ps(_mm_load_ps(p.p[v][r.kz]), oz);
+        vx[v] = _mm_sub_ps(x, _mm_mul_ps(r.sx, vz[v]));
+        vy[v] = _mm_sub_ps(y, _mm_mul_ps(r.sy, vz[v]));
+    }
+    const __m128 u = _mm_sub_ps(_mm_mul_ps(vx[2], vy[1]), _mm_mul_ps(vy[2], vx[1]));
+    const __m128 v = _mm_sub_ps(_mm_mul_ps(vx[0], vy[2]), _mm_mul_ps(vy[0], vx[2]));
+    const __m128 w = _mm_sub_ps(_mm_mul_ps(vx[1], vy[0]), _mm_mul_ps(vy[1], vx[0]));
+    const __m128 zero = _mm_setzero_ps();
+    if (_mm_movemask_ps(_mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero)))) {
+        res.exact = true;
+        return res;
+    }
+    const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
+    const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+    __m128 ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_castsi128_ps(_mm_set1_epi32(-1)));
+    const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
+    ok = _mm_and_ps(ok, _mm_cmpneq_ps(det, zero));
+    if (!_mm_movemask_ps(ok)) return res;
+    const __m128 t_scaled = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(r.sz, vz[0])), _mm_mul_ps(v, _mm_mul_ps(r.sz, vz[1]))),
+        _mm_mul_ps(w, _mm_mul_ps(r.sz, vz[2])));
+    const __m128 tmin = _mm_set1_ps(kRayTMin), tmax = _mm_set1_ps(t_max);
+    const __m128 lo = _mm_mul_ps(tmin, det), hi = _mm_mul_ps(tmax, det);
+    const __m128 in_pos = _mm_and_ps(_mm_cmpge_ps(t_scaled, lo), _mm_cmplt_ps(t_scaled, hi));
+    const __m128 in_neg = _mm_and_ps(_mm_cmple_ps(t_scaled, lo), _mm_cmpgt_ps(t_scaled, hi));
+    ok = _mm_and_ps(ok, _mm_blendv_ps(in_neg, in_pos, _mm_cmpgt_ps(det, zero)));
+    if (!_mm_movemask_ps(ok)) return res;
+    res.t = _mm_div_ps(t_scaled, det);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(res.t, tmin), _mm_cmplt_ps(res.t, tmax)));
+    res.hit = static_cast<unsigned>(_mm_movemask_ps(ok));
+    if (res.hit && need_uv) {
+        const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1), det);
+        res.b1 = _mm_mul_ps(v, inv_det);
+        res.b2 = _mm_mul_ps(w, inv_det);
+    }
+    res.t = _mm_blendv_ps(_mm_set1_ps(kInf), res.t, ok);
+    return res;
+}
+
+/// Tests a leaf's packets, lowering t_max and filling `out` at each nearer hit.
+inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const TriRay& r, float& t_max,
+                            MeshHit& out) {
+    bool found = false;
+    const std::uint32_t first = leaf_first(ref), count = leaf_count(ref);
+    for (std::uint32_t k = first; k < first + count; ++k) {
+        const TrianglePacket& p = m.packets[k];
+        const PacketResult res = test_packet(p, r, t_max, true);
+        if (res.exact) {  // lane by lane in scalar, as intersect_triangle would in leaf order
+            WatertightRay wr = *r.scalar;
+            for (int lane = 0; lane < 4; ++lane) {
+                wr.t_max = t_max;
+                TriangleHit h;
+                if (intersect_packet_lane(p, lane, wr, h)) {
+                    t_max = h.t;
+                    out.hit = h;
+                    out.prim = p.prim[lane];
+                    found = true;
+                }
+            }
+            continue;
+        }
+        if (!res.hit) continue;
+        // The nearest lane; the first of equal ones, as a scalar loop in lane order keeps.
+        alignas(16) float t[4], b1[4], b2[4];
+        _mm_store_ps(t, res.t);
+        _mm_store_ps(b1, res.b1);
+        _mm_store_ps(b2, res.b2);
+        int best = __builtin_ctz(res.hit);
+        for (int lane = best + 1; lane < 4; ++lane)
+            if (t[lane] < t[best]) best = lane;
+        t_max = t[best];
+        out.hit = TriangleHit{t[best], b1[best], b2[best]};
+        out.prim = p.prim[best];
+        found = true;
+    }
+    return found;
+}
+
+inline bool any_in_leaf(const MeshTraversal& m, std::uint32_t ref, const TriRay& r, float t_max) {
+    const std::uint32_t first = leaf_first(ref), count = leaf_count(ref);
+    for (std::uint32_t k = first; k < first + count; ++k) {
+        const TrianglePacket& p = m.packets[k];
+        const PacketResult res = test_packet(p, r, t_max, false);
+        if (res.exact) {
+            TriangleHit h;
+            for (int lane = 0; lane < 4; ++lane)
+                if (intersect_packet_lane(p, lane, *r.scalar, h)) return true;
+            continue;
+        }
+        if (res.hit) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+bool GLINT_CAT(mesh_closest_, GLINT_KERNEL_ISA)(const MeshTraversal& m, const Ray& ray, MeshHit& out) {
+    if (m.root == Node::kEmpty) return false;
+    const Node* nodes = static_cast<const Node*>(m.nodes);
+    const BoxRay br = make_box_ray(ray);
+    const WatertightRay wr(ray);
+    const TriRay tr = make_tri_ray(wr);
+    float t_max = ray.t_max;
+    bool found = false;
+    // The stack holds the hit children not yet visited, with their entry distances, in two
+    // arrays (a pop reads what a push wrote, word for word, so loads forward from stores).
+    std::uint32_t stack_ref[kStack];
+    float stack_t[kStack];
+    int top = 0;
+    std::uint32_t cur = m.root;
+    for (;;) {
+        // Down the tree: the nearest hit child next, the others pushed farthest first.
+        while (!(cur & Node::kLeaf)) {
+            const Node& n = nodes[cur];
+            alignas(W * 4) float tn[W];
+            unsigned mask = hit_boxes(n, br, t_max, tn);
+            if (mask == 0) {
+                cur = Node::kEmpty;
+                break;
+            }
+            int i = __builtin_ctz(mask);
+            mask &= mask - 1;
+            if (mask == 0) {  // one child: no stack traffic
+                cur = n.child[i];
+                continue;
+            }
+            const int base = top;
+            for (;;) {  // insertion of child i into the stack's top, sorted by distance
+                const std::uint32_t ref = n.child[i];
+                const float t = tn[i];
+                if (!(ref & Node::kLeaf)) _mm_prefetch(reinterpret_cast<const char*>(nodes + ref), _MM_HINT_T0);
+                int j = top++;
+                while (j > base && stack_t[j - 1] < t) {
+                    stack_ref[j] = stack_ref[j - 1];
+                    stack_t[j] = stack_t[j - 1];
+                    --j;
+                }
+                stack_ref[j] = ref;
+                stack_t[j] = t;
+                if (mask == 0) break;
+                i = __builtin_ctz(mask);
+                mask &= mask - 1;
+            }
+            cur = stack_ref[--top];  // the nearest
+        }
+        if (cur != Node::kEmpty) found |= closest_in_leaf(m, cur, tr, t_max, out);
+        // Up: the next entry nearer than the nearest hit so far.
+        for (;;) {
+            if (top == 0) return found;
+            --top;
+            if (stack_t[top] <= t_max) break;
+        }
+        cur = stack_ref[top];
+    }
+}
+
+bool GLINT_CAT(mesh_any_, GLINT_KERNEL_ISA)(const MeshTraversal& m, const Ray& ray) {
+    if (m.root == Node::kEmpty) return false;
+    const Node* nodes = static_cast<const Node*>(m.nodes);
+    const BoxRay br = make_box_ray(ray);
+    const WatertightRay wr(ray);
+    const TriRay tr = make_tri_ray(wr);
+    std::uint32_t stack[kStack];
+    int top = 0;
+    std::uint32_t cur = m.root;
+    for (;;) {
+        while (!(cur & Node::kLeaf)) {  // down: the first hit child next, the others pushed
+            alignas(W * 4) float tn[W];
+            unsigned mask = hit_boxes(nodes[cur], br, ray.t_max, tn);
+            if (mask == 0) {
+                cur = Node::kEmpty;
+                break;
+            }
+            const Node& n = nodes[cur];
+            cur = n.child[__builtin_ctz(mask)];
+            mask &= mask - 1;
+            while (mask) {
+                stack[top++] = n.child[__builtin_ctz(mask)];
+                mask &= mask - 1;
+            }
+        }
+        if (cur != Node::kEmpty && any_in_leaf(m, cur, tr, ray.t_max)) return true;
+        if (top == 0) return false;
+        cur = stack[--top];
+    }
+}
+
+}  // namespace glint
+
+#undef GLINT_CAT
+#undef GLINT_CAT2
