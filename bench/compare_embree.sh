@@ -23,7 +23,7 @@ for scene in scenes/bunny.yaml "$out/gltf/textured.glb" "$out/cube-1m.ply" "$out
   for threads in 1 2; do
     "$glint" bench "$scene" --threads "$threads" --runs "$runs" --width 640 --height 480 > "$out/run.txt" 2>/dev/null
     tris=$(head -1 "$out/run.txt" | sed -E 's/.*: ([0-9]+) triangles.*/\1/')
-    tail -n +3 "$out/run.txt" | while read -r backend build_s mem unit bpt prim diff _; do
+    grep -E "^(bvh|sbvh|embree) " "$out/run.txt" | while read -r backend build_s mem unit bpt prim diff _; do
       echo "| $(basename "$scene") | $tris | $threads | $backend | $build_s | $mem $unit | $bpt | $prim | $diff |"
     done
   done

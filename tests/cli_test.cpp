@@ -231,9 +231,24 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
 #if GLINT_EMBREE
     EXPECT_NE(r.out.find("\nembree "), std::string::npos) << r.out;
 #endif
+    // --accel all adds spatial splits; every backend finds the same hits.
+    r = run("bench textured.glb --width 32 --height 24 --runs 1 --threads 1 --accel all");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto hits_of = [&](const std::string& backend) {
+        const std::size_t line = r.out.find("\n" + backend + " ");
+        if (line == std::string::npos) return std::string("(no line)");
+        const std::size_t h = r.out.find("(hits:", line);
+        return r.out.substr(h, r.out.find('\n', h) - h);
+    };
+    EXPECT_EQ(hits_of("sbvh"), hits_of("bvh")) << r.out;
+    EXPECT_NE(r.out.find("mesh bvh: "), std::string::npos) << r.out;
+    r = run("info textured.gltf --accel sbvh");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("acceleration (sbvh)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" kernel, depth "), std::string::npos) << r.out;
     r = run("render textured.glb --accel rtx");
     EXPECT_EQ(r.status, 1);
-    EXPECT_NE(r.err.find("--accel: unknown backend 'rtx' (known: bvh, embree)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--accel: unknown backend 'rtx' (known: bvh, sbvh, embree)"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -38,8 +38,9 @@ struct RenderArgs {
 std::optional<glint::AccelKind> parse_accel(const std::string& name) {
     if (name.empty()) return std::nullopt;
     if (name == "bvh") return glint::AccelKind::kBvh;
+    if (name == "sbvh") return glint::AccelKind::kSbvh;
     if (name == "embree") return glint::AccelKind::kEmbree;
-    throw glint::IoError(fmt::format("--accel: unknown backend '{}' (known: bvh, embree)", name));
+    throw glint::IoError(fmt::format("--accel: unknown backend '{}' (known: bvh, sbvh, embree)", name));
 }
 
 bool is_mesh_file(const std::string& path) { return glint::mesh_format(path).has_value(); }
@@ -138,19 +139,22 @@ int run_info(const RenderArgs& args) {
         fmt::print("bounds       [{:.4g}, {:.4g}, {:.4g}] .. [{:.4g}, {:.4g}, {:.4g}]\n", i.bounds.lo.x,
                    i.bounds.lo.y, i.bounds.lo.z, i.bounds.hi.x, i.bounds.hi.y, i.bounds.hi.z);
     fmt::print("memory       meshes {}, acceleration ({}) {}", bytes(i.mesh_bytes),
-               job.scene.accel == glint::AccelKind::kEmbree ? "embree" : "bvh", bytes(i.accel_bytes));
+               glint::accel_name(job.scene.accel), bytes(i.accel_bytes));
     if (i.unique_triangles > 0)
         fmt::print(" = {:.1f} bytes per stored triangle", double(i.accel_bytes) / double(i.unique_triangles));
     fmt::print("\n");
-    if (job.scene.accel == glint::AccelKind::kBvh) fmt::print("bvh depth    {}\n", i.bvh_depth);
+    if (job.scene.accel != glint::AccelKind::kEmbree && i.meshes > 0)
+        fmt::print("mesh bvh     {}-wide, {} kernel, depth {}, {} triangle references ({:.3f} per triangle)\n",
+                   i.bvh_width, i.bvh_isa, i.bvh_depth, i.bvh_references,
+                   i.unique_triangles ? double(i.bvh_references) / double(i.unique_triangles) : 0.0);
     return 0;
 }
 
-int run_bench(const RenderArgs& args, int runs) {
+int run_bench(const RenderArgs& args, const std::string& set, int runs) {
     glint::RenderJob job = load_job(args);
     std::vector<glint::AccelKind> kinds{glint::AccelKind::kBvh};
-    if (args.accel == "bvh") kinds = {glint::AccelKind::kBvh};
-    else if (args.accel == "embree") kinds = {glint::AccelKind::kEmbree};
+    if (set == "all") kinds.push_back(glint::AccelKind::kSbvh);
+    if (const auto one = set == "all" ? std::nullopt : parse_accel(set)) kinds = {*one};
     else if (GLINT_EMBREE) kinds.push_back(glint::AccelKind::kEmbree);
     const int threads = job.options.threads;
     const glint::SceneInfo info = glint::scene_info(job.scene);
@@ -158,6 +162,8 @@ int run_bench(const RenderArgs& args, int runs) {
                args.scene.empty() ? "(built-in demo)" : args.scene, info.triangles, info.unique_triangles,
                job.width, job.height, threads > 0 ? fmt::format("{}", threads) : "all",
                threads == 1 ? "" : "s", runs);
+    if (info.meshes > 0)
+        fmt::print("mesh bvh: {}-wide nodes, {} kernel\n", info.bvh_width, info.bvh_isa);
     fmt::print("{:<8} {:>10} {:>12} {:>10} {:>16} {:>16}\n", "backend", "build (s)", "memory", "B/tri",
                "primary Mrays/s", "diffuse Mrays/s");
     // The rays, made once with the scene as load_job committed it, for every backend.
@@ -233,7 +239,9 @@ int main(int argc, char** argv) {
                      "Also write albedo, normal and depth (for denoisers) as EXR channels "
                      "albedo.R/G/B, N.X/Y/Z and Z; needs an .exr output");
     render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
-    const char* accel_help = "Acceleration structure: bvh (glint's own) or embree (Embree 3, when built in)";
+    const char* accel_help =
+        "Acceleration structure: bvh (glint's own), sbvh (the same with spatial splits) or embree "
+        "(Embree 3, when built in)";
     render->add_option("--accel", args.accel, accel_help);
     render->add_option("--camera", args.camera,
                        "For a .gltf/.glb rendered directly: the camera to look through, by name "
@@ -249,7 +257,7 @@ int main(int argc, char** argv) {
         "bench", "Measure the acceleration backends side by side: build time, memory, and Mrays/s "
                  "for primary rays and one-bounce diffuse rays (closest hit)");
     bench->add_option("SCENE", args.scene, "Scene file (.yaml, .json) or mesh (.obj, .ply)")->required();
-    bench->add_option("--accel", args.accel, "bvh, embree, or both (default: every backend built in)");
+    bench->add_option("--accel", args.accel, "bvh, sbvh, embree, both (bvh and embree: the default) or all");
     bench->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
     bench->add_option("--width", args.width, "Film width: the primary rays (overrides the scene)");
     bench->add_option("--height", args.height, "Film height (overrides the scene)");
@@ -264,8 +272,11 @@ int main(int argc, char** argv) {
     try {
         if (info->parsed()) return run_info(args);
         if (bench->parsed()) {
-            if (args.accel == "both") args.accel.clear();
-            return run_bench(args, runs);
+            // The backends to compare; the scene itself is loaded with the default one.
+            const std::string set = args.accel == "both" ? "" : args.accel;
+            if (!set.empty() && set != "all") parse_accel(set);  // an unknown name fails first
+            args.accel.clear();
+            return run_bench(args, set, runs);
         }
         return run_render(args);
     } catch (const glint::SceneError& e) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <stdexcept>
 #include <type_traits>
 
@@ -73,11 +74,33 @@ Bounds3 ball_bounds(Point3 c, Float r) {
 
 }  // namespace
 
+const char* accel_name(AccelKind kind) {
+    switch (kind) {
+        case AccelKind::kBvh: return "bvh";
+        case AccelKind::kSbvh: return "sbvh";
+        case AccelKind::kEmbree: return "embree";
+    }
+    return "?";
+}
+
 void Scene::commit() {
     if (bounded_count() > kRefMask) throw std::length_error("too many shapes and instances for one scene");
-    // Bottom level: one BVH per mesh.
-    mesh_bvhs_.assign(meshes.size(), MeshBvh{});
-    for (std::size_t m = 0; m < meshes.size(); ++m) mesh_bvhs_[m].build(meshes[m]);
+    // Bottom level: one BVH per mesh (not built when Embree replaces both levels, so that what
+    // the Embree backend's build costs is Embree's alone).
+    const bool ours = accel != AccelKind::kEmbree;
+    BvhBuildOptions mesh_options;
+    mesh_options.spatial_splits = accel == AccelKind::kSbvh;
+    mesh_bvhs_.assign(ours ? meshes.size() : 0, MeshBvh{});
+    const SimdIsa isa = mesh_isa ? *mesh_isa : default_simd_isa();
+    for (std::size_t m = 0; m < mesh_bvhs_.size(); ++m) mesh_bvhs_[m].build(meshes[m], mesh_options, isa);
+    const auto mesh_bounds = [&](std::uint32_t m) {
+        if (ours) return mesh_bvhs_[m].bounds();
+        Bounds3 b;  // the triangles' (as the BVH's; unused vertices left out)
+        for (std::uint32_t t = 0; t < meshes[m].triangle_count(); ++t)
+            for (const Point3& p : meshes[m].vertices(t))
+                if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) b.extend(p);
+        return b;
+    };
 
     // Top level: every bounded shape and every instance.
     std::vector<Bounds3> boxes;
@@ -111,7 +134,7 @@ void Scene::commit() {
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         if (inst.mesh >= meshes.size()) throw std::out_of_range("instance of a mesh that does not exist");
-        const Bounds3 local = mesh_bvhs_[inst.mesh].bounds();
+        const Bounds3 local = mesh_bounds(inst.mesh);
         add(ShapeKind::kMesh, i, local.empty() ? Bounds3{} : inst.transform.bounds(local));
     }
     BvhBuildOptions top_options;

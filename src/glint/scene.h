@@ -32,7 +32,9 @@
 
 namespace glint {
 
-enum class AccelKind { kBvh, kEmbree };
+/// glint's BVH, the same with spatial splits in the mesh BVHs, or Embree 3 (when built in).
+enum class AccelKind { kBvh, kSbvh, kEmbree };
+const char* accel_name(AccelKind kind);  ///< "bvh", "sbvh", "embree"
 
 class EmbreeAccel;
 
@@ -52,6 +54,8 @@ struct Scene {
     std::vector<Light> lights;
     Background background = SkyBackground{};
     AccelKind accel = AccelKind::kBvh;  ///< read by commit()
+    /// The mesh BVHs' traversal kernel, read by commit(); empty: default_simd_isa().
+    std::optional<SimdIsa> mesh_isa;
 
     /// Builds the derived data (acceleration structures, light sampler, which textures read uv)
     /// from the arrays. Throws std::runtime_error when `accel` is kEmbree and glint was built

@@ -38,9 +38,30 @@ TriangleMesh random_soup(std::mt19937& g, int n) {
     return m;
 }
 
+// A few large triangles across a cloud of small ones (as walls among furniture): the large
+// ones' boxes cover every small one's, which object splits cannot undo; what spatial splits are
+// for.
+TriangleMesh large_among_small(std::mt19937& g, int small, int large) {
+    TriangleMesh m;
+    const auto add = [&](Point3 a, Point3 b, Point3 c) {
+        const auto i = static_cast<std::uint32_t>(m.positions.size());
+        m.positions.insert(m.positions.end(), {a, b, c});
+        m.indices.insert(m.indices.end(), {i, i + 1, i + 2});
+    };
+    for (int i = 0; i < large; ++i)
+        add(Point3{} + random_direction(g) * 2.0f, Point3{} + random_direction(g) * 2.0f,
+            Point3{} + random_direction(g) * 2.0f);
+    for (int i = 0; i < small; ++i) {
+        const Point3 c = random_point(g, 2);
+        add(c + to_vector(random_point(g, 0.05f)), c + to_vector(random_point(g, 0.05f)),
+            c + to_vector(random_point(g, 0.05f)));
+    }
+    return m;
+}
+
 // Every kind of bounded shape, and five instances of two meshes under rotations, non-uniform
 // scales and a mirror.
-Scene mixed_scene(AccelKind accel) {
+Scene mixed_scene(AccelKind accel, std::optional<SimdIsa> isa = std::nullopt) {
     auto g = rng(7);
     Scene s;
     s.materials.push_back(DiffuseMaterial{0});
@@ -58,6 +79,8 @@ Scene mixed_scene(AccelKind accel) {
     }
     s.meshes.push_back(random_soup(g, 2000));
     s.meshes.push_back(random_soup(g, 500));
+    s.meshes.push_back(large_among_small(g, 1000, 20));
+    s.instances.push_back({2, Transform::translate({1, -3, 1}), std::nullopt});
     s.instances.push_back({0, Transform{}, std::nullopt});
     s.instances.push_back({0, Transform::translate({3, 1, -2}) * Transform::rotate(40, {1, 2, 3}) *
                                   Transform::scale({0.5f, 2, 1}), std::nullopt});
@@ -65,9 +88,32 @@ Scene mixed_scene(AccelKind accel) {
     s.instances.push_back({1, Transform::rotate(-75, {0, 1, 0}) * Transform::translate({2, 2, 2}), std::nullopt});
     s.instances.push_back({0, Transform::translate({-2, 3, -3}) * Transform::scale({2, 2, 2}), std::nullopt});
     s.accel = accel;
+    s.mesh_isa = isa;
     s.commit();
     return s;
 }
+
+// glint's backends: with and without spatial splits, with every mesh traversal kernel.
+struct Backend {
+    AccelKind accel;
+    SimdIsa isa;
+};
+std::string backend_name(const testing::TestParamInfo<Backend>& p) {
+    return std::string(accel_name(p.param.accel)) + "_" + simd_isa_name(p.param.isa);
+}
+class BvhBackends : public testing::TestWithParam<Backend> {
+protected:
+    void SetUp() override {
+        if (!cpu_supports(GetParam().isa)) GTEST_SKIP() << "this CPU has no " << simd_isa_name(GetParam().isa);
+    }
+};
+INSTANTIATE_TEST_SUITE_P(All, BvhBackends,
+                         testing::Values(Backend{AccelKind::kBvh, SimdIsa::kSse4}, Backend{AccelKind::kBvh, SimdIsa::kAvx2},
+                                         Backend{AccelKind::kBvh, SimdIsa::kAvx512},
+                                         Backend{AccelKind::kSbvh, SimdIsa::kSse4},
+                                         Backend{AccelKind::kSbvh, SimdIsa::kAvx2},
+                                         Backend{AccelKind::kSbvh, SimdIsa::kAvx512}),
+                         backend_name);
 
 std::vector<Ray> random_rays(int n) {
     auto g = rng(11);
@@ -81,8 +127,8 @@ std::vector<Ray> random_rays(int n) {
     return rays;
 }
 
-TEST(Bvh, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
-    const Scene s = mixed_scene(AccelKind::kBvh);
+TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
+    const Scene s = mixed_scene(GetParam().accel, GetParam().isa);
     int hits = 0;
     std::array<int, 6> kinds{};
     for (const Ray& r : random_rays(10000)) {
@@ -104,6 +150,26 @@ TEST(Bvh, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
     for (ShapeKind k : {ShapeKind::kSphere, ShapeKind::kQuad, ShapeKind::kDisk, ShapeKind::kTriangle,
                         ShapeKind::kMesh})
         EXPECT_GT(kinds[static_cast<int>(k)], 20) << "kind " << static_cast<int>(k);
+}
+
+TEST(Sbvh, SplitsLargeTrianglesAndLowersTheSahCost) {
+    auto g = rng(21);
+    const TriangleMesh m = large_among_small(g, 4000, 40);
+    BvhBuildOptions spatial;
+    spatial.spatial_splits = true;
+    for (SimdIsa isa : {SimdIsa::kSse4, SimdIsa::kAvx2}) {
+        if (!cpu_supports(isa)) continue;
+        MeshBvh plain, split;
+        plain.build(m, {}, isa);
+        split.build(m, spatial, isa);
+        EXPECT_EQ(plain.references(), m.triangle_count());
+        // The large triangles are cut into many references, within the duplication budget.
+        EXPECT_GT(split.references(), m.triangle_count() + 40 * 4);
+        EXPECT_LE(split.references(), m.triangle_count() * 2 + 4000);
+        // The expected cost of a random ray (the SAH, summed over the built tree) drops.
+        EXPECT_LT(split.sah_cost(), 0.8 * plain.sah_cost()) << simd_isa_name(isa);
+        EXPECT_EQ(plain.bounds().lo.x, split.bounds().lo.x);
+    }
 }
 
 TEST(Bvh, TreeInvariants) {
@@ -154,7 +220,7 @@ TEST(Bvh, TreeInvariants) {
     EXPECT_LT(bvh.depth(), 20);
 }
 
-TEST(Bvh, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
+TEST_P(BvhBackends, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
     // A 32 x 32 grid of quads (two triangles each) with jittered interior vertices, tilted by an
     // instance transform: rays aimed at every vertex and every edge midpoint must hit.
     auto g = rng(5);
@@ -177,6 +243,8 @@ TEST(Bvh, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
     s.meshes.push_back(m);
     const Transform place = Transform::rotate(33, {1, 0.5f, 0.2f}) * Transform::translate({-16, -16, 0});
     s.instances.push_back({0, place, std::nullopt});
+    s.accel = GetParam().accel;
+    s.mesh_isa = GetParam().isa;
     s.commit();
     // Only targets inside the grid: past a border vertex or edge, a miss is correct.
     const auto on_border = [n](std::uint32_t v) {

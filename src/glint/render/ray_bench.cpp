@@ -27,7 +27,12 @@ SceneInfo scene_info(const Scene& s) {
     for (const Instance& inst : s.instances) i.triangles += s.meshes[inst.mesh].triangle_count();
     i.triangles += s.triangles.size();
     i.accel_bytes = s.accel_memory_bytes();
-    for (const MeshBvh& b : s.mesh_bvhs()) i.bvh_depth = std::max(i.bvh_depth, b.depth());
+    for (const MeshBvh& b : s.mesh_bvhs()) {
+        i.bvh_depth = std::max(i.bvh_depth, b.depth());
+        i.bvh_references += b.references();
+        i.bvh_width = b.width();
+        i.bvh_isa = simd_isa_name(b.isa());
+    }
     i.bounds = s.bounds();
     return i;
 }
@@ -68,7 +73,7 @@ BenchRays bench_rays(const Scene& scene, const Camera& camera, int width, int he
 
 BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, int threads, int runs) {
     BenchResult r;
-    r.backend = accel == AccelKind::kEmbree ? "embree" : "bvh";
+    r.backend = accel_name(accel);
     runs = std::max(1, runs);
     tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
     std::vector<double> build, primary, diffuse;

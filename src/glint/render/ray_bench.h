@@ -17,7 +17,10 @@ struct SceneInfo {
     std::uint64_t meshes = 0, instances = 0, analytic_shapes = 0, vertices = 0;
     std::uint64_t mesh_bytes = 0;   ///< vertex and index arrays
     std::uint64_t accel_bytes = 0;  ///< the committed backend's structures
-    int bvh_depth = 0;              ///< the deepest mesh BVH (our backend)
+    int bvh_depth = 0;              ///< the deepest mesh BVH (our backends)
+    std::uint64_t bvh_references = 0;  ///< triangle references in the mesh BVHs' leaves
+    int bvh_width = 0;                 ///< children per node of the mesh BVHs
+    std::string bvh_isa;               ///< their traversal kernel
     Bounds3 bounds;
 };
 
