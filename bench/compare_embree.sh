@@ -2,7 +2,7 @@
 # glint's BVH beside Embree 3 on the bunny in the Cornell box, the glTF test scene, a
 # million-triangle mesh and its latitude-longitude variant (fans of slivers at the poles; both
 # generated here by glint_make_mesh, not committed), with
-# 1 and 2 threads: `glint bench` builds each backend and traces the same primary and one-bounce
+# 1 and 2 threads: `glint bench --accel all` builds each backend (bvh, sbvh, embree) and traces the same primary and one-bounce
 # diffuse rays, reporting medians of RUNS runs. Prints markdown tables (docs/benchmarks.md).
 #
 #   bench/compare_embree.sh [BUILD_DIR] [RUNS]        (defaults: build 5)
@@ -21,7 +21,7 @@ echo "| scene | triangles | threads | backend | build (s) | memory | bytes/trian
 echo "|---|---|---|---|---|---|---|---|---|"
 for scene in scenes/bunny.yaml "$out/gltf/textured.glb" "$out/cube-1m.ply" "$out/latlong-1m.ply"; do
   for threads in 1 2; do
-    "$glint" bench "$scene" --threads "$threads" --runs "$runs" --width 640 --height 480 > "$out/run.txt" 2>/dev/null
+    "$glint" bench "$scene" --accel all --threads "$threads" --runs "$runs" --width 640 --height 480 > "$out/run.txt" 2>/dev/null
     tris=$(head -1 "$out/run.txt" | sed -E 's/.*: ([0-9]+) triangles.*/\1/')
     grep -E "^(bvh|sbvh|embree) " "$out/run.txt" | while read -r backend build_s mem unit bpt prim diff _; do
       echo "| $(basename "$scene") | $tris | $threads | $backend | $build_s | $mem $unit | $bpt | $prim | $diff |"
