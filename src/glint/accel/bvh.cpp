@@ -263,14 +263,25 @@ struct Ref {
 struct RefSet {
     std::vector<Ref> refs;
     Bounds3 bounds, centroids;
+    /// How many more references spatial splits in this subtree may make. Each split hands what
+    /// is left to its two halves in proportion to their sizes (as Embree does), so the tree
+    /// does not depend on which subtree a thread happens to build first.
+    std::int64_t budget = 0;
     std::uint32_t count() const { return static_cast<std::uint32_t>(refs.size()); }
-    static RefSet of(std::vector<Ref>&& refs) {
-        RefSet s{std::move(refs), {}, {}};
+    static RefSet of(std::vector<Ref>&& refs, std::int64_t budget) {
+        RefSet s{std::move(refs), {}, {}, budget};
         for (const Ref& r : s.refs) {
             s.bounds = merge(s.bounds, r.box);
             s.centroids.extend(centre(r.box));
         }
         return s;
+    }
+    /// The two halves of a split of a set whose remaining budget is `budget`.
+    static std::pair<RefSet, RefSet> halves(std::vector<Ref>&& left, std::vector<Ref>&& right, std::int64_t budget) {
+        budget = std::max<std::int64_t>(budget, 0);
+        const auto nl = static_cast<std::int64_t>(left.size()), nr = static_cast<std::int64_t>(right.size());
+        const std::int64_t bl = budget * nl / (nl + nr);
+        return {of(std::move(left), bl), of(std::move(right), budget - bl)};
     }
 };
 
@@ -279,13 +290,8 @@ class SpatialBuilder {
 public:
     using Node = BvhNode<W>;
     SpatialBuilder(const BvhBuildOptions& options, BvhClipper clip, const void* context,
-                   std::vector<Node>& nodes, std::size_t prims, float root_area)
-        : options_(options),
-          clip_(clip),
-          context_(context),
-          nodes_(nodes),
-          budget_(static_cast<std::int64_t>(options.max_duplication * static_cast<double>(prims))),
-          min_overlap_(options.split_alpha * root_area) {}
+                   std::vector<Node>& nodes, float root_area)
+        : options_(options), clip_(clip), context_(context), nodes_(nodes), min_overlap_(options.split_alpha * root_area) {}
 
     std::uint32_t build(RefSet&& r, int depth) {
         max_into(depth_, depth);
@@ -418,11 +424,13 @@ private:
             const float c_split = half_area(merge(lb, l)) * nl + half_area(merge(rb, rr)) * nr;
             const float c_left = half_area(merge(lb, r.box)) * nl + half_area(rb) * (nr - 1);
             const float c_right = half_area(lb) * (nl - 1) + half_area(merge(rb, r.box)) * nr;
-            if (rr.empty() || (c_left < c_split && c_left <= c_right)) {
+            // Out of budget, a straddling reference goes whole to its cheaper side.
+            const bool may_split = duplicates < s.budget;
+            if (rr.empty() || ((c_left < c_split || !may_split) && c_left <= c_right)) {
                 left.push_back(r);
                 lb = merge(lb, r.box);
                 nr -= 1;
-            } else if (l.empty() || c_right < c_split) {
+            } else if (l.empty() || c_right < c_split || !may_split) {
                 right.push_back(r);
                 rb = merge(rb, r.box);
                 nl -= 1;
@@ -435,8 +443,7 @@ private:
             }
         }
         if (left.empty() || right.empty()) return std::nullopt;
-        budget_.fetch_sub(duplicates);
-        return std::pair{RefSet::of(std::move(left)), RefSet::of(std::move(right))};
+        return RefSet::halves(std::move(left), std::move(right), s.budget - duplicates);
     }
 
     std::optional<std::pair<RefSet, RefSet>> split(const RefSet& s, int depth) {
@@ -447,7 +454,7 @@ private:
                 for (const Ref& r : s.refs) f(centre(r.box), r.box);
             });
             SpatialSplit sp;
-            if (budget_.load() > 0 && (o.axis < 0 || half_area(intersection(o.left, o.right)) > min_overlap_))
+            if (s.budget > 0 && (o.axis < 0 || half_area(intersection(o.left, o.right)) > min_overlap_))
                 sp = find_spatial_split(s);
             const float best = std::min(o.cost, sp.cost);
             if (best < std::numeric_limits<float>::infinity() && !must_split &&
@@ -458,8 +465,7 @@ private:
             if (o.axis >= 0) {
                 std::vector<Ref> left, right;
                 for (const Ref& r : s.refs) (o.goes_left(centre(r.box), s.centroids) ? left : right).push_back(r);
-                if (!left.empty() && !right.empty())
-                    return std::pair{RefSet::of(std::move(left)), RefSet::of(std::move(right))};
+                if (!left.empty() && !right.empty()) return RefSet::halves(std::move(left), std::move(right), s.budget);
             }
         }
         if (!must_split) return std::nullopt;
@@ -474,14 +480,13 @@ private:
         });
         std::vector<Ref> right(m, refs.end());
         refs.erase(m, refs.end());
-        return std::pair{RefSet::of(std::move(refs)), RefSet::of(std::move(right))};
+        return RefSet::halves(std::move(refs), std::move(right), s.budget);
     }
 
     const BvhBuildOptions& options_;
     BvhClipper clip_;
     const void* context_;
     std::vector<Node>& nodes_;
-    std::atomic<std::int64_t> budget_;
     float min_overlap_;
     std::mutex mutex_;
     std::vector<std::vector<std::uint32_t>> leaves_;
@@ -513,13 +518,13 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
     if (options.spatial_splits && clipper) {
         std::vector<Ref> refs(order_.size());
         for (std::size_t i = 0; i < refs.size(); ++i) refs[i] = {bounds[order_[i]], order_[i]};
-        RefSet root = RefSet::of(std::move(refs));
+        const auto budget = static_cast<std::int64_t>(std::max(0.0f, options.max_duplication) *
+                                                      static_cast<double>(refs.size()));
+        RefSet root = RefSet::of(std::move(refs), budget);
         bounds_ = root.bounds;
-        // A W-wide tree over m references has fewer than m nodes; m <= (2 + dup) n.
-        const auto max_refs = static_cast<std::size_t>(
-            static_cast<double>(order_.size()) * (2.0 + std::max(0.0f, options.max_duplication)));
-        nodes_.resize(max_refs);
-        SpatialBuilder<W> builder(options, clipper, clip_context, nodes_, order_.size(), half_area(bounds_));
+        // A W-wide tree over m references has fewer than m nodes, and m <= n + budget.
+        nodes_.resize(order_.size() + static_cast<std::size_t>(budget) + 1);
+        SpatialBuilder<W> builder(options, clipper, clip_context, nodes_, half_area(bounds_));
         const std::uint32_t root_ref = builder.build(std::move(root), 0);
         order_.clear();
         root_ = builder.place_leaves(root_ref, order_);
@@ -551,17 +556,25 @@ double Bvh<W>::sah_cost(float traversal_cost) const {
         return cost;
     }
     cost += traversal_cost;  // the root
-    for (const Node& n : nodes_)
+    // Depth first from the root, so that the sum's order (and so its rounding) is the tree's,
+    // not the node array's (whose order depends on the build's scheduling).
+    std::vector<std::uint32_t> stack{root_};
+    while (!stack.empty()) {
+        const Node& n = nodes_[stack.back()];
+        stack.pop_back();
         for (int i = 0; i < W; ++i) {
             if (n.child[i] == Node::kEmpty) continue;
             Bounds3 b;
             b.lo = {n.lo_x[i], n.lo_y[i], n.lo_z[i]};
             b.hi = {n.hi_x[i], n.hi_y[i], n.hi_z[i]};
-            if (n.child[i] & Node::kLeaf)
+            if (n.child[i] & Node::kLeaf) {
                 leaf_cost(n.child[i], half_area(b));
-            else
+            } else {
                 cost += traversal_cost * half_area(b) / root;
+                stack.push_back(n.child[i]);
+            }
         }
+    }
     return cost;
 }
 

@@ -6,6 +6,8 @@
 #include <limits>
 #include <random>
 
+#include <tbb/task_arena.h>
+
 #include "glint/scene.h"
 
 namespace glint {
@@ -169,6 +171,33 @@ TEST(Sbvh, SplitsLargeTrianglesAndLowersTheSahCost) {
         // The expected cost of a random ray (the SAH, summed over the built tree) drops.
         EXPECT_LT(split.sah_cost(), 0.8 * plain.sah_cost()) << simd_isa_name(isa);
         EXPECT_EQ(plain.bounds().lo.x, split.bounds().lo.x);
+    }
+}
+
+TEST(Sbvh, TheTreeIsTheSameForAnyThreadCount) {
+    // With a small duplication budget that runs out, the tree must not depend on which subtree
+    // a thread builds first (images are bit-identical for any thread count).
+    auto g = rng(22);
+    const TriangleMesh m = large_among_small(g, 20000, 200);
+    BvhBuildOptions spatial;
+    spatial.spatial_splits = true;
+    spatial.max_duplication = 0.02f;
+    const auto build_on = [&](int threads) {
+        MeshBvh b;
+        tbb::task_arena(threads).execute([&] { b.build(m, spatial); });
+        return b;
+    };
+    const MeshBvh one = build_on(1), two = build_on(2);
+    EXPECT_GT(one.references(), m.triangle_count());
+    EXPECT_LE(one.references(), m.triangle_count() * 102 / 100);  // within the budget
+    EXPECT_EQ(one.references(), two.references());
+    EXPECT_EQ(one.sah_cost(), two.sah_cost());
+    for (const Ray& r : random_rays(2000)) {
+        const auto a = one.closest(r), b = two.closest(r);
+        ASSERT_EQ(a.has_value(), b.has_value());
+        if (a) {
+            EXPECT_EQ(a->prim, b->prim);
+        }
     }
 }
 
