@@ -246,6 +246,15 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("acceleration (sbvh)"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" kernel, depth "), std::string::npos) << r.out;
+    // GLINT_ISA picks a lower kernel, and names the choices when it is not one of them.
+    ::setenv("GLINT_ISA", "sse4", 1);
+    r = run("info textured.gltf");
+    EXPECT_NE(r.out.find("4-wide, sse4 kernel"), std::string::npos) << r.out;
+    ::setenv("GLINT_ISA", "avx9", 1);
+    r = run("info textured.gltf");
+    ::unsetenv("GLINT_ISA");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("GLINT_ISA=avx9: expected sse4, avx2 or avx512"), std::string::npos) << r.err;
     r = run("render textured.glb --accel rtx");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("--accel: unknown backend 'rtx' (known: bvh, sbvh, embree)"), std::string::npos) << r.err;
