@@ -58,7 +58,6 @@ struct alignas(W * 4) BvhNode {
     float lo_x[W], hi_x[W], lo_y[W], hi_y[W], lo_z[W], hi_z[W];
     std::uint32_t child[W];  ///< an inner node index, or a leaf (kLeaf bit set)
 
-    static constexpr int kWidth = W;
     static constexpr std::uint32_t kLeaf = 0x80000000u;
     static constexpr std::uint32_t kEmpty = 0xffffffffu;  ///< a leaf with no primitives
     static constexpr int kCountBits = 4;                 ///< leaf: count in the low bits
