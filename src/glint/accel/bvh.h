@@ -183,40 +183,56 @@ template <typename Leaf>
 void Bvh<W>::closest(const BvhRay& r, const float& t_max, Leaf&& leaf) const {
     static_assert(W == 4, "the 8-wide tree is traversed by the kernels in mesh_bvh_kernels.h");
     if (root_ == Bvh4Node::kEmpty) return;
-    struct Entry {
-        std::uint32_t ref;
-        float t;
-    };
-    Entry stack[bvh_detail::kStackSize];
+    // As the mesh kernels (mesh_bvh_kernels.inl): down to the nearest hit child without the
+    // stack; the others pushed farthest first, references and distances in two arrays so that
+    // a pop reads back exactly what a push wrote (no store-forwarding stall).
+    std::uint32_t stack_ref[bvh_detail::kStackSize];
+    float stack_t[bvh_detail::kStackSize];
     int top = 0;
-    stack[top++] = {root_, 0};
-    while (top > 0) {
-        const Entry e = stack[--top];
-        if (e.t > t_max) continue;  // a nearer hit was found after this entry was pushed
-        if (e.ref & Bvh4Node::kLeaf) {
-            if (e.ref != Bvh4Node::kEmpty) leaf(Bvh4Node::leaf_first(e.ref), Bvh4Node::leaf_count(e.ref));
-            continue;
-        }
-        const Bvh4Node& n = nodes_[e.ref];
-        __m128 tnear;
-        int mask = bvh_detail::hit_boxes(n, r, _mm_set1_ps(t_max), tnear);
-        if (mask == 0) continue;
-        alignas(16) float tn[4];
-        _mm_store_ps(tn, tnear);
-        // Push hit children farthest first (insertion into the stack's top, at most four).
-        const int base = top;
-        while (mask) {
-            const int i = __builtin_ctz(mask);
-            mask &= mask - 1;
-            Entry c{n.child[i], tn[i]};
-            if (!(c.ref & Bvh4Node::kLeaf)) _mm_prefetch(reinterpret_cast<const char*>(&nodes_[c.ref]), _MM_HINT_T0);
-            int j = top++;
-            while (j > base && stack[j - 1].t < c.t) {
-                stack[j] = stack[j - 1];
-                --j;
+    std::uint32_t cur = root_;
+    for (;;) {
+        while (!(cur & Bvh4Node::kLeaf)) {
+            const Bvh4Node& n = nodes_[cur];
+            __m128 tnear;
+            unsigned mask = static_cast<unsigned>(bvh_detail::hit_boxes(n, r, _mm_set1_ps(t_max), tnear));
+            if (mask == 0) {
+                cur = Bvh4Node::kEmpty;
+                break;
             }
-            stack[j] = c;
+            int i = __builtin_ctz(mask);
+            mask &= mask - 1;
+            if (mask == 0) {
+                cur = n.child[i];
+                continue;
+            }
+            alignas(16) float tn[4];
+            _mm_store_ps(tn, tnear);
+            const int base = top;
+            for (;;) {
+                const std::uint32_t ref = n.child[i];
+                const float t = tn[i];
+                if (!(ref & Bvh4Node::kLeaf)) _mm_prefetch(reinterpret_cast<const char*>(&nodes_[ref]), _MM_HINT_T0);
+                int j = top++;
+                while (j > base && stack_t[j - 1] < t) {
+                    stack_ref[j] = stack_ref[j - 1];
+                    stack_t[j] = stack_t[j - 1];
+                    --j;
+                }
+                stack_ref[j] = ref;
+                stack_t[j] = t;
+                if (mask == 0) break;
+                i = __builtin_ctz(mask);
+                mask &= mask - 1;
+            }
+            cur = stack_ref[--top];
         }
+        if (cur != Bvh4Node::kEmpty) leaf(Bvh4Node::leaf_first(cur), Bvh4Node::leaf_count(cur));
+        for (;;) {  // the next entry nearer than the nearest hit so far
+            if (top == 0) return;
+            --top;
+            if (stack_t[top] <= t_max) break;
+        }
+        cur = stack_ref[top];
     }
 }
 
