@@ -138,7 +138,9 @@ void Scene::commit() {
         add(ShapeKind::kMesh, i, local.empty() ? Bounds3{} : inst.transform.bounds(local));
     }
     BvhBuildOptions top_options;
-    top_options.max_leaf_size = 2;
+    // An instance costs far more to enter than a node test: one per leaf, so that its box is
+    // tested before its transform and traversal set-up are paid.
+    top_options.max_leaf_size = instances.empty() ? 2 : 1;
     top_.build(boxes, top_options);
     top_refs_.resize(top_.order().size());
     for (std::size_t i = 0; i < top_refs_.size(); ++i) top_refs_[i] = refs[top_.order()[i]];

@@ -78,9 +78,14 @@ struct BvhRay {
     /// by the sign of the direction), so that the box test needs no branch.
     int near_offset[3], far_offset[3];
     explicit BvhRay(const Ray& ray) {
+        // The three reciprocals as one vector division (correctly rounded per lane, so the same
+        // floats as three scalar ones, at a third of the latency).
+        alignas(16) float inv_dir[4];
+        _mm_store_ps(inv_dir, _mm_div_ps(_mm_set1_ps(1), _mm_setr_ps(ray.direction.x, ray.direction.y,
+                                                                      ray.direction.z, 1)));
         for (int a = 0; a < 3; ++a) {
             o[a] = _mm_set1_ps(ray.origin[a]);
-            const float inv_d = 1 / ray.direction[a];
+            const float inv_d = inv_dir[a];
             inv[a] = _mm_set1_ps(inv_d);
             const bool negative = std::signbit(inv_d);
             near_offset[a] = 8 * a + (negative ? 4 : 0);

@@ -77,19 +77,52 @@ struct BoxRay {
     int near_offset[3], far_offset[3];
 };
 
-inline BoxRay make_box_ray(const Ray& ray) {
-    BoxRay r;
+// The watertight test on a packet of four triangles: the ray's frame and shear, as
+// WatertightRay's (the same choice of axes, the same divisions).
+struct TriRay {
+    int kx, ky, kz;
+    float ox, oy, oz;  // the origin's permuted coordinates
+    __m128 sx, sy, sz;
+    const Ray* ray;    // for the scalar fallback, which builds its WatertightRay from it
+};
+
+/// Both set-ups at once, the six divisions as two vector divisions (IEEE division is correctly
+/// rounded in every lane, so each quotient is the scalar one bit for bit).
+inline void make_rays(const Ray& ray, BoxRay& br, TriRay& tr) {
     const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+    alignas(16) float inv[4];
+    _mm_store_ps(inv, _mm_div_ps(_mm_set1_ps(1), _mm_setr_ps(d[0], d[1], d[2], 1)));
     for (int a = 0; a < 3; ++a) {
-        r.o[a] = set1(o[a]);
-        const float inv_d = 1 / d[a];
-        r.inv[a] = set1(inv_d);
-        const bool negative = __builtin_signbit(inv_d);
-        r.near_offset[a] = 2 * W * a + (negative ? W : 0);
-        r.far_offset[a] = 2 * W * a + (negative ? 0 : W);
+        br.o[a] = set1(o[a]);
+        br.inv[a] = set1(inv[a]);
+        const bool negative = __builtin_signbit(inv[a]);
+        br.near_offset[a] = 2 * W * a + (negative ? W : 0);
+        br.far_offset[a] = 2 * W * a + (negative ? 0 : W);
     }
-    return r;
+    // As WatertightRay::WatertightRay: the largest direction component becomes z.
+    int kz = 0;
+    if (__builtin_fabsf(d[1]) > __builtin_fabsf(d[kz])) kz = 1;
+    if (__builtin_fabsf(d[2]) > __builtin_fabsf(d[kz])) kz = 2;
+    int kx = kz + 1 == 3 ? 0 : kz + 1;
+    int ky = kx + 1 == 3 ? 0 : kx + 1;
+    if (d[kz] < 0) {
+        const int k = kx;
+        kx = ky;
+        ky = k;
+    }
+    alignas(16) float s[4];
+    _mm_store_ps(s, _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1, 1), _mm_set1_ps(d[kz])));
+    tr.kx = kx;
+    tr.ky = ky;
+    tr.kz = kz;
+    tr.ox = o[kx];
+    tr.oy = o[ky];
+    tr.oz = o[kz];
+    tr.sx = _mm_set1_ps(s[0]);
+    tr.sy = _mm_set1_ps(s[1]);
+    tr.sz = _mm_set1_ps(s[2]);
+    tr.ray = &ray;
 }
 
 // 1 + 2 gamma(3), as in bvh_detail::hit_boxes.
@@ -108,20 +141,6 @@ inline unsigned hit_boxes(const Node& n, const BoxRay& r, float t_max, float* tn
     }
     store(tnear, t0);
     return le_mask(t0, t1);
-}
-
-// The watertight test on a packet of four triangles.
-struct TriRay {
-    int kx, ky, kz;
-    float ox, oy, oz;  // the origin's permuted coordinates
-    __m128 sx, sy, sz;
-    const WatertightRay* scalar;
-};
-
-inline TriRay make_tri_ray(const WatertightRay& wr) {
-    const float o[3] = {wr.origin.x, wr.origin.y, wr.origin.z};
-    return {wr.kx, wr.ky, wr.kz, o[wr.kx], o[wr.ky], o[wr.kz], _mm_set1_ps(wr.sx), _mm_set1_ps(wr.sy),
-            _mm_set1_ps(wr.sz), &wr};
 }
 
 struct PacketResult {
@@ -186,7 +205,7 @@ inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const Tri
         const TrianglePacket& p = m.packets[k];
         const PacketResult res = test_packet(p, r, t_max, true);
         if (res.exact) {  // lane by lane in scalar, as intersect_triangle would in leaf order
-            WatertightRay wr = *r.scalar;
+            WatertightRay wr(*r.ray);
             for (int lane = 0; lane < 4; ++lane) {
                 wr.t_max = t_max;
                 TriangleHit h;
@@ -222,9 +241,10 @@ inline bool any_in_leaf(const MeshTraversal& m, std::uint32_t ref, const TriRay&
         const TrianglePacket& p = m.packets[k];
         const PacketResult res = test_packet(p, r, t_max, false);
         if (res.exact) {
+            const WatertightRay wr(*r.ray);
             TriangleHit h;
             for (int lane = 0; lane < 4; ++lane)
-                if (intersect_packet_lane(p, lane, *r.scalar, h)) return true;
+                if (intersect_packet_lane(p, lane, wr, h)) return true;
             continue;
         }
         if (res.hit) return true;
@@ -237,9 +257,9 @@ inline bool any_in_leaf(const MeshTraversal& m, std::uint32_t ref, const TriRay&
 bool GLINT_CAT(mesh_closest_, GLINT_KERNEL_ISA)(const MeshTraversal& m, const Ray& ray, MeshHit& out) {
     if (m.root == Node::kEmpty) return false;
     const Node* nodes = static_cast<const Node*>(m.nodes);
-    const BoxRay br = make_box_ray(ray);
-    const WatertightRay wr(ray);
-    const TriRay tr = make_tri_ray(wr);
+    BoxRay br;
+    TriRay tr;
+    make_rays(ray, br, tr);
     float t_max = ray.t_max;
     bool found = false;
     // The stack holds the hit children not yet visited, with their entry distances, in two
@@ -297,9 +317,9 @@ bool GLINT_CAT(mesh_closest_, GLINT_KERNEL_ISA)(const MeshTraversal& m, const Ra
 bool GLINT_CAT(mesh_any_, GLINT_KERNEL_ISA)(const MeshTraversal& m, const Ray& ray) {
     if (m.root == Node::kEmpty) return false;
     const Node* nodes = static_cast<const Node*>(m.nodes);
-    const BoxRay br = make_box_ray(ray);
-    const WatertightRay wr(ray);
-    const TriRay tr = make_tri_ray(wr);
+    BoxRay br;
+    TriRay tr;
+    make_rays(ray, br, tr);
     std::uint32_t stack[kStack];
     int top = 0;
     std::uint32_t cur = m.root;
