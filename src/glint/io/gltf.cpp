@@ -17,25 +17,46 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <numbers>
+#include <regex>
+#include <sstream>
 
+#include "glint/io/json_locate.h"
+#include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
 
 namespace glint {
 
 namespace {
 
+// 2^28 values (2 GB as doubles) per accessor: 89M vertices.
+constexpr std::size_t kMaxAccessorValues = std::size_t{1} << 28;
+
 struct Importer {
     const tinygltf::Model& model;
     std::string file;
+    bool binary = false;  // .glb: errors name the JSON value in words only
     ImportedFile out;
     std::map<std::pair<int, bool>, std::shared_ptr<const Image>> images;  // (image, srgb)
     std::map<int, std::uint32_t> mesh_first;   // glTF mesh -> first of our meshes
     std::map<int, std::uint32_t> mesh_count;
 
     [[noreturn]] void fail(const std::string& what) const { throw IoError(fmt::format("{}: {}", file, what)); }
+    /// An error about the JSON value at `pointer` ("/nodes/3/mesh"): in a .gltf it is reported at
+    /// that value's line and column (the text is read again, only now).
+    [[noreturn]] void fail_at(const std::string& pointer, const std::string& what) const {
+        if (!binary) {
+            std::ifstream in(file, std::ios::binary);
+            std::ostringstream text;
+            text << in.rdbuf();
+            if (const auto p = json_locate(text.str(), pointer))
+                throw IoError(fmt::format("{}:{}:{}: {}", file, p->line, p->column, what));
+        }
+        fail(what);
+    }
 
     // --- accessors ---
     int components(int type) const {
@@ -60,27 +81,35 @@ struct Importer {
 
     /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
     /// [0, 1] or [-1, 1] when the accessor says so). Every range is checked against its buffer.
-    std::vector<double> read(int index, int n, const char* what) const {
+    /// `ref` is the JSON pointer of the reference to the accessor, for errors.
+    std::vector<double> read(int index, int n, const std::string& what, const std::string& ref) const {
         if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-            fail(fmt::format("{}: accessor {} does not exist", what, index));
+            fail_at(ref, fmt::format("{}: accessor {} does not exist", what, index));
         const tinygltf::Accessor& a = model.accessors[index];
-        if (a.sparse.isSparse) fail(fmt::format("{}: sparse accessors are not supported", what));
+        const std::string at = fmt::format("/accessors/{}", index);
+        if (a.sparse.isSparse) fail_at(at + "/sparse", fmt::format("{}: sparse accessors are not supported", what));
         const int comps = components(a.type), size = component_size(a.componentType);
-        if (comps != n || size == 0) fail(fmt::format("{}: accessor {} has the wrong type", what, index));
-        std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
-        if (a.bufferView < 0) return v;  // all zeros, as the spec says
+        if (comps != n || size == 0)
+            fail_at(at + (comps != n ? "/type" : "/componentType"),
+                    fmt::format("{}: accessor {} has the wrong type", what, index));
+        // Without a buffer view the values are zeros (the spec) and nothing bounds the count.
+        if (a.count > kMaxAccessorValues / static_cast<std::size_t>(n))
+            fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
+                                               a.count, kMaxAccessorValues));
+        if (a.bufferView < 0) return std::vector<double>(a.count * static_cast<std::size_t>(n), 0.0);
         if (a.bufferView >= static_cast<int>(model.bufferViews.size()))
-            fail(fmt::format("{}: buffer view {} does not exist", what, a.bufferView));
+            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, a.bufferView));
         const tinygltf::BufferView& bv = model.bufferViews[a.bufferView];
         if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-            fail(fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+            fail_at(fmt::format("/bufferViews/{}/buffer", a.bufferView), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
         const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
         const std::size_t elem = static_cast<std::size_t>(comps * size);
         const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
         const std::size_t start = bv.byteOffset + a.byteOffset;
         if (a.count > 0 && (start + (a.count - 1) * stride + elem > data.size() ||
                             a.byteOffset + (a.count - 1) * stride + elem > bv.byteLength))
-            fail(fmt::format("{}: accessor {} reaches past the end of its buffer", what, index));
+            fail_at(at + "/count", fmt::format("{}: accessor {} reaches past the end of its buffer", what, index));
+        std::vector<double> v(a.count * static_cast<std::size_t>(n));
         for (std::size_t i = 0; i < a.count; ++i) {
             const unsigned char* p = data.data() + start + i * stride;
             for (int c = 0; c < n; ++c) {
@@ -103,16 +132,20 @@ struct Importer {
     }
 
     // --- textures ---
-    std::shared_ptr<const Image> image(int index, bool srgb) {
+    std::shared_ptr<const Image> image(int index, bool srgb, const std::string& ref) {
         const auto key = std::make_pair(index, srgb);
         if (auto it = images.find(key); it != images.end()) return it->second;
-        if (index < 0 || index >= static_cast<int>(model.images.size())) fail(fmt::format("image {} does not exist", index));
+        if (index < 0 || index >= static_cast<int>(model.images.size())) fail_at(ref, fmt::format("image {} does not exist", index));
         const tinygltf::Image& im = model.images[index];
+        const std::string at = fmt::format("/images/{}", index);
         if (im.width <= 0 || im.height <= 0 || im.image.empty())
-            fail(fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
+            fail_at(at, fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
+        if (static_cast<long long>(im.width) * im.height > kMaxTexturePixels)
+            fail_at(at, fmt::format("image {} is {} x {} pixels; the limit is {} pixels", index, im.width, im.height,
+                                    kMaxTexturePixels));
         const int comps = im.component, bytes = im.bits == 16 ? 2 : 1;
         if (comps < 1 || comps > 4 || im.image.size() < static_cast<std::size_t>(im.width) * im.height * comps * bytes)
-            fail(fmt::format("image {} has an unexpected pixel layout", index));
+            fail_at(at, fmt::format("image {} has an unexpected pixel layout", index));
         auto img = std::make_shared<Image>();
         img->width = im.width;
         img->height = im.height;
@@ -121,8 +154,8 @@ struct Importer {
         for (std::size_t i = 0; i < img->texels.size(); ++i) {
             float c[4] = {0, 0, 0, 1};
             for (int k = 0; k < comps; ++k) {
-                const std::size_t at = (i * comps + k) * bytes;
-                c[k] = bytes == 2 ? (im.image[at] | im.image[at + 1] << 8) / 65535.0f : im.image[at] / 255.0f;
+                const std::size_t o = (i * comps + k) * bytes;
+                c[k] = bytes == 2 ? (im.image[o] | im.image[o + 1] << 8) / 65535.0f : im.image[o] / 255.0f;
             }
             if (comps < 3) c[1] = c[2] = c[0];
             img->texels[i] = Color{decode(c[0]), decode(c[1]), decode(c[2])};
@@ -144,14 +177,16 @@ struct Importer {
     }
 
     /// A texture reference as an image TextureDesc (its sampler's wraps, KHR_texture_transform).
-    TextureDesc texture(int index, int tex_coord, const tinygltf::ExtensionMap& ext, bool srgb, const char* what) {
+    /// `ref`: the JSON pointer of the texture reference (".../baseColorTexture"), for errors.
+    TextureDesc texture(int index, int tex_coord, const tinygltf::ExtensionMap& ext, bool srgb, const char* what,
+                        const std::string& ref) {
         if (index < 0 || index >= static_cast<int>(model.textures.size()))
-            fail(fmt::format("{}: texture {} does not exist", what, index));
+            fail_at(ref + "/index", fmt::format("{}: texture {} does not exist", what, index));
         if (tex_coord != 0) out.notes.push_back(fmt::format("{}: {} uses TEXCOORD_{}; glint reads TEXCOORD_0", file, what, tex_coord));
         const tinygltf::Texture& t = model.textures[index];
         TextureDesc d;
         d.kind = TextureDesc::Kind::kImage;
-        d.pixels = image(t.source, srgb);
+        d.pixels = image(t.source, srgb, fmt::format("/textures/{}/source", index));
         d.filename.value = fmt::format("{}#image{}", file, t.source);
         if (t.sampler >= 0 && t.sampler < static_cast<int>(model.samplers.size())) {
             d.wrap = wrap(model.samplers[t.sampler].wrapS);
@@ -192,29 +227,33 @@ struct Importer {
         return d;
     }
 
-    MaterialDesc material(const tinygltf::Material& m) {
+    MaterialDesc material(int index) {
+        const tinygltf::Material& m = model.materials[index];
+        const std::string at = fmt::format("/materials/{}", index);
         MaterialDesc d;
         d.kind = MaterialDesc::Kind::kPbr;
         const auto& pbr = m.pbrMetallicRoughness;
         const Color base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
         d.color = pbr.baseColorTexture.index >= 0
                       ? scaled(texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                       pbr.baseColorTexture.extensions, true, "baseColorTexture"),
+                                       pbr.baseColorTexture.extensions, true, "baseColorTexture",
+                                       at + "/pbrMetallicRoughness/baseColorTexture"),
                                base)
                       : constant(base);
         d.metallic = float(pbr.metallicFactor);
         d.roughness = float(pbr.roughnessFactor);
         if (pbr.metallicRoughnessTexture.index >= 0)
             d.metallic_roughness = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                           pbr.metallicRoughnessTexture.extensions, false, "metallicRoughnessTexture");
+                                           pbr.metallicRoughnessTexture.extensions, false, "metallicRoughnessTexture",
+                                           at + "/pbrMetallicRoughness/metallicRoughnessTexture");
         if (m.normalTexture.index >= 0) {
             d.normal_map = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
-                                   false, "normalTexture");
+                                   false, "normalTexture", at + "/normalTexture");
             d.normal_scale = float(m.normalTexture.scale);
         }
         if (m.occlusionTexture.index >= 0)
             (void)texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions,
-                          false, "occlusionTexture");  // checked, not applied (see the top)
+                          false, "occlusionTexture", at + "/occlusionTexture");  // checked, not applied (see the top)
         Color emissive{float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2])};
         const auto& ext = m.extensions;
         if (const auto it = ext.find("KHR_materials_emissive_strength"); it != ext.end())
@@ -226,7 +265,7 @@ struct Importer {
             d.emission = Emission{emissive, m.doubleSided, std::nullopt};
             if (m.emissiveTexture.index >= 0)
                 d.emission_map = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord,
-                                         m.emissiveTexture.extensions, true, "emissiveTexture");
+                                         m.emissiveTexture.extensions, true, "emissiveTexture", at + "/emissiveTexture");
         }
         return d;
     }
@@ -239,31 +278,33 @@ struct Importer {
         for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = gm.primitives[p];
             const std::string what = fmt::format("mesh '{}' primitive {}", gm.name, p);
+            const std::string at = fmt::format("/meshes/{}/primitives/{}", index, p);
+            const auto attribute = [&](const std::string& name) { return at + "/attributes/" + name; };
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
                 prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
                 out.notes.push_back(fmt::format("{}: {}: points and lines are skipped", file, what));
                 continue;
             }
             const auto pos_it = prim.attributes.find("POSITION");
-            if (pos_it == prim.attributes.end()) fail(what + ": no POSITION attribute");
+            if (pos_it == prim.attributes.end()) fail_at(at, what + ": no POSITION attribute");
             TriangleMesh m;
             m.name = gm.name;
-            const std::vector<double> pos = read(pos_it->second, 3, what.c_str());
+            const std::vector<double> pos = read(pos_it->second, 3, what, attribute("POSITION"));
             const std::size_t nv = pos.size() / 3;
             for (std::size_t i = 0; i < nv; ++i)
                 m.positions.push_back({float(pos[3 * i]), float(pos[3 * i + 1]), float(-pos[3 * i + 2])});
             if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-                const auto n = read(it->second, 3, what.c_str());
+                const auto n = read(it->second, 3, what, attribute("NORMAL"));
                 if (n.size() == pos.size())
                     for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
             }
             if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
-                const auto t = read(it->second, 2, what.c_str());
+                const auto t = read(it->second, 2, what, attribute("TEXCOORD_0"));
                 if (t.size() == 2 * nv)
                     for (std::size_t i = 0; i < nv; ++i) m.uvs.push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
             }
             if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
-                const auto t = read(it->second, 4, what.c_str());
+                const auto t = read(it->second, 4, what, attribute("TANGENT"));
                 // z negated like positions; the mirror also flips the bitangent's handedness,
                 // and so does the v flip: the two cancel, w stays.
                 if (t.size() == 4 * nv)
@@ -271,18 +312,21 @@ struct Importer {
                         m.tangents.push_back({float(t[4 * i]), float(t[4 * i + 1]), float(-t[4 * i + 2]), float(t[4 * i + 3])});
             }
             if (const auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
-                const tinygltf::Accessor& a = model.accessors.at(it->second);
-                const int n = components(a.type);
-                if (n == 3 || n == 4) {
-                    const auto c = read(it->second, n, what.c_str());
+                // RGB or RGBA; read() reports a missing accessor.
+                const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
+                const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
+                {
+                    const auto c = read(it->second, n, what, attribute("COLOR_0"));
                     for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i)
                         m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
                 }
             }
             std::vector<std::uint32_t> idx;
             if (prim.indices >= 0) {
-                for (double x : read(prim.indices, 1, what.c_str())) {
-                    if (!(x >= 0 && x < double(nv))) fail(fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
+                for (double x : read(prim.indices, 1, what, at + "/indices")) {
+                    if (!(x >= 0 && x < double(nv)))
+                        fail_at(fmt::format("/accessors/{}", prim.indices),
+                                fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
                     idx.push_back(static_cast<std::uint32_t>(x));
                 }
             } else {
@@ -296,7 +340,9 @@ struct Importer {
             } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
                 for (std::size_t i = 1; i + 1 < idx.size(); ++i) m.indices.insert(m.indices.end(), {idx[0], idx[i], idx[i + 1]});
             } else {
-                if (idx.size() % 3 != 0) fail(fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
+                if (idx.size() % 3 != 0)
+                    fail_at(prim.indices >= 0 ? at + "/indices" : attribute("POSITION"),
+                            fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
                 m.indices = std::move(idx);
             }
             m.material = prim.material >= 0 && prim.material < static_cast<int>(out.materials.size())
@@ -305,7 +351,7 @@ struct Importer {
             try {
                 out.dropped_triangles += validate_and_drop_degenerate(m);
             } catch (const std::invalid_argument& e) {
-                fail(what + ": " + e.what());
+                fail_at(attribute("POSITION"), what + ": " + e.what());
             }
             out.meshes.push_back(std::move(m));
             ++count;
@@ -338,9 +384,49 @@ struct Importer {
     std::optional<GltfCamera> camera;
     std::string camera_name;
 
+    /// The nodes must form trees (the spec): a node listed as the child of two parents, or twice,
+    /// would be visited once per path, exponentially many times in a chain of such nodes.
+    void check_trees() const {
+        std::vector<int> parent(model.nodes.size(), -1);
+        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+            const auto& children = model.nodes[i].children;
+            for (std::size_t k = 0; k < children.size(); ++k) {
+                const int c = children[k];
+                const std::string at = fmt::format("/nodes/{}/children/{}", i, k);
+                if (c < 0 || c >= static_cast<int>(model.nodes.size())) fail_at(at, fmt::format("node {} does not exist", c));
+                if (parent[c] >= 0)
+                    fail_at(at, fmt::format("node {} is a child of node {} and of node {}; nodes must form trees", c,
+                                            parent[c], i));
+                parent[c] = static_cast<int>(i);
+            }
+        }
+        for (std::size_t s = 0; s < model.scenes.size(); ++s) {
+            const auto& roots = model.scenes[s].nodes;
+            for (std::size_t k = 0; k < roots.size(); ++k) {
+                const int r = roots[k];
+                const std::string at = fmt::format("/scenes/{}/nodes/{}", s, k);
+                if (r < 0 || r >= static_cast<int>(model.nodes.size())) fail_at(at, fmt::format("node {} does not exist", r));
+                if (parent[r] >= 0)
+                    fail_at(at, fmt::format("node {} is a scene root and a child of node {}; nodes must form trees", r, parent[r]));
+            }
+        }
+    }
+    /// The nodes no node lists as a child.
+    std::vector<int> roots() const {
+        std::vector<bool> child(model.nodes.size(), false);
+        for (const tinygltf::Node& n : model.nodes)
+            for (int c : n.children) child[c] = true;  // in range: check_trees() ran
+        std::vector<int> result;
+        for (std::size_t i = 0; i < model.nodes.size(); ++i)
+            if (!child[i]) result.push_back(static_cast<int>(i));
+        return result;
+    }
+
+    // Indices are valid and the nodes form trees (check_trees()), so a cycle of children cannot be
+    // reached: each of its nodes has its parent in the cycle, so none is a root. The depth limit
+    // only keeps the recursion's stack small.
     void visit(int index, const Matrix34& parent, int depth) {
-        if (index < 0 || index >= static_cast<int>(model.nodes.size())) fail(fmt::format("node {} does not exist", index));
-        if (depth > 64) fail("the node hierarchy is deeper than 64 (a cycle?)");
+        if (depth > 256) fail_at(fmt::format("/nodes/{}", index), "the node hierarchy is deeper than 256 levels");
         const tinygltf::Node& n = model.nodes[index];
         const Matrix34 world = parent * node_matrix(n);  // glTF space
         // To glint: M' = F M F with F = diag(1, 1, -1).
@@ -350,7 +436,8 @@ struct Importer {
                 if ((i == 2) != (j == 2) && j != 3) g.m[i][j] = -g.m[i][j];
         g.m[2][3] = -g.m[2][3];
         if (n.mesh >= 0) {
-            if (n.mesh >= static_cast<int>(model.meshes.size())) fail(fmt::format("node {} uses mesh {} that does not exist", index, n.mesh));
+            if (n.mesh >= static_cast<int>(model.meshes.size()))
+                fail_at(fmt::format("/nodes/{}/mesh", index), fmt::format("node {} uses mesh {} that does not exist", index, n.mesh));
             if (!mesh_first.count(n.mesh)) mesh(n.mesh);
             const auto t = Transform::from(g);
             if (!t) {
@@ -411,15 +498,27 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
         return s;
     };
-    if (!ok) throw IoError(fmt::format("{}: {}", file, err.empty() ? "cannot parse" : trim(err)));
-    Importer im{model, file, {}, {}, {}, {}, std::nullopt, camera_name};
+    if (!ok) {
+        // nlohmann::json's syntax errors name a line and column: put them where the OBJ and PLY
+        // readers put theirs, after the file's name.
+        std::smatch m;
+        const std::string why = trim(err);
+        static const std::regex located(R"(parse error at line (\d+), column (\d+): (.*))");
+        if (std::regex_search(why, m, located))
+            throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
+        throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : why));
+    }
+    Importer im{model, file, mesh_format(path) == MeshFormat::kGlb, {}, {}, {}, {}, std::nullopt, camera_name};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
-    for (const tinygltf::Material& m : model.materials) im.out.materials.push_back({m.name, im.material(m)});
+    for (std::size_t m = 0; m < model.materials.size(); ++m)
+        im.out.materials.push_back({model.materials[m].name, im.material(static_cast<int>(m))});
+    im.check_trees();
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (model.scenes.empty()) {
-        for (std::size_t n = 0; n < model.nodes.size(); ++n) im.visit(static_cast<int>(n), Matrix34{}, 0);
+    if (model.scenes.empty()) {  // no scene to show: every tree of nodes
+        for (int n : im.roots()) im.visit(n, Matrix34{}, 0);
     } else {
-        if (scene >= static_cast<int>(model.scenes.size())) throw IoError(fmt::format("{}: scene {} does not exist", file, scene));
+        if (scene >= static_cast<int>(model.scenes.size()))
+            im.fail_at("/scene", fmt::format("scene {} does not exist", scene));
         for (int n : model.scenes[scene].nodes) im.visit(n, Matrix34{}, 0);
     }
     if (!camera_name.empty() && !im.camera)

@@ -2,8 +2,10 @@
 // script's numbers, worked out by hand), .gltf against .glb, and the failure modes.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <fmt/format.h>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -138,7 +140,7 @@ TEST_F(Gltf, BadFilesAreErrorsNamingTheFile) {
     const std::string file = (dir_ / "x.gltf").string();
     EXPECT_EQ(error_of("x.gltf"), file + ": cannot open: no such file");
     write("x.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");  // truncated JSON
-    EXPECT_EQ(error_of("x.gltf").rfind(file + ": ", 0), 0u) << error_of("x.gltf");
+    EXPECT_EQ(error_of("x.gltf").rfind(file + ":1:42: JSON syntax error", 0), 0u) << error_of("x.gltf");
     // An accessor reaching past its buffer.
     std::string text = read("textured.gltf");
     const auto at = text.find("\"count\": 4");
@@ -160,6 +162,156 @@ TEST_F(Gltf, BadFilesAreErrorsNamingTheFile) {
                   return std::string();
               }()).find("no perspective camera named 'side'"),
               std::string::npos);
+}
+
+// A one-triangle file, one line per part, so that an error's line and column are known: line k
+// of the text is lines[k - 1].
+std::vector<std::string> triangle_lines() {
+    return {
+        "{",
+        "  \"asset\": {\"version\": \"2.0\"},",
+        "  \"scene\": 0,",
+        "  \"scenes\": [{\"nodes\": [0]}],",
+        "  \"nodes\": [{\"mesh\": 0}],",
+        "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1}]}],",
+        "  \"accessors\": [",
+        "    {\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\"},",
+        "    {\"bufferView\": 1, \"componentType\": 5123, \"count\": 3, \"type\": \"SCALAR\"}",
+        "  ],",
+        "  \"bufferViews\": [",
+        "    {\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 36},",
+        "    {\"buffer\": 0, \"byteOffset\": 36, \"byteLength\": 6}",
+        "  ],",
+        // (0,0,0) (1,0,0) (0,1,0) as floats, then 0 1 2 as uint16 and two bytes of padding.
+        "  \"buffers\": [{\"byteLength\": 44, \"uri\": "
+        "\"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=\"}]",
+        "}",
+    };
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const auto& l : lines) s += l + "\n";
+    return s;
+}
+
+// The same JSON as a .glb (header and one JSON chunk; the buffer stays a data URI).
+std::string as_glb(std::string json) {
+    while (json.size() % 4) json += ' ';
+    std::string out;
+    const auto u32 = [&](std::uint32_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(static_cast<char>(v >> (8 * k)));
+    };
+    out += "glTF";
+    u32(2);
+    u32(static_cast<std::uint32_t>(12 + 8 + json.size()));
+    u32(static_cast<std::uint32_t>(json.size()));
+    out += "JSON";
+    return out + json;
+}
+
+TEST_F(Gltf, ErrorsPointAtTheLineAndColumnOfTheValue) {
+    write("ok.gltf", joined(triangle_lines()));
+    ASSERT_EQ(import_gltf(dir_ / "ok.gltf").meshes.at(0).indices, (std::vector<std::uint32_t>{0, 1, 2}));
+    const std::string file = (dir_ / "x.gltf").string();
+    // Line `line` replaced by `text`: the error, expected at the first `mark` in that line.
+    const auto check = [&](int line, const std::string& text, const std::string& mark, const std::string& message) {
+        auto lines = triangle_lines();
+        lines[line - 1] = text;
+        write("x.gltf", joined(lines));
+        const std::size_t col = text.find(mark);
+        ASSERT_NE(col, std::string::npos);
+        EXPECT_EQ(error_of("x.gltf"), fmt::format("{}:{}:{}: {}", file, line, col + 1, message)) << text;
+    };
+    check(5, "  \"nodes\": [{\"mesh\": 5}],", "5}", "node 0 uses mesh 5 that does not exist");
+    check(3, "  \"scene\": 3,", "3", "scene 3 does not exist");
+    check(6, "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 7}, \"indices\": 1}]}],",
+          "7}", "mesh 'tri' primitive 0: accessor 7 does not exist");
+    check(6, "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0, \"COLOR_0\": 7}}]}],",
+          "7}", "mesh 'tri' primitive 0: accessor 7 does not exist");
+    check(9, "    {\"bufferView\": 1, \"componentType\": 5123, \"count\": 4, \"type\": \"SCALAR\"}", "4,",
+          "mesh 'tri' primitive 0: accessor 1 reaches past the end of its buffer");
+    check(9, "    {\"bufferView\": 1, \"componentType\": 5123, \"count\": 3, \"type\": \"VEC2\"}", "\"VEC2",
+          "mesh 'tri' primitive 0: accessor 1 has the wrong type");
+    // Indices read from the floats' bytes: 1.0f is 0x3f800000.
+    check(9, "    {\"bufferView\": 0, \"byteOffset\": 12, \"componentType\": 5125, \"count\": 3, \"type\": \"SCALAR\"}",
+          "{", "mesh 'tri' primitive 0: index 1065353216 out of range (3 vertices)");
+    check(13, "    {\"buffer\": 4, \"byteOffset\": 36, \"byteLength\": 6}", "4,",
+          "mesh 'tri' primitive 0: buffer 4 does not exist");
+    check(6,
+          "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1, "
+          "\"material\": 0}]}], \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 3}}}],",
+          "3}", "baseColorTexture: texture 3 does not exist");
+    // Nodes must form trees.
+    check(5, "  \"nodes\": [{\"mesh\": 0, \"children\": [1, 1]}, {\"mesh\": 0}],", "1]",
+          "node 1 is a child of node 0 and of node 0; nodes must form trees");
+    {  // a cycle: reported where the scene names one of its nodes as a root (line 4)
+        auto lines = triangle_lines();
+        lines[4] = "  \"nodes\": [{\"children\": [1]}, {\"children\": [0], \"mesh\": 0}],";
+        write("x.gltf", joined(lines));
+        EXPECT_EQ(error_of("x.gltf"), file + ":4:25: node 0 is a scene root and a child of node 1; nodes must form trees");
+    }
+    check(4, "  \"scenes\": [{\"nodes\": [0, 9]}],", "9", "node 9 does not exist");
+    // The same error in a .glb names the file and the node, without a line.
+    auto lines = triangle_lines();
+    lines[4] = "  \"nodes\": [{\"mesh\": 5}],";
+    write("x.glb", as_glb(joined(lines)));
+    EXPECT_EQ(error_of("x.glb"), (dir_ / "x.glb").string() + ": node 0 uses mesh 5 that does not exist");
+}
+
+TEST_F(Gltf, NodeGraphsThatAreNotTreesEndInAnErrorNotAHang) {
+    // 60 nodes, each listing the next twice: visited once per path, 2^60 visits.
+    std::string nodes = "  \"nodes\": [";
+    for (int k = 0; k < 60; ++k) nodes += fmt::format("{{\"mesh\": 0, \"children\": [{}, {}]}}, ", k + 1, k + 1);
+    nodes += "{\"mesh\": 0}],";
+    auto lines = triangle_lines();
+    lines[4] = nodes;
+    write("x.gltf", joined(lines));
+    EXPECT_NE(error_of("x.gltf").find("node 1 is a child of node 0 and of node 0; nodes must form trees"), std::string::npos);
+    // Without scenes every tree is shown once; a cycle of nodes has no root and is not shown.
+    lines = triangle_lines();
+    lines[2] = "";
+    lines[3] = "";
+    lines[4] = "  \"nodes\": [{\"mesh\": 0, \"children\": [3]}, {\"children\": [2], \"mesh\": 0}, {\"children\": [1]}, {\"mesh\": 0}],";
+    write("x.gltf", joined(lines));
+    EXPECT_EQ(import_gltf(dir_ / "x.gltf").nodes.size(), 2u);  // nodes 0 and 3
+}
+
+TEST_F(Gltf, CorruptedNumbersGiveAnErrorOrAModelNeverACrash) {
+    // Every integer in the test scene's JSON (indices, counts, offsets, enums) replaced in turn by
+    // values that break it: each import ends in a model or an IoError. (ASan in `make sanitize`.)
+    const std::string good = read("textured.gltf");
+    std::vector<std::pair<std::size_t, std::size_t>> ints;  // offset, length
+    for (std::size_t i = 0; i < good.size();) {
+        if (std::isdigit(static_cast<unsigned char>(good[i])) &&
+            (i == 0 || !(std::isalnum(static_cast<unsigned char>(good[i - 1])) || good[i - 1] == '.' || good[i - 1] == '_'))) {
+            std::size_t j = i;
+            while (j < good.size() && std::isdigit(static_cast<unsigned char>(good[j]))) ++j;
+            if (j < good.size() && good[j] != '.' && good[j] != 'e' && !std::isalpha(static_cast<unsigned char>(good[j])))
+                ints.emplace_back(i, j - i);
+            i = j;
+        } else {
+            ++i;
+        }
+    }
+    ASSERT_GT(ints.size(), 150u);
+    int errors = 0, models = 0;
+    for (const auto& [at, len] : ints)
+        for (const char* v : {"-1", "1", "9", "300000000"}) {
+            std::string t = good;
+            t.replace(at, len, v);
+            write("fuzz.gltf", t);
+            try {
+                const ImportedFile f = import_gltf(dir_ / "fuzz.gltf");
+                for (const TriangleMesh& m : f.meshes)
+                    for (std::uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+                ++models;
+            } catch (const IoError&) {
+                ++errors;
+            }
+        }
+    EXPECT_GT(errors, 100);
+    EXPECT_GT(models, 100);
 }
 
 TEST_F(Gltf, TexturedEmissionIsTheSameSampledAsSeen) {
