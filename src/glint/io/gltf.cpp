@@ -46,14 +46,19 @@ struct Importer {
 
     [[noreturn]] void fail(const std::string& what) const { throw IoError(fmt::format("{}: {}", file, what)); }
     /// An error about the JSON value at `pointer` ("/nodes/3/mesh"): in a .gltf it is reported at
-    /// that value's line and column (the text is read again, only now).
-    [[noreturn]] void fail_at(const std::string& pointer, const std::string& what) const {
+    /// that value's line and column, or its nearest enclosing value's if the file leaves it out
+    /// (the text is read again, only now).
+    [[noreturn]] void fail_at(std::string pointer, const std::string& what) const {
         if (!binary) {
             std::ifstream in(file, std::ios::binary);
             std::ostringstream text;
             text << in.rdbuf();
-            if (const auto p = json_locate(text.str(), pointer))
-                throw IoError(fmt::format("{}:{}:{}: {}", file, p->line, p->column, what));
+            for (;;) {
+                if (const auto p = json_locate(text.str(), pointer))
+                    throw IoError(fmt::format("{}:{}:{}: {}", file, p->line, p->column, what));
+                if (pointer.empty()) break;
+                pointer.erase(pointer.rfind('/'));
+            }
         }
         fail(what);
     }
@@ -79,53 +84,88 @@ struct Importer {
         }
     }
 
-    /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
-    /// [0, 1] or [-1, 1] when the accessor says so). Every range is checked against its buffer.
-    /// `ref` is the JSON pointer of the reference to the accessor, for errors.
-    std::vector<double> read(int index, int n, const std::string& what, const std::string& ref) const {
-        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-            fail_at(ref, fmt::format("{}: accessor {} does not exist", what, index));
-        const tinygltf::Accessor& a = model.accessors[index];
-        const std::string at = fmt::format("/accessors/{}", index);
-        if (a.sparse.isSparse) fail_at(at + "/sparse", fmt::format("{}: sparse accessors are not supported", what));
-        const int comps = components(a.type), size = component_size(a.componentType);
-        if (comps != n || size == 0)
-            fail_at(at + (comps != n ? "/type" : "/componentType"),
-                    fmt::format("{}: accessor {} has the wrong type", what, index));
-        // Without a buffer view the values are zeros (the spec) and nothing bounds the count.
-        if (a.count > kMaxAccessorValues / static_cast<std::size_t>(n))
-            fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
-                                               a.count, kMaxAccessorValues));
-        if (a.bufferView < 0) return std::vector<double>(a.count * static_cast<std::size_t>(n), 0.0);
-        if (a.bufferView >= static_cast<int>(model.bufferViews.size()))
-            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, a.bufferView));
-        const tinygltf::BufferView& bv = model.bufferViews[a.bufferView];
+    /// `count` elements of `n` components of type `ct` from buffer view `view`, starting `offset`
+    /// bytes into it, into `out`; `strided`: the view's byteStride applies (vertex attributes),
+    /// else the elements are packed (sparse indices and values). Every range is checked, in 128-bit
+    /// arithmetic so that no offset or stride read from the file can wrap around. `at` is the
+    /// JSON pointer of the object naming the view, for errors.
+    void fetch(int view, std::size_t offset, std::size_t count, int n, int ct, bool normalized, bool strided,
+               double* dst, const std::string& what, const std::string& at) const {
+        if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
+            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
+        const tinygltf::BufferView& bv = model.bufferViews[view];
         if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-            fail_at(fmt::format("/bufferViews/{}/buffer", a.bufferView), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+            fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
         const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
-        const std::size_t elem = static_cast<std::size_t>(comps * size);
-        const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
-        const std::size_t start = bv.byteOffset + a.byteOffset;
-        if (a.count > 0 && (start + (a.count - 1) * stride + elem > data.size() ||
-                            a.byteOffset + (a.count - 1) * stride + elem > bv.byteLength))
-            fail_at(at + "/count", fmt::format("{}: accessor {} reaches past the end of its buffer", what, index));
-        std::vector<double> v(a.count * static_cast<std::size_t>(n));
-        for (std::size_t i = 0; i < a.count; ++i) {
-            const unsigned char* p = data.data() + start + i * stride;
+        __extension__ typedef unsigned __int128 Wide;
+        if (Wide{bv.byteOffset} + bv.byteLength > data.size())
+            fail_at(fmt::format("/bufferViews/{}/byteLength", view),
+                    fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
+        const int size = component_size(ct);
+        const std::size_t elem = static_cast<std::size_t>(n * size);
+        const std::size_t stride = strided && bv.byteStride ? bv.byteStride : elem;
+        if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > bv.byteLength)
+            fail_at(at + "/count", fmt::format("{} reaches past the end of its buffer", what));
+        const unsigned char* base = data.data() + bv.byteOffset + offset;
+        for (std::size_t i = 0; i < count; ++i) {
+            const unsigned char* p = base + i * stride;
             for (int c = 0; c < n; ++c) {
                 const unsigned char* q = p + c * size;
                 double x = 0;
-                switch (a.componentType) {
-                    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t t; std::memcpy(&t, q, 1); x = a.normalized ? std::max(t / 127.0, -1.0) : t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { x = a.normalized ? *q / 255.0 : *q; break; }
-                    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t t; std::memcpy(&t, q, 2); x = a.normalized ? std::max(t / 32767.0, -1.0) : t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t t; std::memcpy(&t, q, 2); x = a.normalized ? t / 65535.0 : t; break; }
+                switch (ct) {
+                    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t t; std::memcpy(&t, q, 1); x = normalized ? std::max(t / 127.0, -1.0) : t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { x = normalized ? *q / 255.0 : *q; break; }
+                    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t t; std::memcpy(&t, q, 2); x = normalized ? std::max(t / 32767.0, -1.0) : t; break; }
+                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t t; std::memcpy(&t, q, 2); x = normalized ? t / 65535.0 : t; break; }
                     case TINYGLTF_COMPONENT_TYPE_INT: { std::int32_t t; std::memcpy(&t, q, 4); x = t; break; }
                     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t t; std::memcpy(&t, q, 4); x = t; break; }
                     case TINYGLTF_COMPONENT_TYPE_FLOAT: { float t; std::memcpy(&t, q, 4); x = t; break; }
                     default: { double t; std::memcpy(&t, q, 8); x = t; break; }
                 }
-                v[i * n + c] = x;
+                dst[i * n + c] = x;
+            }
+        }
+    }
+
+    /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
+    /// [0, 1] or [-1, 1] when the accessor says so), sparse substitutions applied. `ref` is the
+    /// JSON pointer of the reference to the accessor, for errors.
+    std::vector<double> read(int index, int n, const std::string& what, const std::string& ref) const {
+        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+            fail_at(ref, fmt::format("{}: accessor {} does not exist", what, index));
+        const tinygltf::Accessor& a = model.accessors[index];
+        const std::string at = fmt::format("/accessors/{}", index);
+        const int comps = components(a.type), size = component_size(a.componentType);
+        if (comps != n || size == 0)
+            fail_at(at + (comps != n ? "/type" : "/componentType"),
+                    fmt::format("{}: accessor {} has the wrong type", what, index));
+        // Checked before anything is allocated: without a buffer view the values are zeros (the
+        // spec) and nothing else bounds the count.
+        if (a.count > kMaxAccessorValues / static_cast<std::size_t>(n))
+            fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
+                                               a.count, kMaxAccessorValues));
+        const std::string name = fmt::format("{}: accessor {}", what, index);
+        std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
+        if (a.bufferView >= 0)
+            fetch(a.bufferView, a.byteOffset, a.count, n, a.componentType, a.normalized, true, v.data(), name, at);
+        if (a.sparse.isSparse) {  // sparse.count (index, value) pairs replace elements
+            const auto& sp = a.sparse;
+            const std::string sat = at + "/sparse";
+            if (sp.count < 0 || static_cast<std::size_t>(sp.count) > a.count)
+                fail_at(sat + "/count", fmt::format("{}: {} sparse elements in an accessor of {}", name, sp.count, a.count));
+            const int ict = sp.indices.componentType;
+            if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail_at(sat + "/indices/componentType", fmt::format("{}: sparse indices must be unsigned integers", name));
+            std::vector<double> idx(static_cast<std::size_t>(sp.count)), val(idx.size() * n);
+            fetch(sp.indices.bufferView, static_cast<std::size_t>(std::max(sp.indices.byteOffset, 0)), idx.size(), 1, ict,
+                  false, false, idx.data(), name + "'s sparse indices", sat + "/indices");
+            fetch(sp.values.bufferView, static_cast<std::size_t>(std::max(sp.values.byteOffset, 0)), idx.size(), n,
+                  a.componentType, a.normalized, false, val.data(), name + "'s sparse values", sat + "/values");
+            for (std::size_t k = 0; k < idx.size(); ++k) {
+                if (idx[k] >= double(a.count))
+                    fail_at(sat + "/indices", fmt::format("{}: sparse index {} is past its {} elements", name, idx[k], a.count));
+                std::copy_n(val.data() + k * n, n, v.data() + static_cast<std::size_t>(idx[k]) * n);
             }
         }
         return v;

@@ -237,7 +237,7 @@ TEST_F(Gltf, ErrorsPointAtTheLineAndColumnOfTheValue) {
     check(9, "    {\"bufferView\": 0, \"byteOffset\": 12, \"componentType\": 5125, \"count\": 3, \"type\": \"SCALAR\"}",
           "{", "mesh 'tri' primitive 0: index 1065353216 out of range (3 vertices)");
     check(13, "    {\"buffer\": 4, \"byteOffset\": 36, \"byteLength\": 6}", "4,",
-          "mesh 'tri' primitive 0: buffer 4 does not exist");
+          "mesh 'tri' primitive 0: accessor 1: buffer 4 does not exist");
     check(6,
           "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1, "
           "\"material\": 0}]}], \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 3}}}],",
@@ -257,6 +257,33 @@ TEST_F(Gltf, ErrorsPointAtTheLineAndColumnOfTheValue) {
     lines[4] = "  \"nodes\": [{\"mesh\": 5}],";
     write("x.glb", as_glb(joined(lines)));
     EXPECT_EQ(error_of("x.glb"), (dir_ / "x.glb").string() + ": node 0 uses mesh 5 that does not exist");
+}
+
+TEST_F(Gltf, SparseAccessorsReplaceTheirElements) {
+    // POSITION with one sparse element: vertex 1 becomes (5, 6, 7), z negated on import. The
+    // second buffer holds the sparse index (uint16 1, two bytes of padding) and the value.
+    const auto sparse_file = [&](const std::string& buffer) {
+        auto lines = triangle_lines();
+        lines[7] = "    {\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 1,"
+                   " \"indices\": {\"bufferView\": 2, \"componentType\": 5123}, \"values\": {\"bufferView\": 3}}},";
+        lines[12] += ", {\"buffer\": 1, \"byteLength\": 2}, {\"buffer\": 1, \"byteOffset\": 4, \"byteLength\": 12}";
+        lines[14].insert(lines[14].size() - 1,
+                         ", {\"byteLength\": 16, \"uri\": \"data:application/octet-stream;base64," + buffer + "\"}");
+        write("sparse.gltf", joined(lines));
+    };
+    sparse_file("AQAAAAAAoEAAAMBAAADgQA==");
+    const ImportedFile f = import_gltf(dir_ / "sparse.gltf");
+    ASSERT_EQ(f.meshes.size(), 1u);
+    const auto& p = f.meshes[0].positions;
+    ASSERT_EQ(p.size(), 3u);
+    EXPECT_EQ(p[0], (Point3{0, 0, 0}));
+    EXPECT_EQ(p[1], (Point3{5, 6, -7}));
+    EXPECT_EQ(p[2], (Point3{0, 1, 0}));
+    // The same with the index 3, past the accessor's 3 elements.
+    sparse_file("AwAAAAAAoEAAAMBAAADgQA==");
+    const std::string e = error_of("sparse.gltf");
+    EXPECT_NE(e.find(":8:"), std::string::npos) << e;
+    EXPECT_NE(e.find("mesh 'tri' primitive 0: accessor 0: sparse index 3 is past its 3 elements"), std::string::npos) << e;
 }
 
 TEST_F(Gltf, NodeGraphsThatAreNotTreesEndInAnErrorNotAHang) {
