@@ -324,7 +324,7 @@ TEST_F(Gltf, CorruptedNumbersGiveAnErrorOrAModelNeverACrash) {
     ASSERT_GT(ints.size(), 150u);
     int errors = 0, models = 0;
     for (const auto& [at, len] : ints)
-        for (const char* v : {"-1", "1", "9", "300000000"}) {
+        for (const char* v : {"-1", "1", "9", "300000000", "18446744073709551615"}) {
             std::string t = good;
             t.replace(at, len, v);
             write("fuzz.gltf", t);
