@@ -428,28 +428,28 @@ struct Importer {
     /// would be visited once per path, exponentially many times in a chain of such nodes.
     void check_trees() const {
         std::vector<int> parent(model.nodes.size(), -1);
-        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
-            const auto& children = model.nodes[i].children;
-            for (std::size_t k = 0; k < children.size(); ++k) {
-                const int c = children[k];
-                const std::string at = fmt::format("/nodes/{}/children/{}", i, k);
-                if (c < 0 || c >= static_cast<int>(model.nodes.size())) fail_at(at, fmt::format("node {} does not exist", c));
+        // Each entry of `list` (at JSON pointer `at`) must name a node; `check` then sees it.
+        const auto each = [&](const std::vector<int>& list, const std::string& at, auto&& check) {
+            for (std::size_t k = 0; k < list.size(); ++k) {
+                const std::string where = fmt::format("{}/{}", at, k);
+                if (list[k] < 0 || list[k] >= static_cast<int>(model.nodes.size()))
+                    fail_at(where, fmt::format("node {} does not exist", list[k]));
+                check(list[k], where);
+            }
+        };
+        for (std::size_t i = 0; i < model.nodes.size(); ++i)
+            each(model.nodes[i].children, fmt::format("/nodes/{}/children", i), [&](int c, const std::string& where) {
                 if (parent[c] >= 0)
-                    fail_at(at, fmt::format("node {} is a child of node {} and of node {}; nodes must form trees", c,
-                                            parent[c], i));
+                    fail_at(where, fmt::format("node {} is a child of node {} and of node {}; nodes must form trees", c,
+                                               parent[c], i));
                 parent[c] = static_cast<int>(i);
-            }
-        }
-        for (std::size_t s = 0; s < model.scenes.size(); ++s) {
-            const auto& roots = model.scenes[s].nodes;
-            for (std::size_t k = 0; k < roots.size(); ++k) {
-                const int r = roots[k];
-                const std::string at = fmt::format("/scenes/{}/nodes/{}", s, k);
-                if (r < 0 || r >= static_cast<int>(model.nodes.size())) fail_at(at, fmt::format("node {} does not exist", r));
+            });
+        for (std::size_t s = 0; s < model.scenes.size(); ++s)
+            each(model.scenes[s].nodes, fmt::format("/scenes/{}/nodes", s), [&](int r, const std::string& where) {
                 if (parent[r] >= 0)
-                    fail_at(at, fmt::format("node {} is a scene root and a child of node {}; nodes must form trees", r, parent[r]));
-            }
-        }
+                    fail_at(where, fmt::format("node {} is a scene root and a child of node {}; nodes must form trees", r,
+                                               parent[r]));
+            });
     }
     /// The nodes no node lists as a child.
     std::vector<int> roots() const {
