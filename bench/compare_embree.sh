@@ -3,7 +3,8 @@
 # million-triangle mesh and its latitude-longitude variant (fans of slivers at the poles; both
 # generated here by glint_make_mesh, not committed), with
 # 1 and 2 threads: `glint bench --accel all` builds each backend (bvh, sbvh, embree) and traces the same primary and one-bounce
-# diffuse rays, reporting medians of RUNS runs. Prints markdown tables (docs/benchmarks.md).
+# diffuse rays, the backends taking turns round by round, reporting medians of RUNS rounds. Prints markdown
+# tables (docs/benchmarks.md).
 #
 #   bench/compare_embree.sh [BUILD_DIR] [RUNS]        (defaults: build 5)
 set -euo pipefail

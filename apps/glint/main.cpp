@@ -158,7 +158,7 @@ int run_bench(const RenderArgs& args, const std::string& set, int runs) {
     else if (GLINT_EMBREE) kinds.push_back(glint::AccelKind::kEmbree);
     const int threads = job.options.threads;
     const glint::SceneInfo info = glint::scene_info(job.scene);
-    fmt::print("{}: {} triangles ({} stored), {}x{} primary rays, {} thread{}, median of {} runs\n",
+    fmt::print("{}: {} triangles ({} stored), {}x{} primary rays, {} thread{}, median of {} runs (backends in turn)\n",
                args.scene.empty() ? "(built-in demo)" : args.scene, info.triangles, info.unique_triangles,
                job.width, job.height, threads > 0 ? fmt::format("{}", threads) : "all",
                threads == 1 ? "" : "s", runs);
@@ -168,8 +168,7 @@ int run_bench(const RenderArgs& args, const std::string& set, int runs) {
                "primary Mrays/s", "diffuse Mrays/s");
     // The rays, made once with the scene as load_job committed it, for every backend.
     const glint::BenchRays rays = glint::bench_rays(job.scene, job.camera, job.width, job.height);
-    for (const glint::AccelKind k : kinds) {
-        const glint::BenchResult r = glint::bench_backend(job.scene, k, rays, threads, runs);
+    for (const glint::BenchResult& r : glint::bench_backends(job.scene, kinds, rays, threads, runs)) {
         fmt::print("{:<8} {:>10.3f} {:>12} {:>10.1f} {:>16.2f} {:>16.2f}   (hits: {} primary, {} diffuse)\n",
                    r.backend, r.build_seconds, bytes(r.accel_bytes),
                    info.unique_triangles ? double(r.accel_bytes) / double(info.unique_triangles) : 0.0,

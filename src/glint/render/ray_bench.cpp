@@ -71,21 +71,13 @@ BenchRays bench_rays(const Scene& scene, const Camera& camera, int width, int he
     return rays;
 }
 
-BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, int threads, int runs) {
-    BenchResult r;
-    r.backend = accel_name(accel);
+std::vector<BenchResult> bench_backends(Scene& scene, const std::vector<AccelKind>& accels, const BenchRays& rays,
+                                        int threads, int runs) {
     runs = std::max(1, runs);
     tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
-    std::vector<double> build, primary, diffuse;
-    scene.accel = accel;
-    for (int k = 0; k < runs; ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        arena.execute([&] { scene.commit(); });
-        build.push_back(seconds_since(t0));
-    }
-    r.accel_bytes = scene.accel_memory_bytes();
-    r.primary_rays = rays.primary.size();
-    r.diffuse_rays = rays.diffuse.size();
+    const std::size_t n = accels.size();
+    std::vector<BenchResult> results(n);
+    std::vector<std::vector<double>> build(n), primary(n), diffuse(n);
 
     const auto trace = [&](const std::vector<Ray>& batch) {
         std::atomic<std::uint64_t> hits{0};
@@ -102,17 +94,31 @@ BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, 
         return std::pair{static_cast<double>(batch.size()) / seconds_since(t0) * 1e-6, hits.load()};
     };
     for (int k = 0; k < runs; ++k) {
-        const auto [mp, hp] = trace(rays.primary);
-        const auto [md, hd] = trace(rays.diffuse);
-        primary.push_back(mp);
-        diffuse.push_back(md);
-        r.primary_hits = hp;
-        r.diffuse_hits = hd;
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::size_t b = k % 2 == 0 ? j : n - 1 - j;
+            BenchResult& r = results[b];
+            scene.accel = accels[b];
+            const auto t0 = std::chrono::steady_clock::now();
+            arena.execute([&] { scene.commit(); });
+            build[b].push_back(seconds_since(t0));
+            const auto [mp, hp] = trace(rays.primary);
+            const auto [md, hd] = trace(rays.diffuse);
+            primary[b].push_back(mp);
+            diffuse[b].push_back(md);
+            r.backend = accel_name(accels[b]);
+            r.accel_bytes = scene.accel_memory_bytes();
+            r.primary_rays = rays.primary.size();
+            r.diffuse_rays = rays.diffuse.size();
+            r.primary_hits = hp;
+            r.diffuse_hits = hd;
+        }
     }
-    r.build_seconds = median(build);
-    r.primary_mrays = median(primary);
-    r.diffuse_mrays = median(diffuse);
-    return r;
+    for (std::size_t b = 0; b < n; ++b) {
+        results[b].build_seconds = median(build[b]);
+        results[b].primary_mrays = median(primary[b]);
+        results[b].diffuse_mrays = median(diffuse[b]);
+    }
+    return results;
 }
 
 }  // namespace glint

@@ -43,8 +43,11 @@ struct BenchRays {
 };
 BenchRays bench_rays(const Scene& scene, const Camera& camera, int width, int height);
 
-/// Commits `scene` with `accel` `runs` times (timing each build), then traces both ray sets
-/// `runs` times on `threads` threads (closest hit).
-BenchResult bench_backend(Scene& scene, AccelKind accel, const BenchRays& rays, int threads, int runs);
+/// `runs` rounds; in each, every backend in turn commits `scene` (timed) and traces both ray sets
+/// on `threads` threads (closest hit). The backends take turns round by round, in reversed order
+/// every other round, so that the machine's drift over the minutes of a run falls on all of
+/// them alike and their ratios are measured seconds apart, not minutes. One result per backend.
+std::vector<BenchResult> bench_backends(Scene& scene, const std::vector<AccelKind>& accels, const BenchRays& rays,
+                                        int threads, int runs);
 
 }  // namespace glint
