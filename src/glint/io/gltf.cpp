@@ -85,7 +85,7 @@ struct Importer {
     }
 
     /// `count` elements of `n` components of type `ct` from buffer view `view`, starting `offset`
-    /// bytes into it, into `out`; `strided`: the view's byteStride applies (vertex attributes),
+    /// bytes into it, into `dst`; `strided`: the view's byteStride applies (vertex attributes),
     /// else the elements are packed (sparse indices and values). Every range is checked, in 128-bit
     /// arithmetic so that no offset or stride read from the file can wrap around. `at` is the
     /// JSON pointer of the object naming the view, for errors.
@@ -355,11 +355,9 @@ struct Importer {
                 // RGB or RGBA; read() reports a missing accessor.
                 const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
                 const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
-                {
-                    const auto c = read(it->second, n, what, attribute("COLOR_0"));
-                    for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i)
-                        m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
-                }
+                const auto c = read(it->second, n, what, attribute("COLOR_0"));
+                for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i)
+                    m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
             }
             std::vector<std::uint32_t> idx;
             if (prim.indices >= 0) {
