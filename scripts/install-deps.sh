@@ -15,6 +15,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev  # glTF 2.0 import (tinygltf's JSON)
   libembree-dev            # the Embree backend (--accel embree) and its benchmark
   libfmt-dev               # formatting
+  libopenvdb-dev libboost-dev  # grid media (smoke, clouds) read from .vdb files (its headers need Boost)
   python3                  # scripts/make_gltf_scene.py (the glTF test scene)
   libgtest-dev libgmock-dev
   libbenchmark-dev

@@ -155,6 +155,12 @@ void Scene::commit() {
 #endif
     }
     committed_count_ = bounded_count();
+    has_interfaces_ = std::any_of(materials.begin(), materials.end(), [](const Material& m) {
+        return std::holds_alternative<InterfaceMaterial>(m);
+    });
+    has_media_ = !media.empty() || has_interfaces_ ||
+                 std::any_of(medium_interfaces.begin(), medium_interfaces.end(),
+                             [](const auto& m) { return m.has_value(); });
 
     const float radius = bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
     light_sampler_.build(*this, std::max(radius, 1e-3f));
@@ -300,6 +306,44 @@ bool Scene::occluded_brute_force(const Ray& ray) const {
         }
     }
     return false;
+}
+
+MaterialId Scene::material_of(const Hit& hit) const {
+    switch (hit.kind) {
+        case ShapeKind::kSphere: return spheres[hit.index].material;
+        case ShapeKind::kPlane: return planes[hit.index].material;
+        case ShapeKind::kQuad: return quads[hit.index].material;
+        case ShapeKind::kDisk: return disks[hit.index].material;
+        case ShapeKind::kTriangle: return triangles[hit.index].material;
+        case ShapeKind::kMesh: return instance_material(hit.index, hit.prim);
+    }
+    return 0;
+}
+
+// Interfaces are rare: a scene without them takes the plain query; with them, the ray starts
+// again past each interface it meets (a bounded number of times: a ray cannot cross more than
+// a few thousand boundaries in a sane scene, and a malformed one must not hang).
+std::optional<Hit> Scene::intersect_opaque(const Ray& ray_in) const {
+    if (!has_interfaces_) return intersect(ray_in);
+    Ray ray = ray_in;
+    Float travelled = 0;
+    for (int crossings = 0; crossings < 4096; ++crossings) {
+        auto hit = intersect(ray);
+        if (!hit || !is_interface(material_of(*hit))) {
+            if (hit) hit->t += travelled;
+            return hit;
+        }
+        const Point3 p = ray.at(hit->t);
+        const Normal3 n = interaction(ray, *hit).n;
+        travelled += hit->t;
+        ray = spawn_ray(p, n, ray.direction, ray.t_max - hit->t);
+    }
+    return std::nullopt;
+}
+
+bool Scene::occluded_opaque(const Ray& ray) const {
+    if (!has_interfaces_) return occluded(ray);
+    return intersect_opaque(ray).has_value();
 }
 
 bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim, Vector3 ng) const {

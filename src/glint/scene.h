@@ -22,6 +22,7 @@
 #include "glint/lights/light.h"
 #include "glint/lights/light_sampler.h"
 #include "glint/materials/material.h"
+#include "glint/media/medium.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/mesh.h"
 #include "glint/shapes/plane.h"
@@ -52,6 +53,12 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Image> images;
     std::vector<Light> lights;
+    /// Participating media, and the one the camera (and so everything no boundary encloses) is in.
+    std::vector<Medium> media;
+    MediumId camera_medium = kNoMedium;
+    /// Per material slot: the media on its two sides; missing or empty entries change nothing
+    /// (build gives every object that bounds a medium a slot of its own).
+    std::vector<std::optional<MediumInterface>> medium_interfaces;
     Background background = SkyBackground{};
     AccelKind accel = AccelKind::kBvh;  ///< read by commit()
     /// The mesh BVHs' traversal kernel, read by commit(); empty: default_simd_isa().
@@ -108,6 +115,23 @@ struct Scene {
     /// The radiance area light `l` (of `material`) emits at its point q (normal n): the
     /// material's emission, times its emission texture there, if any.
     Color light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const;
+    /// Whether the path tracer must track media: some medium or interface-only surface exists
+    /// (set by commit()). Without, it runs the surface-only loop it always ran.
+    bool has_media() const { return has_media_; }
+    bool is_interface(MaterialId m) const {
+        return m < materials.size() && std::holds_alternative<InterfaceMaterial>(materials[m]);
+    }
+    /// The medium interface of a material slot, if it has one.
+    const MediumInterface* medium_interface(MaterialId m) const {
+        return m < medium_interfaces.size() && medium_interfaces[m] ? &*medium_interfaces[m] : nullptr;
+    }
+    /// The material of a hit without the full interaction.
+    MaterialId material_of(const Hit& hit) const;
+    /// The nearest hit that is not an interface surface, and whether one lies in the way: for
+    /// the integrators that do not track media (Whitted, the debug views), to which interfaces
+    /// are invisible.
+    std::optional<Hit> intersect_opaque(const Ray& ray) const;
+    bool occluded_opaque(const Ray& ray) const;
     /// Every light, for the path tracer; built by commit().
     const LightSampler& light_sampler() const { return light_sampler_; }
 
@@ -144,6 +168,8 @@ private:
     static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2;
     std::vector<std::uint8_t> texture_reads_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
+    bool has_media_ = false;
+    bool has_interfaces_ = false;
     LightSampler light_sampler_;
 };
 

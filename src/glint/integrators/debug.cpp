@@ -14,7 +14,7 @@ Color surface_color(const Scene& scene, const SurfaceInteraction& si) {
 std::optional<SurfaceInteraction> first_hit(const Scene& scene, const Ray& ray,
                                             RayCounter& counter, FirstHit* first) {
     ++counter.rays;
-    const auto hit = scene.intersect(ray);
+    const auto hit = scene.intersect_opaque(ray);
     if (!hit) {
         if (first) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
         return std::nullopt;

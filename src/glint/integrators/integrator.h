@@ -89,7 +89,9 @@ struct PathSettings {
 };
 
 /// Unidirectional path tracing with next-event estimation and multiple importance sampling
-/// (Veach's power heuristic, beta = 2) for every light, Russian roulette and max_depth.
+/// (Veach's power heuristic, beta = 2) for every light, Russian roulette and max_depth; through
+/// participating media too (delta tracking, ratio-tracked shadow rays, spectral MIS) when the
+/// scene has any (path.cpp).
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(PathSettings settings) : settings_(settings) {}
@@ -97,6 +99,7 @@ public:
              FirstHit* first = nullptr) const override;
 
 private:
+    bool roulette(Color& beta, float eta_scale, Color r_u, int depth, float u) const;
     PathSettings settings_;
 };
 

@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "glint/integrators/integrator.h"
 #include "glint/materials/make_bsdf.h"
+#include "glint/media/transmittance.h"
 
 namespace glint {
 
@@ -22,30 +24,87 @@ Color clamp_radiance(Color c, float max) {
     return {std::min(c.r, max), std::min(c.g, max), std::min(c.b, max)};
 }
 
+float average(Color c) { return (c.r + c.g + c.b) / 3; }
+
+// The shadow ray from a point inside a medium (no surface to step off) to a light sample.
+Ray medium_shadow_ray(Point3 p, const LightLiSample& ls) {
+    if (!ls.on_surface) {
+        return Ray{p, ls.wi, std::isinf(ls.distance) ? ls.distance : ls.distance * (1 - 1e-4f)};
+    }
+    const Vector3 towards = ls.p_light - p;
+    const Float offset_q = 1e-4f * std::max(Float(1), max_abs_component(ls.p_light));
+    const Point3 end = ls.p_light + to_vector(ls.n_light) * (dot(ls.n_light, towards) <= 0 ? offset_q : -offset_q);
+    const Vector3 d = end - p;
+    const Float dist = length(d);
+    return Ray{p, d / dist, dist * (1 - 1e-5f)};
+}
+
+// A path may cross at most this many interface surfaces between two scattering events (and a
+// shadow ray as many): a bound against a malformed scene, far above any real nesting.
+constexpr int kMaxInterfaceCrossings = 256;
+
+// The transmittance along a shadow ray through interface surfaces and the media between them;
+// 0 when an opaque surface blocks it. `r` gathers the spectral-MIS ratios of ratio tracking.
+Color shadow_transmittance(const Scene& scene, Ray ray, MediumId medium, HashRng& rng, int hero,
+                           Color& r, std::uint64_t& rays) {
+    Color tr{1};
+    for (int crossings = 0; crossings <= kMaxInterfaceCrossings; ++crossings) {
+        const auto hit = scene.intersect(ray);
+        if (hit && !scene.is_interface(scene.material_of(*hit))) return Color{0};
+        if (medium != kNoMedium) {
+            tr *= estimate_transmittance(scene.media[medium], ray, hit ? hit->t : ray.t_max, rng, hero, r);
+            if (!(tr.max_component() > 0)) return Color{0};
+        }
+        if (!hit) return tr;
+        const SurfaceInteraction si = scene.interaction(ray, *hit);
+        if (const MediumInterface* mi = scene.medium_interface(si.material))
+            medium = mi->side(dot(si.n, ray.direction));
+        ++rays;
+        ray = spawn_ray(si.p, si.n, ray.direction, ray.t_max - hit->t);
+    }
+    return Color{0};
+}
+
 }  // namespace
 
-// The loop of pbrt-v4's PathIntegrator, in our terms. At each vertex: add emission found by the
-// previous BSDF sample (MIS-weighted against light sampling), sample one light (MIS-weighted
-// against BSDF sampling), then continue along a BSDF sample. Sampler dimensions per bounce:
-// (light choice, lobe choice), the light's 2D point, the BSDF's 2D direction, roulette.
+// The loop of pbrt-v4's PathIntegrator, in our terms, grown into its VolPathIntegrator where
+// the scene has media. At each vertex: add emission found by the previous BSDF or phase sample
+// (MIS-weighted against light sampling), sample one light (MIS-weighted against BSDF or phase
+// sampling), then continue along a BSDF or phase sample. Sampler dimensions per scattering
+// event: (light choice, lobe choice), the light's 2D point, the BSDF's or phase function's 2D
+// direction, roulette. Media draw their numbers from a per-sample hash stream (HashRng) so that
+// they shift no dimension: a scene whose media never collide renders bit for bit as without.
+//
+// Media (docs/architecture.md, "Volumes"): free flights by delta tracking against a majorant
+// with a hero channel chosen per camera sample; `r_u` holds, per channel, the path's sampling
+// density over the hero's, and every contribution is divided by its average (spectral MIS,
+// the one-sample balance heuristic over the three channels). Lights and BSDF/phase samples are
+// combined with the power heuristic on their directional densities, as on surfaces. Shadow rays
+// cross interface surfaces and take the transmittance of each medium on the way (closed form in
+// homogeneous media, ratio tracking in grids).
 Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream& samples,
                          RayCounter& counter, FirstHit* first) const {
     const LightSampler& lights = scene.light_sampler();
     const bool use_light = settings_.strategy != LightStrategy::kBsdf && lights.count() > 0;
     const bool use_bsdf_hits = settings_.strategy != LightStrategy::kLight;
+    const bool media = scene.has_media();
     Color radiance{0};
     Color beta{1};
+    Color r_u{1};           // spectral MIS: per channel, the path's density over the hero's
     Ray ray = camera_ray;
     bool specular = true;   // the camera ray counts as specular: emission seen directly is kept
-    float bsdf_pdf = 0;     // of the direction that led here
+    float bsdf_pdf = 0;     // of the direction that led here (BSDF or phase function)
     Point3 prev_p{0, 0, 0};
     float eta_scale = 1;
+    MediumId medium = scene.camera_medium;
+    HashRng rng{media ? samples.stream_seed() : 0};
+    const int hero = media ? std::min(2, static_cast<int>(rng.next() * 3)) : 0;
 
     // Emission reached by a BSDF sample (or the camera): weighted against light sampling.
     const auto add_emission = [&](Color le, std::uint32_t light, Point3 on_light) {
         if (le.max_component() <= 0) return;
         if (specular) {
-            radiance += beta * le;
+            radiance += beta * le / average(r_u);
             return;
         }
         if (!use_bsdf_hits) return;  // light sampling alone counts this light
@@ -55,22 +114,142 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 lights.pmf(light) * lights.pdf_li(scene, light, prev_p, ray.direction, on_light);
             w = power_heuristic(bsdf_pdf, light_pdf);
         }
-        radiance += beta * le * w;
+        radiance += beta * le * w / average(r_u);
     };
 
-    for (int depth = 0;; ++depth) {
+    // Next-event estimation from p: one light, its radiance times f (the BSDF with its cosine,
+    // or the phase function) and the transmittance to it. `ng`: the surface's geometric normal
+    // (null inside a medium).
+    const auto next_event = [&](Point3 p, const Normal3* ng, const MediumInterface* mi,
+                                const auto& f_of, const auto& pdf_of, float u_choice, Sample2 u_light) {
+        float pmf = 0;
+        const std::uint32_t l = lights.pick(u_choice, &pmf);
+        if (!(pmf > 0)) return;
+        const auto ls = lights.sample_li(scene, l, p, u_light);
+        if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
+        const Color f = f_of(ls->wi);
+        if (f.max_component() <= 0) return;
+        ++counter.rays;
+        const Ray shadow = !ng ? medium_shadow_ray(p, *ls)
+                           : ls->on_surface
+                               ? spawn_ray_to(p, *ng, ls->p_light, ls->n_light)
+                               : spawn_ray(p, *ng, ls->wi,
+                                           std::isinf(ls->distance) ? ls->distance
+                                                                    : ls->distance * (1 - 1e-4f));
+        Color tr{1}, r_l{1};
+        if (!media) {
+            if (scene.occluded(shadow)) return;
+        } else {
+            const MediumId start = ng && mi ? mi->side(dot(*ng, shadow.direction)) : medium;
+            tr = shadow_transmittance(scene, shadow, start, rng, hero, r_l, counter.rays);
+            if (tr.max_component() <= 0) return;
+        }
+        const float light_pdf = pmf * ls->pdf;
+        const float w = ls->delta || !use_bsdf_hits ? 1 : power_heuristic(light_pdf, pdf_of(ls->wi));
+        radiance += beta * f * ls->L * tr * (w / light_pdf) / average(r_u * r_l);
+    };
+
+    int depth = 0;
+    int crossings = 0;  // interface surfaces passed since the last scattering event
+    for (;;) {
         ++counter.rays;
         const auto hit = scene.intersect(ray);
+
+        // Through the medium up to the surface (or forever): delta tracking.
+        if (medium != kNoMedium) {
+            bool scattered = false, terminated = false;
+            const float t_max = hit ? hit->t : std::numeric_limits<float>::infinity();
+            const Medium& m = scene.media[medium];
+            const Color T_maj = sample_t_maj(
+                m, ray, t_max, rng.next(), rng, hero,
+                [&](Point3 p, const MediumPoint& mp, Color sigma_maj, Color T) {
+                    if (depth < settings_.max_depth && mp.Le.max_component() > 0) {
+                        const float pdf = sigma_maj[hero] * T[hero];
+                        const Color r_e = r_u * sigma_maj * T / pdf;
+                        if (r_e.max_component() > 0)
+                            radiance += beta * T * mp.sigma_a * mp.Le / (pdf * average(r_e));
+                    }
+                    const float p_absorb = mp.sigma_a[hero] / sigma_maj[hero];
+                    const float p_scatter = mp.sigma_s[hero] / sigma_maj[hero];
+                    const float u_event = rng.next();
+                    if (u_event < p_absorb) {
+                        terminated = true;
+                        return false;
+                    }
+                    if (u_event < p_absorb + p_scatter) {
+                        if (depth >= settings_.max_depth) {
+                            terminated = true;
+                            return false;
+                        }
+                        const float pdf = T[hero] * mp.sigma_s[hero];
+                        beta *= T * mp.sigma_s / pdf;
+                        r_u *= T * mp.sigma_s / pdf;
+                        if (beta.max_component() <= 0 || r_u.max_component() <= 0) {
+                            terminated = true;
+                            return false;
+                        }
+                        const HgPhase& phase = phase_of(m);
+                        const Vector3 wo = -ray.direction;
+                        const Sample2 choices = samples.next_2d();
+                        const Sample2 u_light = samples.next_2d();
+                        const Sample2 u_phase = samples.next_2d();
+                        if (use_light) {
+                            const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
+                            const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
+                            next_event(p, nullptr, nullptr, f, pdf_of, choices.x, u_light);
+                        }
+                        const PhaseSample ps = phase.sample(wo, u_phase);
+                        beta *= Color{ps.p / ps.pdf};
+                        specular = false;
+                        bsdf_pdf = ps.pdf;
+                        prev_p = p;
+                        ray = Ray{p, ps.wi};
+                        scattered = true;
+                        return false;
+                    }
+                    // A null collision: on through the medium.
+                    const Color sigma_n{std::max(sigma_maj.r - mp.sigma_a.r - mp.sigma_s.r, 0.0f),
+                                        std::max(sigma_maj.g - mp.sigma_a.g - mp.sigma_s.g, 0.0f),
+                                        std::max(sigma_maj.b - mp.sigma_a.b - mp.sigma_s.b, 0.0f)};
+                    const float pdf = T[hero] * sigma_n[hero];
+                    if (!(pdf > 0)) {
+                        beta = Color{0};
+                        return false;
+                    }
+                    beta *= T * sigma_n / pdf;
+                    r_u *= T * sigma_n / pdf;
+                    return beta.max_component() > 0 && r_u.max_component() > 0;
+                });
+            if (terminated || !(beta.max_component() > 0) || !(r_u.max_component() > 0)) break;
+            if (scattered) {
+                ++depth;
+                crossings = 0;
+                if (!roulette(beta, eta_scale, r_u, depth, samples.next_1d())) break;
+                continue;
+            }
+            if (!(T_maj[hero] > 0)) break;
+            beta *= T_maj / T_maj[hero];
+            r_u *= T_maj / T_maj[hero];
+        }
+
         if (!hit) {
             if (first && depth == 0) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
             for (const std::uint32_t l : lights.distant())
                 add_emission(lights.distant_radiance(scene, l, ray.direction), l, {});
             // A background that is no light (black has no power) still shows to the camera.
             if (lights.environment() == kNoLight && depth == 0)
-                radiance += beta * evaluate(scene.background, ray.direction);
+                radiance += beta * evaluate(scene.background, ray.direction) / average(r_u);
             break;
         }
         const SurfaceInteraction si = scene.interaction(ray, *hit);
+        if (media && scene.is_interface(si.material)) {
+            // No surface: change medium and go on in the same direction, no scattering event.
+            if (const MediumInterface* mi = scene.medium_interface(si.material))
+                medium = mi->side(dot(si.n, ray.direction));
+            if (++crossings > kMaxInterfaceCrossings) break;
+            ray = spawn_ray(si.p, si.n, ray.direction);
+            continue;
+        }
         const Vector3 wo = -ray.direction;
         add_emission(scene.emitted(si, wo), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
         if (first && depth == 0) {
@@ -84,36 +263,14 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         const Sample2 u_bsdf = samples.next_2d();
         const float u_rr = samples.next_1d();
 
-        // Next-event estimation.
+        // Next-event estimation. A direction on different sides of the shading and the true
+        // surface is refused (light would leak through a smooth-shaded mesh).
         if (use_light && bsdf.has_smooth_part()) {
-            float pmf = 0;
-            const std::uint32_t l = lights.pick(choices.x, &pmf);
-            if (pmf > 0) {
-                if (const auto ls = lights.sample_li(scene, l, si.p, u_light);
-                    ls && ls->pdf > 0 && ls->L.max_component() > 0) {
-                    // A direction on different sides of the shading and the true surface is
-                    // refused (light would leak through a smooth-shaded mesh).
-                    const Color f = same_side(si, ls->wi)
-                                        ? bsdf.eval(wo, ls->wi) * std::abs(dot(si.ns, ls->wi))
-                                        : Color{0};
-                    if (f.max_component() > 0) {
-                        ++counter.rays;
-                        const Ray shadow =
-                            ls->on_surface
-                                ? spawn_ray_to(si.p, si.n, ls->p_light, ls->n_light)
-                                : spawn_ray(si.p, si.n, ls->wi,
-                                            std::isinf(ls->distance) ? ls->distance
-                                                                     : ls->distance * (1 - 1e-4f));
-                        if (!scene.occluded(shadow)) {
-                            const float light_pdf = pmf * ls->pdf;
-                            const float w = ls->delta || !use_bsdf_hits
-                                                ? 1
-                                                : power_heuristic(light_pdf, bsdf.pdf(wo, ls->wi));
-                            radiance += beta * f * ls->L * (w / light_pdf);
-                        }
-                    }
-                }
-            }
+            const auto f = [&](Vector3 wi) {
+                return same_side(si, wi) ? bsdf.eval(wo, wi) * std::abs(dot(si.ns, wi)) : Color{0};
+            };
+            const auto pdf_of = [&](Vector3 wi) { return bsdf.pdf(wo, wi); };
+            next_event(si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, choices.x, u_light);
         }
 
         // Continue the path.
@@ -125,18 +282,29 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         prev_p = si.p;
         if (bs->eta != 1) eta_scale *= bs->eta * bs->eta;
         if (!is_finite(beta)) break;
-
-        // Russian roulette on the throughput without the radiance scaling of refraction.
-        const float rr = (beta * eta_scale).max_component();
-        if (depth + 1 >= settings_.rr_depth && rr < 1) {
-            const float q = std::max(0.0f, 1 - rr);
-            if (u_rr < q) break;
-            beta = beta / (1 - q);
+        if (media) {
+            if (const MediumInterface* mi = scene.medium_interface(si.material))
+                medium = mi->side(dot(si.n, bs->wi));
         }
+        ++depth;
+        crossings = 0;
+        if (!roulette(beta, eta_scale, r_u, depth, u_rr)) break;
         ray = spawn_ray(si.p, si.n, bs->wi);
     }
     if (!is_finite(radiance)) return Color{0};
     return std::isinf(settings_.clamp) ? radiance : clamp_radiance(radiance, settings_.clamp);
+}
+
+// Russian roulette on the throughput without the radiance scaling of refraction (and, in
+// media, as the spectral MIS estimate weighs it); false when the path dies.
+bool PathIntegrator::roulette(Color& beta, float eta_scale, Color r_u, int depth, float u) const {
+    const float rr = (beta * eta_scale / average(r_u)).max_component();
+    if (depth >= settings_.rr_depth && rr < 1) {
+        const float q = std::max(0.0f, 1 - rr);
+        if (u < q) return false;
+        beta = beta / (1 - q);
+    }
+    return true;
 }
 
 }  // namespace glint

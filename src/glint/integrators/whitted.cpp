@@ -14,7 +14,7 @@ Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3
         if (cos_theta <= 0) continue;
         if (settings_.shadows) {
             ++counter.rays;
-            if (scene.occluded(spawn_ray(p, ng, ls.to_light, ls.distance))) continue;
+            if (scene.occluded_opaque(spawn_ray(p, ng, ls.to_light, ls.distance))) continue;
         }
         d += k * ls.intensity * cos_theta;
     }
@@ -31,7 +31,7 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
     Ray ray = camera_ray;
     for (int depth = 0;; ++depth) {
         ++counter.rays;
-        const auto hit = scene.intersect(ray);
+        const auto hit = scene.intersect_opaque(ray);
         if (!hit) {
             const Color bg = evaluate(scene.background, ray.direction);
             if (first && depth == 0) *first = {bg, {}, 0, false};

@@ -12,6 +12,7 @@
 #include "glint/io/image_io.h"
 #include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
+#include "glint/io/vdb.h"
 
 namespace glint {
 
@@ -143,6 +144,7 @@ public:
                 scene_.materials.push_back(
                     PlasticMaterial{add_texture(d.color), make_plastic(Color{0}, d.ior, alpha)});
                 break;
+            case K::kInterface: scene_.materials.push_back(InterfaceMaterial{}); break;
             case K::kPbr: {
                 PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
                               diffuse_fresnel_inside(d.ior), std::nullopt};
@@ -158,7 +160,30 @@ public:
             scene_.normal_maps.resize(scene_.materials.size());
             scene_.normal_maps.back() = NormalMap{add_texture(*d.normal_map), d.normal_scale};
         }
+        if (d.interior) {  // an importer's medium inside every surface of this material
+            scene_.media.push_back(HomogeneousMedium{d.interior->sigma_a, d.interior->sigma_s,
+                                                     d.interior->emission, HgPhase{d.interior->g}});
+            scene_.medium_interfaces.resize(scene_.materials.size());
+            scene_.medium_interfaces.back() =
+                MediumInterface{static_cast<MediumId>(scene_.media.size() - 1), scene_.camera_medium};
+        }
         return static_cast<MaterialId>(scene_.materials.size() - 1);
+    }
+
+    /// A slot of its own for material `m` with the media `mi` on its sides (the medium interface
+    /// is part of the surface record: objects sharing a material may bound different media).
+    MaterialId add_slot(MaterialId m, MediumInterface mi) {
+        scene_.materials.push_back(scene_.materials[m]);
+        const auto slot = static_cast<MaterialId>(scene_.materials.size() - 1);
+        scene_.emission.resize(scene_.materials.size());
+        scene_.emission[slot] = scene_.emission_of(m);
+        if (m < scene_.normal_maps.size() && scene_.normal_maps[m]) {
+            scene_.normal_maps.resize(scene_.materials.size());
+            scene_.normal_maps[slot] = scene_.normal_maps[m];
+        }
+        scene_.medium_interfaces.resize(scene_.materials.size());
+        scene_.medium_interfaces[slot] = mi;
+        return slot;
     }
 
     /// The environment image: loaded linear (an HDR radiance map), relative to the scene file.
@@ -239,6 +264,73 @@ int pick(const Located<int>& from_file, const std::optional<long long>& flag, co
     return static_cast<int>(*flag);
 }
 
+// A medium from its description; grid files are read here. Errors go to `diagnostics` (the
+// medium is then left empty, keeping ids valid; the build fails anyway).
+Medium make_medium(const MediumDesc& d, Diagnostics& diagnostics, const std::filesystem::path& scene_dir) {
+    if (d.kind == MediumDesc::Kind::kHomogeneous)
+        return HomogeneousMedium{d.sigma_a, d.sigma_s, d.emission, HgPhase{d.g}};
+    GridMedium g;
+    g.sigma_a = d.sigma_a;
+    g.sigma_s = d.sigma_s;
+    g.phase = HgPhase{d.g};
+    std::filesystem::path path = d.file.value;
+    if (path.is_relative()) path = scene_dir / path;
+    // A grid of the file, its name and type checked first so that those errors point at the key
+    // that names the grid.
+    const auto read = [&](const Located<std::string>& name) -> std::optional<VdbGrid> {
+        try {
+            const auto grids = vdb_grids(path);
+            const auto it = std::find_if(grids.begin(), grids.end(), [&](const auto& x) { return x.first == name.value; });
+            const SourceLoc at = name.loc.line > 0 ? name.loc : d.file.loc;
+            if (it == grids.end()) {
+                std::vector<std::string> names;
+                std::string known;
+                for (const auto& x : grids) {
+                    names.push_back(x.first);
+                    known += fmt::format("{}{} ({})", known.empty() ? "" : ", ", x.first, x.second);
+                }
+                const std::string guess = closest_match(name.value, names);
+                diagnostics.error(at, fmt::format("{}: no grid named '{}'{} (grids in the file: {})", d.file.value,
+                                                  name.value, guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                                  known.empty() ? "none" : known));
+                return std::nullopt;
+            }
+            if (it->second != "float") {
+                diagnostics.error(at, fmt::format("{}: grid '{}' holds {} values; glint reads float grids",
+                                                  d.file.value, name.value, it->second));
+                return std::nullopt;
+            }
+            return read_vdb_grid(path, name.value);
+        } catch (const IoError& e) {
+            diagnostics.error(d.file.loc, e.what());
+            return std::nullopt;
+        }
+    };
+    auto density = read(d.density_grid);
+    if (!density) return g;
+    g.transform = d.transform.value_or(Transform{}) * density->index_to_world;
+    g.density = std::move(density->grid);
+    g.majorant = MajorantGrid(g.density);
+    if (d.emission_kind != MediumDesc::Emission::kNone) {
+        auto e = read(d.emission_grid);
+        if (!e) return g;
+        if (!(e->index_to_world.to_world == density->index_to_world.to_world)) {
+            diagnostics.error(d.emission_grid.loc,
+                              fmt::format("{}: grid '{}' is placed by another voxel transform than density grid "
+                                          "'{}'; glint needs them to share one", d.file.value,
+                                          d.emission_grid.value, d.density_grid.value));
+            return g;
+        }
+        g.emission = std::move(e->grid);
+        g.emission_kind = d.emission_kind == MediumDesc::Emission::kGrid ? GridMedium::EmissionKind::kGrid
+                                                                         : GridMedium::EmissionKind::kTemperature;
+        g.emission_color = d.emission;
+        g.emission_scale = d.emission_scale;
+        g.temperature_scale = d.temperature_scale;
+    }
+    return g;
+}
+
 }  // namespace
 
 RenderJob build(const SceneDescription& d, const Overrides& overrides,
@@ -315,6 +407,27 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     Scene& scene = job.scene;
     scene.background = d.background;
     scene.lights = d.lights;
+    const std::filesystem::path scene_dir = std::filesystem::path(d.path).parent_path();
+    // Media first: materials (glTF volumes) and objects refer to them.
+    std::vector<std::string> medium_names;
+    for (const NamedMedium& m : d.media) {
+        medium_names.push_back(m.name);
+        scene.media.push_back(make_medium(m.medium, diagnostics, scene_dir));
+    }
+    const auto medium_id = [&](const Located<std::string>& name) -> std::optional<MediumId> {
+        if (name.value == "none") return kNoMedium;
+        const auto it = std::find(medium_names.begin(), medium_names.end(), name.value);
+        if (it != medium_names.end()) return static_cast<MediumId>(it - medium_names.begin());
+        std::string known;
+        for (const auto& n : medium_names) known += (known.empty() ? "" : ", ") + n;
+        const std::string guess = closest_match(name.value, medium_names);
+        diagnostics.error(name.loc, fmt::format("unknown medium '{}'{} ({})", name.value,
+                                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                                known.empty() ? "no media are defined; 'none' is vacuum"
+                                                              : fmt::format("known: {}, or none", known)));
+        return std::nullopt;
+    };
+    if (d.medium) scene.camera_medium = medium_id(*d.medium).value_or(kNoMedium);
     MaterialBuilder materials(scene, diagnostics, std::filesystem::path(d.path).parent_path());
     if (d.environment) materials.set_environment(*d.environment);
     std::vector<std::string> names;
@@ -331,7 +444,6 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::optional<GltfCamera> camera;
     };
     std::map<std::string, LoadedFile> loaded;
-    const std::filesystem::path scene_dir = std::filesystem::path(d.path).parent_path();
     for (const ObjectDesc& o : d.objects) {
         MaterialId id = 0;
         const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
@@ -354,6 +466,18 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             id = static_cast<MaterialId>(it - names.begin());
         } else {
             id = materials.add_material(std::get<MaterialDesc>(o.material.value));
+        }
+        if (o.interior || o.exterior) {
+            const auto in = o.interior ? medium_id(*o.interior) : std::optional<MediumId>(kNoMedium);
+            const auto out = o.exterior ? medium_id(*o.exterior) : std::optional<MediumId>(scene.camera_medium);
+            if (!in || !out) continue;
+            if (id == kNoImportedMaterial) {
+                diagnostics.error((o.interior ? *o.interior : *o.exterior).loc,
+                                  "a mesh that bounds a medium needs a 'material' of its own (the file's "
+                                  "materials are shared by every object that loads it)");
+                continue;
+            }
+            id = materials.add_slot(id, MediumInterface{*in, *out});
         }
         if (mesh_file) {
             const auto found = find_model(mesh_file->file.value, scene_dir);

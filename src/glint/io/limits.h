@@ -14,3 +14,9 @@ inline constexpr long long kMaxThreads = 1024;
 inline constexpr long long kMaxTexturePixels = 1LL << 27;  ///< per image: 1.6 GB as float RGB
 
 }  // namespace glint
+
+namespace glint {
+/// Voxel grids: the bounding box of a grid's active voxels, and the voxels actually stored.
+inline constexpr long long kMaxGridBoxVoxels = 1LL << 36;  ///< 4096^3: a 512 MB brick index at most
+inline constexpr long long kMaxGridVoxels = 1LL << 28;     ///< 1 GB of float voxels
+}  // namespace glint

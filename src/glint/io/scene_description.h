@@ -107,8 +107,27 @@ struct TextureDesc {
     std::shared_ptr<const Image> pixels;  ///< used instead of `filename` when set
 };
 
+/// A participating medium (media/medium.h) as the file gives it: coefficients already in
+/// sigma_a / sigma_s form (the parser turns the albedo + density form into them).
+struct MediumDesc {
+    enum class Kind { kHomogeneous, kGrid };
+    Kind kind = Kind::kHomogeneous;
+    Color sigma_a{0}, sigma_s{0};  ///< grid: at density 1
+    Color emission{0};             ///< homogeneous: Le; grid: the colour of an emission grid
+    float g = 0;
+    // grid
+    Located<std::string> file;
+    Located<std::string> density_grid{"density", {}};
+    enum class Emission { kNone, kGrid, kTemperature };
+    Emission emission_kind = Emission::kNone;
+    Located<std::string> emission_grid;
+    float emission_scale = 1;
+    float temperature_scale = 1;
+    std::optional<Transform> transform;  ///< after the file's own voxel-to-world transform
+};
+
 struct MaterialDesc {
-    enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr };
+    enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr, kInterface };
     Kind kind = Kind::kArticle;
     TextureDesc color;  ///< article colour, diffuse/plastic albedo, pbr base colour
     float shininess = 0;
@@ -130,6 +149,15 @@ struct MaterialDesc {
     std::optional<TextureDesc> normal_map;
     float normal_scale = 1;
     std::optional<TextureDesc> emission_map;
+    /// Set by importers (glTF's KHR_materials_volume): an absorbing interior medium for every
+    /// surface of this material.
+    std::optional<MediumDesc> interior;
+};
+
+struct NamedMedium {
+    std::string name;
+    MediumDesc medium;
+    SourceLoc loc;
 };
 
 /// An object's material: a name to resolve, or an inline description.
@@ -153,6 +181,10 @@ struct ObjectDesc {
     SourceLoc loc;
     std::optional<Transform> transform;  ///< object to world
     SourceLoc transform_loc;
+    /// Names of the media inside and outside the object's surface (empty: not given; "none":
+    /// vacuum). With either given the surface bounds a medium; an unset exterior is the scene's
+    /// medium.
+    std::optional<Located<std::string>> interior, exterior;
 };
 
 struct NamedMaterial {
@@ -171,6 +203,8 @@ struct SceneDescription {
     std::optional<EnvironmentDesc> environment;  ///< a background loaded from an image by build
     std::vector<Light> lights;
     std::vector<NamedMaterial> materials;
+    std::vector<NamedMedium> media;
+    std::optional<Located<std::string>> medium;  ///< the camera's (the scene's) medium
     std::vector<ObjectDesc> objects;
 };
 

@@ -48,7 +48,7 @@ public:
         }
         MapReader m(r_, root, "scene",
                     {"camera", "film", "sampler", "integrator", "background", "lights",
-                     "materials", "objects"});
+                     "materials", "media", "medium", "objects"});
         if (!m.valid()) return;
         if (auto n = m.get("camera")) scene.camera = camera(*n);
         if (auto n = m.get("film")) film(*n, scene.film);
@@ -59,6 +59,8 @@ public:
         }
         if (auto n = m.get("lights")) lights(*n, scene.lights);
         if (auto n = m.get("materials")) materials(*n, scene.materials);
+        if (auto n = m.get("media")) media(*n, scene.media);
+        if (auto n = m.get("medium")) scene.medium = located_name(*n);
         if (auto n = m.get("objects")) objects(*n, scene.objects);
     }
 
@@ -449,9 +451,15 @@ private:
             return d;
         }
         const auto type = type_of(node, "material",
-                                  {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr"},
+                                  {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr",
+                                   "interface"},
                                   "article");
         if (!type) return d;
+        if (*type == "interface") {
+            d.kind = MaterialDesc::Kind::kInterface;
+            MapReader m(r_, node, context, {"type"});
+            return d;
+        }
         std::vector<std::string> keys{"type", "emission", "two_sided"};
         const auto add = [&keys](std::initializer_list<const char*> more) {
             keys.insert(keys.end(), more.begin(), more.end());
@@ -546,14 +554,131 @@ private:
                 r_.error(it->first, fmt::format("materials: duplicate material name '{}'", *name));
                 continue;
             }
+            if (*name == "interface") {
+                r_.error(it->first, "materials: 'interface' is the built-in material of surfaces that "
+                                    "only bound a medium; choose another name");
+                continue;
+            }
             out.push_back({*name, material(it->second, fmt::format("material '{}'", *name)),
                            r_.loc(it->first)});
         }
     }
 
     MaterialRef material_ref(const YAML::Node& node) {
+        if (node.IsScalar() && node.Scalar() == "interface") {
+            MaterialDesc d;
+            d.kind = MaterialDesc::Kind::kInterface;
+            return {d, r_.loc(node)};
+        }
         if (node.IsScalar()) return {node.Scalar(), r_.loc(node)};
         return {material(node, "material"), r_.loc(node)};
+    }
+
+    Located<std::string> located_name(const YAML::Node& node) {
+        Located<std::string> l{"", r_.loc(node)};
+        if (const auto v = r_.string(node)) l.value = *v;
+        return l;
+    }
+
+    // The coefficients of a medium: sigma_a and sigma_s, or the artist's albedo, density and
+    // scale (sigma_s = albedo density scale, sigma_a = (1 - albedo) density scale).
+    void coefficients(MapReader& m, const YAML::Node& node, const std::string& context, MediumDesc& d) {
+        const auto sa = m.get("sigma_a"), ss = m.get("sigma_s");
+        const auto albedo = m.get("albedo"), density = m.get("density"), scale = m.get("scale");
+        const bool physical = sa || ss, artist = albedo || density || scale;
+        if (physical && artist) {
+            r_.error(node, fmt::format("{}: give 'sigma_a' and 'sigma_s', or 'albedo', 'density' and "
+                                       "'scale', not both", context));
+            return;
+        }
+        if (physical) {
+            assign(sa, d.sigma_a, color());
+            assign(ss, d.sigma_s, color());
+            return;
+        }
+        Color a{1};
+        double k = 1, f = 1;
+        if (albedo) {
+            if (const auto c = r_.color(*albedo)) {
+                if (c->max_component() > 1) r_.error(*albedo, fmt::format("{}: albedo must be in [0, 1]", context));
+                else a = *c;
+            }
+        }
+        assign(density, k, [this](const YAML::Node& v) { return r_.number_in(v, "density", 0, kInf); });
+        assign(scale, f, [this](const YAML::Node& v) { return r_.number_in(v, "scale", 0, kInf); });
+        const float sigma_t = static_cast<float>(k * f);
+        d.sigma_s = a * sigma_t;
+        d.sigma_a = (Color{1} - a) * sigma_t;
+    }
+
+    MediumDesc medium(const YAML::Node& node, const std::string& context) {
+        MediumDesc d;
+        const auto type = type_of(node, "medium", {"homogeneous", "grid"});
+        if (!type) return d;
+        std::vector<std::string> keys{"type", "sigma_a", "sigma_s", "albedo", "density", "scale", "g"};
+        if (*type == "homogeneous") {
+            keys.push_back("emission");
+        } else {
+            d.kind = MediumDesc::Kind::kGrid;
+            keys.insert(keys.end(), {"file", "grid", "emission_grid", "emission", "temperature_grid",
+                                     "temperature_scale", "emission_scale", "transform"});
+        }
+        MapReader m(r_, node, context, keys);
+        coefficients(m, node, context, d);
+        if (const auto g = m.get("g")) {
+            if (const auto v = r_.number(*g)) {
+                if (!(std::abs(*v) < 1)) r_.error(*g, fmt::format("{}: g must lie in (-1, 1), got {}", context, *v));
+                else d.g = static_cast<float>(*v);
+            }
+        }
+        assign(m.get("emission"), d.emission, color());
+        if (d.kind == MediumDesc::Kind::kGrid) {
+            if (const auto f = m.require("file")) d.file = located_name(*f);
+            if (const auto g = m.get("grid")) d.density_grid = located_name(*g);
+            const auto eg = m.get("emission_grid"), tg = m.get("temperature_grid");
+            if (eg && tg) {
+                r_.error(*tg, fmt::format("{}: give 'emission_grid' or 'temperature_grid', not both", context));
+            } else if (eg) {
+                d.emission_kind = MediumDesc::Emission::kGrid;
+                d.emission_grid = located_name(*eg);
+                if (!m.has("emission")) d.emission = Color{1};
+            } else if (tg) {
+                d.emission_kind = MediumDesc::Emission::kTemperature;
+                d.emission_grid = located_name(*tg);
+            }
+            if (m.has("emission") && !eg) {
+                r_.error(*m.get("emission"), fmt::format("{}: 'emission' is the colour of an 'emission_grid', "
+                                                         "which is not given", context));
+            }
+            assign(m.get("emission_scale"), d.emission_scale, [this](const YAML::Node& v) {
+                return r_.number_in(v, "emission_scale", 0, kInf);
+            });
+            assign(m.get("temperature_scale"), d.temperature_scale, [this](const YAML::Node& v) {
+                return r_.number_in(v, "temperature_scale", 0, kInf);
+            });
+            if (const auto t = m.get("transform")) d.transform = transform(*t);
+        }
+        return d;
+    }
+
+    void media(const YAML::Node& node, std::vector<NamedMedium>& out) {
+        if (!node.IsMap()) {
+            r_.error(node, fmt::format("media: expected a map from names to media, got {}", describe(node)));
+            return;
+        }
+        for (auto it = node.begin(); it != node.end(); ++it) {
+            const auto name = r_.string(it->first);
+            if (!name) continue;
+            if (*name == "none") {
+                r_.error(it->first, "media: 'none' means vacuum; choose another name");
+                continue;
+            }
+            if (std::any_of(out.begin(), out.end(), [&](const NamedMedium& m) { return m.name == *name; })) {
+                r_.error(it->first, fmt::format("media: duplicate medium name '{}'", *name));
+                continue;
+            }
+            out.push_back({*name, medium(it->second, fmt::format("medium '{}'", *name)), r_.loc(it->first)});
+        }
     }
 
     void objects(const YAML::Node& node, std::vector<ObjectDesc>& out) {
@@ -570,14 +695,14 @@ private:
             std::optional<YAML::Node> mat;
             if (*type == "sphere") {
                 Sphere s{{0, 0, 0}, 1};
-                MapReader m(r_, item, "sphere", {"type", "center", "radius", "material", "transform"});
+                MapReader m(r_, item, "sphere", {"type", "center", "radius", "material", "transform", "interior", "exterior"});
                 assign(m.require("center"), s.center, point());
                 assign(m.require("radius"), s.radius, positive("radius"));
                 out.push_back(object_of(s));
                 mat = m.get("material");
             } else if (*type == "plane") {
                 Plane p{{0, 0, 0}, {0, 1, 0}};
-                MapReader m(r_, item, "plane", {"type", "point", "normal", "material", "transform"});
+                MapReader m(r_, item, "plane", {"type", "point", "normal", "material", "transform", "interior", "exterior"});
                 assign(m.require("point"), p.point, point());
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
@@ -587,7 +712,7 @@ private:
             } else if (*type == "quad") {
                 Point3 corner{0, 0, 0};
                 Vector3 e1{1, 0, 0}, e2{0, 1, 0};
-                MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material", "transform"});
+                MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material", "transform", "interior", "exterior"});
                 assign(m.require("corner"), corner, point());
                 assign(m.require("edge1"), e1, direction("edge1"));
                 const auto edge2 = m.require("edge2");
@@ -599,7 +724,7 @@ private:
                 mat = m.get("material");
             } else if (*type == "disk") {
                 Disk d{{0, 0, 0}, {0, 1, 0}, 1};
-                MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material", "transform"});
+                MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material", "transform", "interior", "exterior"});
                 assign(m.require("center"), d.center, point());
                 Vector3 n{0, 1, 0};
                 assign(m.require("normal"), n, direction("normal"));
@@ -610,7 +735,7 @@ private:
             } else if (*type == "triangle" || *type == "polygon") {
                 // A triangle, or a convex polygon split into a fan of triangles around vertex 0.
                 const bool polygon = *type == "polygon";
-                MapReader m(r_, item, *type, {"type", "vertices", "material", "transform"});
+                MapReader m(r_, item, *type, {"type", "vertices", "material", "transform", "interior", "exterior"});
                 if (const auto v = m.require("vertices")) {
                     const bool count_ok =
                         v->IsSequence() && (polygon ? v->size() >= 3 : v->size() == 3);
@@ -637,7 +762,7 @@ private:
                 }
                 mat = m.get("material");
             } else if (*type == "mesh") {
-                MapReader m(r_, item, "mesh", {"type", "file", "material", "transform"});
+                MapReader m(r_, item, "mesh", {"type", "file", "material", "transform", "interior", "exterior"});
                 MeshFileDesc f;
                 if (const auto n = m.require("file")) {
                     f.file.loc = r_.loc(*n);
@@ -647,7 +772,7 @@ private:
                 mat = m.get("material");
             } else {
                 Point3 lo{0, 0, 0}, hi{1, 1, 1};
-                MapReader m(r_, item, "box", {"type", "min", "max", "material", "transform"});
+                MapReader m(r_, item, "box", {"type", "min", "max", "material", "transform", "interior", "exterior"});
                 assign(m.require("min"), lo, point());
                 const auto max_node = m.require("max");
                 assign(max_node, hi, point());
@@ -664,12 +789,17 @@ private:
                 xf = transform(item["transform"]);
                 xf_loc = r_.loc(item["transform"]);
             }
+            std::optional<Located<std::string>> interior, exterior;
+            if (item.IsMap() && item["interior"].IsDefined()) interior = located_name(item["interior"]);
+            if (item.IsMap() && item["exterior"].IsDefined()) exterior = located_name(item["exterior"]);
             for (std::size_t i = first; i < out.size(); ++i) {
                 out[i].material = ref;
                 out[i].material_given = mat.has_value();
                 out[i].loc = r_.loc(item);
                 out[i].transform = xf;
                 out[i].transform_loc = xf_loc;
+                out[i].interior = interior;
+                out[i].exterior = exterior;
             }
         }
     }

@@ -38,6 +38,8 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 PlasticLobe lobe = m.coat;
                 lobe.albedo = scene.texture(m.albedo, si);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
+            } else if constexpr (std::is_same_v<T, InterfaceMaterial>) {
+                return Bsdf();  // no lobes: nothing scatters (the integrators pass through)
             } else {
                 static_assert(std::is_same_v<T, PbrMaterial>);
                 const Color base = scene.texture(m.base_color, si);
@@ -87,6 +89,8 @@ ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
                 return {m.lobe.tint, f0_dielectric(m.lobe.eta)};
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 return {scene.texture(m.albedo, si), f0_dielectric(m.coat.eta)};
+            } else if constexpr (std::is_same_v<T, InterfaceMaterial>) {
+                return {Color{0}, 0};
             } else {
                 return {scene.texture(m.base_color, si), m.metallic};
             }

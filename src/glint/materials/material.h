@@ -58,8 +58,13 @@ struct PbrMaterial {
     std::optional<TextureId> metallic_roughness;
 };
 
+/// No surface at all: a boundary that only changes the medium a ray is in (a smoke box that
+/// does not refract). The path tracer passes through it without a scattering event; Whitted and
+/// the debug views do not see it.
+struct InterfaceMaterial {};
+
 using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMaterial,
-                              DielectricMaterial, PlasticMaterial, PbrMaterial>;
+                              DielectricMaterial, PlasticMaterial, PbrMaterial, InterfaceMaterial>;
 
 /// Light a surface emits, in radiance, on the side its normal faces (both when two_sided).
 struct Emission {

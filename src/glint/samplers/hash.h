@@ -27,3 +27,16 @@ constexpr float to_unit_float(std::uint32_t bits) {
 }
 
 }  // namespace glint
+
+namespace glint {
+
+/// A stream of uniform floats from a counter hashed with a seed: for randomness whose count is
+/// not known in advance (free-flight sampling in media draws as many numbers as collisions), so
+/// that it cannot shift the sampler's dimensions. Deterministic from its seed.
+struct HashRng {
+    std::uint32_t seed = 0;
+    std::uint32_t counter = 0;
+    float next() { return to_unit_float(hash_combine(seed, counter++)); }
+};
+
+}  // namespace glint

@@ -64,3 +64,11 @@ Sample2 PixelSampler::get_2d(std::uint32_t index, std::uint32_t dimension) const
 }
 
 }  // namespace glint
+
+namespace glint {
+
+std::uint32_t SampleStream::stream_seed() const {
+    return hash_combine(hash_combine(sampler_->seed(), 0x6d656469U /* "medi" */), index_);
+}
+
+}  // namespace glint

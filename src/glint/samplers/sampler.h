@@ -32,6 +32,7 @@ public:
         : type_(type), spp_(spp), seed_(pixel_seed) {}
     /// Sample `index` (< spp) of the 2D dimension pair `dimension`, in [0, 1)^2.
     Sample2 get_2d(std::uint32_t index, std::uint32_t dimension) const;
+    std::uint32_t seed() const { return seed_; }
 
 private:
     SamplerType type_;
@@ -49,6 +50,9 @@ public:
     Sample2 next_2d() { return sampler_->get_2d(index_, pair_++); }
     /// One number: the first coordinate of a fresh pair (which stays stratified on its own).
     float next_1d() { return next_2d().x; }
+    /// A seed for this sample's own random stream (HashRng), a function of (pixel seed, index)
+    /// that draws no dimension.
+    std::uint32_t stream_seed() const;
 
 private:
     const PixelSampler* sampler_;
