@@ -163,7 +163,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             const Color T_maj = sample_t_maj(
                 m, ray, t_max, rng.next(), rng, hero,
                 [&](Point3 p, const MediumPoint& mp, Color sigma_maj, Color T) {
-                    if (depth < settings_.max_depth && mp.Le.max_component() > 0) {
+                    if (depth <= settings_.max_depth && mp.Le.max_component() > 0) {
                         const float pdf = sigma_maj[hero] * T[hero];
                         const Color r_e = r_u * sigma_maj * T / pdf;
                         if (r_e.max_component() > 0)

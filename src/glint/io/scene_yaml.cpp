@@ -599,8 +599,12 @@ private:
         Color a{1};
         double k = 1, f = 1;
         if (albedo) {
-            if (const auto c = r_.color(*albedo)) {
-                if (c->max_component() > 1) r_.error(*albedo, fmt::format("{}: albedo must be in [0, 1]", context));
+            std::optional<Color> c;
+            if (!albedo->IsScalar()) c = r_.color(*albedo);
+            else if (const auto v = r_.number(*albedo)) c = Color{static_cast<float>(*v)};
+            if (c) {
+                if (!(c->max_component() <= 1 && c->r >= 0 && c->g >= 0 && c->b >= 0))
+                    r_.error(*albedo, fmt::format("{}: albedo must be in [0, 1]", context));
                 else a = *c;
             }
         }

@@ -34,7 +34,7 @@ TEST(SceneYaml, MisspeltKeyReportsLineColumnAndSuggestion) {
         "    radiuss: 1\n";
     EXPECT_EQ(errors_of(text),
               "scene.yaml:4:5: error: sphere: unknown key 'radiuss'; did you mean 'radius'? "
-              "(known: type, center, radius, material, transform)\n"
+              "(known: type, center, radius, material, transform, interior, exterior)\n"
               "        radiuss: 1\n" +
                   caret(5, 7) +
                   "scene.yaml:2:5: error: sphere: missing required key 'radius'\n"
@@ -137,7 +137,7 @@ TEST(SceneYaml, UnknownTopLevelKeyIsAnError) {
     EXPECT_EQ(errors_of("objets: []\n"),
               "scene.yaml:1:1: error: scene: unknown key 'objets'; did you mean 'objects'? "
               "(known: camera, film, sampler, integrator, background, lights, materials, "
-              "objects)\n"
+              "media, medium, objects)\n"
               "    objets: []\n" +
                   caret(1, 6));
 }
@@ -315,7 +315,7 @@ TEST(SceneYaml, PathTracerMistakesAreReported) {
                   "      b: {type: conductor, metal: gold, reflectance: 1}\n" +
                   caret(6, 46) +
                   "scene.yaml:7:13: error: unknown material type 'glass' "
-                  "(known: article, diffuse, conductor, dielectric, plastic, pbr)\n"
+                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface)\n"
                   "      c: {type: glass}\n" +
                   caret(13, 5));
 }

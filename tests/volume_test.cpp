@@ -1,0 +1,304 @@
+// The volumetric path tracer against known answers: transmittance through a sphere of medium,
+// white furnaces with scattering interiors, an infinite emitting medium, single scattering in a
+// thin slab, the three light strategies agreeing, empty media changing nothing, thread counts,
+// and the scene errors of media.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "glint/integrators/integrator.h"
+#include "glint/io/build.h"
+#include "glint/io/scene_yaml.h"
+#include "glint/io/vdb.h"
+#include "glint/render/render.h"
+
+namespace glint {
+namespace {
+
+RenderJob job_from(const std::string& yaml, const std::string& path = "scene.yaml") {
+    auto sources = std::make_shared<SourceFiles>();
+    return build(parse_scene(yaml, path, sources), {}, sources);
+}
+
+Film render_job(const RenderJob& job, int spp, int threads = 0) {
+    Film film(job.width, job.height);
+    RenderOptions o = job.options;
+    o.spp = spp;
+    o.threads = threads;
+    render(job.scene, job.camera, *job.integrator, o, film);
+    return film;
+}
+
+struct Estimate {
+    Color mean;
+    Color stderr_;
+};
+
+// The integrator's estimate along one ray, averaged over n independent samples.
+Estimate mean_li(const RenderJob& job, const Ray& ray, int n, std::uint32_t seed = 1) {
+    const PixelSampler sampler(SamplerType::kIndependent, static_cast<std::uint32_t>(n), seed);
+    double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
+    RayCounter counter;
+    for (int i = 0; i < n; ++i) {
+        SampleStream stream(sampler, static_cast<std::uint32_t>(i));
+        const Color c = job.integrator->li(job.scene, ray, stream, counter);
+        for (int k = 0; k < 3; ++k) s[k] += c[k], s2[k] += double(c[k]) * c[k];
+    }
+    Estimate e;
+    float m[3], se[3];
+    for (int k = 0; k < 3; ++k) {
+        m[k] = float(s[k] / n);
+        se[k] = float(std::sqrt(std::max(0.0, s2[k] / n - double(m[k]) * m[k]) / n));
+    }
+    e.mean = {m[0], m[1], m[2]};
+    e.stderr_ = {se[0], se[1], se[2]};
+    return e;
+}
+
+void expect_close(const Estimate& e, Color expect, const std::string& what, float slack = 1e-3f) {
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(e.mean[k], expect[k], 4 * e.stderr_[k] + slack) << what << ", channel " << k;
+}
+
+// An absorbing sphere (interface boundary) in front of a background of radiance 1: along a ray
+// at distance b from the centre the camera sees exp(-sigma_c 2 sqrt(r^2 - b^2)).
+TEST(Volume, AbsorbingSphereTransmitsExpOfChord) {
+    const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: 8}
+background: {type: constant, color: [1, 1, 1]}
+media:
+  ink: {type: homogeneous, sigma_a: [0.3, 0.8, 1.6], sigma_s: [0, 0, 0]}
+objects:
+  - {type: sphere, center: [0, 0, 5], radius: 1.5, material: interface, interior: ink}
+)");
+    for (const float b : {0.0f, 0.7f, 1.3f}) {
+        const Ray ray{{b, 0, -2}, {0, 0, 1}};
+        const float chord = 2 * std::sqrt(1.5f * 1.5f - b * b);
+        const Color expect{std::exp(-0.3f * chord), std::exp(-0.8f * chord), std::exp(-1.6f * chord)};
+        expect_close(mean_li(job, ray, 40000), expect, "b = " + std::to_string(b));
+    }
+}
+
+// Non-absorbing media (albedo 1) of any density and g, inside a uniform environment of
+// radiance 1: every path ends in the environment with weight 1, so every pixel is 1.
+std::string furnace(const std::string& medium, const std::string& boundary) {
+    return R"(
+camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 45}
+film: {width: 12, height: 12, filter: {type: box}}
+integrator: {type: path, max_depth: 1000}
+background: {type: constant, color: [1, 1, 1]}
+media:
+  m: )" + medium + R"(
+objects:
+  - {type: sphere, center: [0, 0, 0], radius: 1, material: )" + boundary + R"(, interior: m}
+)";
+}
+
+TEST(Volume, WhiteFurnaceScatteringSphereIsOne) {
+    for (const std::string boundary : {"interface", "{type: dielectric, ior: 1.5}"}) {
+        for (const std::string medium : {"{type: homogeneous, albedo: 1, density: 0.5, g: 0}",
+                                         "{type: homogeneous, albedo: 1, density: 4, g: 0.8}",
+                                         "{type: homogeneous, albedo: 1, density: 10, g: -0.5}"}) {
+            const RenderJob job = job_from(furnace(medium, boundary));
+            const Film film = render_job(job, 32);
+            double sum = 0;
+            for (const Color& c : film.pixels()) sum += c.r + c.g + c.b;
+            EXPECT_NEAR(sum / (3.0 * double(film.pixels().size())), 1, 0.01) << boundary << " " << medium;
+        }
+    }
+}
+
+// An infinite medium of albedo a emitting sigma_a Le per unit length: the radiance gathered
+// before the (k+1)-th scattering is Le (1 - a^(k+1)) (each event absorbs 1 - a of what goes on),
+// and Le itself without a bound.
+TEST(Volume, InfiniteEmittingMediumMatchesClosedForm) {
+    for (const int k : {0, 1, 3}) {
+        const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: )" + std::to_string(k) + R"(, rr_depth: 1000}
+background: {type: constant, color: [0, 0, 0]}
+medium: glow
+media:
+  glow: {type: homogeneous, sigma_a: [0.5, 1, 0.25], sigma_s: [0.5, 1, 0.75], emission: [2, 1, 0.5], g: 0.5}
+)");
+        const Color a{0.5f, 0.5f, 0.75f}, le{2, 1, 0.5f};
+        Color expect;
+        for (int c = 0; c < 3; ++c) (c == 0 ? expect.r : c == 1 ? expect.g : expect.b) = le[c] * (1 - std::pow(a[c], float(k + 1)));
+        expect_close(mean_li(job, Ray{{0, 0, 0}, {0, 0, 1}}, 40000), expect, "max_depth " + std::to_string(k), 2e-3f);
+    }
+}
+
+// Single scattering in a slab 0 <= z <= L (an interface box, very wide) lit by a sun whose light
+// travels along (sin t, 0, cos t), seen along +z from outside:
+//   L = sigma_s p(cos t) E (1 - exp(-sigma_t L k)) / (sigma_t k),  k = 1 + 1 / cos t.
+TEST(Volume, SingleScatteringSlabMatchesClosedForm) {
+    const float theta = 0.5f, sigma_s = 0.15f, sigma_a = 0.05f, L = 1.0f, g = 0.3f;
+    const std::string yaml = R"(
+integrator: {type: path, max_depth: 1}
+background: {type: constant, color: [0, 0, 0]}
+lights:
+  - {type: directional, direction: [)" + std::to_string(std::sin(theta)) + ", 0, " + std::to_string(std::cos(theta)) + R"(], intensity: [2, 2, 2]}
+media:
+  slab: {type: homogeneous, sigma_a: [0.05, 0.05, 0.05], sigma_s: [0.15, 0.15, 0.15], g: 0.3}
+objects:
+  - {type: box, min: [-1000, -1000, 0], max: [1000, 1000, 1], material: interface, interior: slab}
+)";
+    const RenderJob job = job_from(yaml);
+    const float st = sigma_s + sigma_a, k = 1 + 1 / std::cos(theta);
+    const float p = HgPhase::eval_cos(std::cos(theta), g);
+    const float expect = sigma_s * p * 2 * (1 - std::exp(-st * L * k)) / (st * k);
+    expect_close(mean_li(job, Ray{{0.5f, 0.25f, -1}, {0, 0, 1}}, 100000), Color{expect}, "slab", 1e-5f);
+}
+
+// The same slab under a soft sun: light sampling alone, phase sampling alone and MIS estimate
+// the same radiance (an area-like light every strategy can reach).
+TEST(Volume, LightPhaseAndMisStrategiesAgreeInMedia) {
+    const auto scene = [](const char* strategy) {
+        return std::string(R"(
+integrator: {type: path, max_depth: 3, strategy: )") + strategy + R"(}
+background: {type: constant, color: [0, 0, 0]}
+lights:
+  - {type: directional, direction: [0.3, 0, 1], intensity: [2, 2, 2], angular_diameter: 40}
+media:
+  slab: {type: homogeneous, sigma_a: [0.05, 0.1, 0.2], sigma_s: [0.4, 0.3, 0.2], g: 0.6}
+objects:
+  - {type: box, min: [-1000, -1000, 0], max: [1000, 1000, 2], material: interface, interior: slab}
+)";
+    };
+    const Ray ray{{0, 0, -1}, normalize(Vector3{0.1f, 0, 1})};
+    const Estimate mis = mean_li(job_from(scene("mis")), ray, 100000, 3);
+    const Estimate light = mean_li(job_from(scene("light")), ray, 100000, 5);
+    const Estimate phase = mean_li(job_from(scene("bsdf")), ray, 400000, 7);
+    for (int c = 0; c < 3; ++c) {
+        const auto z = [&](const Estimate& a, const Estimate& b) {
+            return std::abs(a.mean[c] - b.mean[c]) / std::hypot(a.stderr_[c], b.stderr_[c]);
+        };
+        EXPECT_LT(z(mis, light), 4.5) << "channel " << c << ": " << mis.mean[c] << " vs " << light.mean[c];
+        EXPECT_LT(z(mis, phase), 4.5) << "channel " << c << ": " << mis.mean[c] << " vs " << phase.mean[c];
+        EXPECT_GT(mis.mean[c], 1e-3f);
+    }
+}
+
+constexpr const char* kFogScene = R"(
+camera: {type: look_at, from: [0, 1, -4], to: [0, 0, 0], fov: 50}
+film: {width: 24, height: 16}
+integrator: {type: path, max_depth: 6}
+background: {type: constant, color: [0.3, 0.4, 0.6]}
+lights:
+  - {type: directional, direction: [-0.4, -1, 0.3], intensity: [2, 2, 2]}
+  - {type: point, position: [1, 2, -1], intensity: [3, 2, 1]}
+media:
+  fog: {type: homogeneous, albedo: [0.9, 0.8, 0.7], density: DENSITY, g: 0.4}
+materials:
+  glass: {type: dielectric, ior: 1.5}
+objects:
+  - {type: plane, point: [0, -1, 0], normal: [0, 1, 0], material: {type: diffuse, albedo: 0.6}}
+  - {type: sphere, center: [-1, 0, 1], radius: 1, material: glass}
+  - {type: sphere, center: [1.2, 0, 0.5], radius: 0.8, material: {type: diffuse, albedo: [0.8, 0.3, 0.2]}}
+)";
+
+std::string fog(const std::string& density, const std::string& extra) {
+    std::string s = kFogScene;
+    s.replace(s.find("DENSITY"), 7, density);
+    return s + extra;
+}
+
+bool identical(const Film& a, const Film& b) {
+    return a.pixels().size() == b.pixels().size() &&
+           std::equal(a.pixels().begin(), a.pixels().end(), b.pixels().begin());
+}
+
+TEST(Volume, EmptyCameraMediumRendersBitIdenticalToNone) {
+    const Film with = render_job(job_from(fog("0", "medium: fog\n")), 8);
+    const Film without = render_job(job_from(fog("0", "")), 8);
+    EXPECT_TRUE(identical(with, without));
+}
+
+TEST(Volume, EmptyMediumInsideInterfaceRendersBitIdenticalToVacuum) {
+    const std::string box = "  - {type: box, min: [-3, -0.5, -2], max: [3, 2, 3], material: interface, interior: INSIDE}\n";
+    std::string a = box, b = box;
+    a.replace(a.find("INSIDE"), 6, "fog");
+    b.replace(b.find("INSIDE"), 6, "none");
+    const Film with = render_job(job_from(fog("0", "") + a), 8);
+    const Film without = render_job(job_from(fog("0", "") + b), 8);
+    EXPECT_TRUE(identical(with, without));
+}
+
+TEST(Volume, ImagesIdenticalForAnyThreadCount) {
+    const RenderJob job = job_from(fog("0.3", "medium: fog\n"));
+    const Film one = render_job(job, 4, 1);
+    const Film two = render_job(job, 4, 2);
+    const Film three = render_job(job, 4, 3);
+    EXPECT_TRUE(identical(one, two));
+    EXPECT_TRUE(identical(one, three));
+    double sum = 0;
+    for (const Color& c : one.pixels()) sum += c.g;
+    EXPECT_GT(sum, 0);
+}
+
+// Errors of media, each at its line and column, collected in one run.
+std::string errors_of(const std::string& yaml, const std::string& path = "scene.yaml") {
+    try {
+        job_from(yaml, path);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Volume, MediumErrorsAreLocated) {
+    const std::string e = errors_of(R"(media:
+  a: {type: homogeneous, sigma_a: [1, -1, 0], sigma_s: [0, 0, 0]}
+  b: {type: homogeneous, albedo: 0.5, density: 1, g: 1}
+  c: {type: homogeneous, albedo: 0.5, sigma_s: [1, 1, 1]}
+  d: {type: homogeneous, albedo: 1.5}
+  e: {type: homogeneous, sigma_a: [.nan, 0, 0]}
+)");
+    EXPECT_NE(e.find("scene.yaml:2:"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:"), std::string::npos) << e;
+    EXPECT_NE(e.find("g must lie in (-1, 1)"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:4:"), std::string::npos) << e;
+    EXPECT_NE(e.find("not both"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:5:"), std::string::npos) << e;
+    EXPECT_NE(e.find("albedo must be in [0, 1]"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:6:"), std::string::npos) << e;
+    // Names are resolved after parsing: every unknown one is reported, with a suggestion.
+    const std::string n = errors_of(R"(media:
+  smoke: {type: homogeneous, albedo: 0.5, density: 1}
+medium: smoek
+objects:
+  - {type: sphere, center: [0, 0, 0], radius: 1, material: interface, interior: fog}
+)");
+    EXPECT_NE(n.find("scene.yaml:3:9: error: unknown medium 'smoek'; did you mean 'smoke'?"), std::string::npos) << n;
+    EXPECT_NE(n.find("scene.yaml:5:81: error: unknown medium 'fog'"), std::string::npos) << n;
+}
+
+TEST(Volume, GridFileErrorsAreLocated) {
+    const auto dir = std::filesystem::temp_directory_path() / "glint_volume_errors";
+    std::filesystem::create_directories(dir);
+    const VoxelGrid v = VoxelGrid::from_function({0, 0, 0}, {4, 4, 4}, [](int, int, int) { return 1.0f; });
+    write_vdb(dir / "cloud.vdb", {{"density", &v}, {"heat", &v}}, 0.1f);
+    const std::string scene = (dir / "scene.yaml").string();
+    const auto media = [](const std::string& body) { return "media:\n  smoke: " + body + "\n"; };
+    // Missing file.
+    std::string e = errors_of(media("{type: grid, file: nothere.vdb, albedo: 0.5}"), scene);
+    EXPECT_NE(e.find("scene.yaml:2:"), std::string::npos) << e;
+    EXPECT_NE(e.find("no such file"), std::string::npos) << e;
+    // A grid name the file does not have, with a suggestion.
+    e = errors_of(media("{type: grid, file: cloud.vdb, grid: densty}"), scene);
+    EXPECT_NE(e.find("no grid named 'densty'; did you mean 'density'?"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:2:46"), std::string::npos) << e;
+    // Not a VDB at all.
+    std::ofstream(dir / "bad.vdb") << "not a vdb";
+    e = errors_of(media("{type: grid, file: bad.vdb}"), scene);
+    EXPECT_NE(e.find("not a readable OpenVDB file"), std::string::npos) << e;
+    // The good file builds.
+    EXPECT_EQ(errors_of(media("{type: grid, file: cloud.vdb, temperature_grid: heat, temperature_scale: 1000}"), scene), "");
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace glint
