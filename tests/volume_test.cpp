@@ -83,6 +83,29 @@ objects:
     }
 }
 
+// Coloured glass: a glass sphere (index 1.5) with an absorbing interior in a uniform
+// environment of radiance 1, seen along a diameter. At normal incidence every path stays on the
+// axis; with F = ((n - 1) / (n + 1))^2 and x = exp(-sigma_c 2r) the radiance is
+//   F + (1 - F)^2 x / (1 - F x)
+// (the front reflection, then light that enters and leaves after 0, 2, 4 ... inner reflections).
+TEST(Volume, AbsorbingGlassSphereAlongItsAxisMatchesFresnelSeries) {
+    const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: 64, rr_depth: 64}
+background: {type: constant, color: [1, 1, 1]}
+media:
+  tint: {type: homogeneous, sigma_a: [0.2, 0.6, 1.2], sigma_s: [0, 0, 0]}
+objects:
+  - {type: sphere, center: [0, 0, 4], radius: 1, material: {type: dielectric, ior: 1.5}, interior: tint}
+)");
+    const float f = 0.04f;
+    Color expect;
+    for (int c = 0; c < 3; ++c) {
+        const float x = std::exp(-Color{0.2f, 0.6f, 1.2f}[c] * 2);
+        (c == 0 ? expect.r : c == 1 ? expect.g : expect.b) = f + (1 - f) * (1 - f) * x / (1 - f * x);
+    }
+    expect_close(mean_li(job, Ray{{0, 0, 0}, {0, 0, 1}}, 40000), expect, "glass", 2e-3f);
+}
+
 // Non-absorbing media (albedo 1) of any density and g, inside a uniform environment of
 // radiance 1: every path ends in the environment with weight 1, so every pixel is 1.
 std::string furnace(const std::string& medium, const std::string& boundary) {

@@ -160,8 +160,16 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             bool scattered = false, terminated = false;
             const float t_max = hit ? hit->t : std::numeric_limits<float>::infinity();
             const Medium& m = scene.media[medium];
+            // In a homogeneous medium that does not emit, absorption factors out of the
+            // transmittance, exp(-sigma_t t) = exp(-sigma_s t) exp(-sigma_a t): free flights are
+            // drawn by sigma_s alone and the absorption weighs the path in closed form, so that
+            // coloured glass (sigma_s = 0) is exact Beer's law, not a coin toss per path.
+            const auto* hm = std::get_if<HomogeneousMedium>(&m);
+            const bool weigh_absorption = hm && !(hm->Le.max_component() > 0);
+            const Medium scattering_only =
+                weigh_absorption ? Medium{HomogeneousMedium{Color{0}, hm->sigma_s, Color{0}, hm->phase}} : Medium{};
             const Color T_maj = sample_t_maj(
-                m, ray, t_max, rng.next(), rng, hero,
+                weigh_absorption ? scattering_only : m, ray, t_max, rng.next(), rng, hero,
                 [&](Point3 p, const MediumPoint& mp, Color sigma_maj, Color T) {
                     if (depth <= settings_.max_depth && mp.Le.max_component() > 0) {
                         const float pdf = sigma_maj[hero] * T[hero];
@@ -182,6 +190,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                             return false;
                         }
                         const float pdf = T[hero] * mp.sigma_s[hero];
+                        if (weigh_absorption) beta *= transmittance(hm->sigma_a, length(p - ray.origin));
                         beta *= T * mp.sigma_s / pdf;
                         r_u *= T * mp.sigma_s / pdf;
                         if (beta.max_component() <= 0 || r_u.max_component() <= 0) {
@@ -228,6 +237,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 continue;
             }
             if (!(T_maj[hero] > 0)) break;
+            if (weigh_absorption) beta *= transmittance(hm->sigma_a, t_max);
             beta *= T_maj / T_maj[hero];
             r_u *= T_maj / T_maj[hero];
         }
