@@ -7,7 +7,7 @@ textured.bin and PNG textures beside it) and OUT_DIR/textured.glb (everything em
 The scene exercises what the importer maps: a ground quad with a tiled base-colour texture
 (KHR_texture_transform scale 4, mirrored-repeat sampler), a slab with a normal map, a
 metallic-roughness texture on a metal ball, an emissive panel with an emissive texture and
-KHR_materials_emissive_strength, a glass ball (KHR_materials_transmission, KHR_materials_ior), a
+KHR_materials_emissive_strength, a glass ball (KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume), a
 node hierarchy (a parent's rotation and scale carried to its children), a perspective camera and
 a KHR_lights_punctual spot light. Generated files are small (about 60 KB) and not committed."""
 import base64
@@ -134,7 +134,8 @@ def build():
     doc = {
         "asset": {"version": "2.0", "generator": "glint scripts/make_gltf_scene.py"},
         "extensionsUsed": ["KHR_texture_transform", "KHR_materials_emissive_strength",
-                           "KHR_materials_transmission", "KHR_materials_ior", "KHR_lights_punctual"],
+                           "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                           "KHR_lights_punctual"],
         "scene": 0,
         "scenes": [{"nodes": [0, 1, 5, 6]}],
         "nodes": [
@@ -169,7 +170,9 @@ def build():
             {"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0,
                                                         "roughnessFactor": 0},
              "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
-                            "KHR_materials_ior": {"ior": 1.45}}},
+                            "KHR_materials_ior": {"ior": 1.45},
+                            "KHR_materials_volume": {"thicknessFactor": 0.9, "attenuationDistance": 0.5,
+                                                     "attenuationColor": [0.9, 0.5, 0.25]}}},
             {"name": "lamp", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.1, 0.1, 1]},
              "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 3},
              "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}},

@@ -1,8 +1,8 @@
 // glTF 2.0 (.gltf and .glb) through tinygltf: the default scene's node hierarchy with its
 // transforms, meshes (triangle primitives; strips and fans converted), metallic-roughness
 // materials with their textures and samplers, KHR_materials_emissive_strength,
-// KHR_materials_transmission, KHR_materials_ior, KHR_texture_transform, KHR_lights_punctual and
-// perspective cameras.
+// KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume, KHR_texture_transform,
+// KHR_lights_punctual and perspective cameras.
 //
 // Frames: glTF is right-handed with +y up and cameras looking along -z; glint is left-handed. A
 // glTF file is imported with z negated (a mirror applied to every node), so a model looks as it
@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <regex>
@@ -301,6 +302,7 @@ struct Importer {
         if (const auto it = ext.find("KHR_materials_transmission"); it != ext.end())
             d.transmission = float(number(it->second, "transmissionFactor", 0));
         if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
+        if (const auto it = ext.find("KHR_materials_volume"); it != ext.end()) volume(it->second, at, d);
         if (emissive.max_component() > 0) {
             d.emission = Emission{emissive, m.doubleSided, std::nullopt};
             if (m.emissiveTexture.index >= 0)
@@ -308,6 +310,37 @@ struct Importer {
                                          m.emissiveTexture.extensions, true, "emissiveTexture", at + "/emissiveTexture");
         }
         return d;
+    }
+
+    // KHR_materials_volume: a thick (thicknessFactor > 0) transmissive material whose inside
+    // absorbs, attenuationColor being what is left after attenuationDistance (world units):
+    // sigma_a = -ln(colour) / distance, an interior medium of every surface of the material.
+    // A thickness of 0 is thin-walled (no medium); thicknessTexture only shapes the thin-walled
+    // approximation of rasterisers, so a path tracer, which has the real geometry, skips it.
+    void volume(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
+        const std::string ext = at + "/extensions/KHR_materials_volume";
+        const double thickness = number(v, "thicknessFactor", 0);
+        if (!(thickness >= 0)) fail_at(ext + "/thicknessFactor", "KHR_materials_volume: thicknessFactor must be >= 0");
+        const double distance = v.Has("attenuationDistance") ? number(v, "attenuationDistance", 0)
+                                                              : std::numeric_limits<double>::infinity();
+        if (!(distance > 0))
+            fail_at(ext + "/attenuationDistance", "KHR_materials_volume: attenuationDistance must be positive");
+        double c[3] = {1, 1, 1};
+        if (v.Has("attenuationColor")) {
+            const tinygltf::Value& a = v.Get("attenuationColor");
+            if (!a.IsArray() || a.ArrayLen() != 3)
+                fail_at(ext + "/attenuationColor", "KHR_materials_volume: attenuationColor must be 3 numbers");
+            for (int k = 0; k < 3; ++k) {
+                c[k] = a.Get(k).GetNumberAsDouble();
+                if (!(c[k] >= 0 && c[k] <= 1))
+                    fail_at(ext + "/attenuationColor", "KHR_materials_volume: attenuationColor must lie in [0, 1]");
+            }
+        }
+        if (thickness == 0 || std::isinf(distance) || (c[0] == 1 && c[1] == 1 && c[2] == 1)) return;
+        MediumDesc m;
+        const auto sigma = [&](double x) { return float(-std::log(std::max(x, 1e-6)) / distance); };
+        m.sigma_a = Color{sigma(c[0]), sigma(c[1]), sigma(c[2])};
+        d.interior = m;
     }
 
     // --- meshes ---

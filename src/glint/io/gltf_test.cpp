@@ -79,6 +79,13 @@ TEST_F(Gltf, MaterialsMapOntoPbrWithTheirTexturesAndExtensions) {
     const MaterialDesc& glass = named(f, "glass").desc;
     EXPECT_FLOAT_EQ(glass.transmission, 1);
     EXPECT_FLOAT_EQ(glass.ior, 1.45f);
+    // ... and KHR_materials_volume: what is left after 0.5 units is the attenuation colour.
+    ASSERT_TRUE(glass.interior);
+    EXPECT_NEAR(std::exp(-glass.interior->sigma_a.r * 0.5f), 0.9f, 1e-6f);
+    EXPECT_NEAR(std::exp(-glass.interior->sigma_a.g * 0.5f), 0.5f, 1e-6f);
+    EXPECT_NEAR(std::exp(-glass.interior->sigma_a.b * 0.5f), 0.25f, 1e-6f);
+    EXPECT_EQ(glass.interior->sigma_s, Color{0});
+    EXPECT_FALSE(named(f, "tiles").desc.interior);
     // lamp: emissive factor 1 times KHR_materials_emissive_strength 4, with its texture.
     const MaterialDesc& lamp = named(f, "lamp").desc;
     EXPECT_FLOAT_EQ(lamp.emission.radiance.g, 4);
@@ -252,6 +259,17 @@ TEST_F(Gltf, ErrorsPointAtTheLineAndColumnOfTheValue) {
         EXPECT_EQ(error_of("x.gltf"), file + ":4:25: node 0 is a scene root and a child of node 1; nodes must form trees");
     }
     check(4, "  \"scenes\": [{\"nodes\": [0, 9]}],", "9", "node 9 does not exist");
+    // KHR_materials_volume values outside their ranges.
+    check(6,
+          "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1, "
+          "\"material\": 0}]}], \"materials\": [{\"extensions\": {\"KHR_materials_volume\": "
+          "{\"thicknessFactor\": 1, \"attenuationDistance\": -2}}}],",
+          "-2", "KHR_materials_volume: attenuationDistance must be positive");
+    check(6,
+          "  \"meshes\": [{\"name\": \"tri\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1, "
+          "\"material\": 0}]}], \"materials\": [{\"extensions\": {\"KHR_materials_volume\": "
+          "{\"thicknessFactor\": 1, \"attenuationColor\": [1, 2, 0.5]}}}],",
+          "[1, 2", "KHR_materials_volume: attenuationColor must lie in [0, 1]");
     // The same error in a .glb names the file and the node, without a line.
     auto lines = triangle_lines();
     lines[4] = "  \"nodes\": [{\"mesh\": 5}],";
@@ -372,6 +390,33 @@ TEST_F(Gltf, TexturedEmissionIsTheSameSampledAsSeen) {
     EXPECT_GT(compared, 100);
     EXPECT_GT(bright, 10);  // both squares of the emissive checker were met
     EXPECT_GT(dark, 10);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST_F(Gltf, VolumeMaterialBecomesAnInteriorMediumOfItsSurfaces) {
+    write("scene.yaml", "integrator: {type: path}\nmedium: air\nmedia:\n  air: {type: homogeneous, albedo: 1, density: 0.01}\n"
+                        "objects:\n  - {type: mesh, file: textured.gltf}\n");
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(load_scene_file((dir_ / "scene.yaml").string(), sources), {}, sources);
+    const Scene& s = job.scene;
+    ASSERT_EQ(s.media.size(), 2u);  // the scene's air and the glass's inside
+    EXPECT_TRUE(s.has_media());
+    int with = 0;
+    for (MaterialId m = 0; m < s.materials.size(); ++m) {
+        const MediumInterface* mi = s.medium_interface(m);
+        if (!mi) continue;
+        ++with;
+        EXPECT_EQ(mi->interior, 1u);
+        EXPECT_EQ(mi->exterior, 0u);  // the scene's medium outside
+        const auto& h = std::get<HomogeneousMedium>(s.media[mi->interior]);
+        EXPECT_NEAR(std::exp(-h.sigma_a.g * 0.5f), 0.5f, 1e-6f);
+    }
+    EXPECT_EQ(with, 1);
 }
 
 }  // namespace
