@@ -120,8 +120,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     // Next-event estimation from p: one light, its radiance times f (the BSDF with its cosine,
     // or the phase function) and the transmittance to it. `ng`: the surface's geometric normal
     // (null inside a medium).
-    const auto next_event = [&](Point3 p, const Normal3* ng, const MediumInterface* mi,
-                                const auto& f_of, const auto& pdf_of, float u_choice, Sample2 u_light) {
+    const auto next_event = [&](Color path_beta, Color path_r, Point3 p, const Normal3* ng,
+                                const MediumInterface* mi, const auto& f_of, const auto& pdf_of,
+                                float u_choice, Sample2 u_light) {
         float pmf = 0;
         const std::uint32_t l = lights.pick(u_choice, &pmf);
         if (!(pmf > 0)) return;
@@ -146,7 +147,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         }
         const float light_pdf = pmf * ls->pdf;
         const float w = ls->delta || !use_bsdf_hits ? 1 : power_heuristic(light_pdf, pdf_of(ls->wi));
-        radiance += beta * f * ls->L * tr * (w / light_pdf) / average(r_u * r_l);
+        radiance += path_beta * f * ls->L * tr * (w / light_pdf) / average(path_r * r_l);
     };
 
     int depth = 0;
@@ -168,6 +169,37 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             const bool weigh_absorption = hm && !(hm->Le.max_component() > 0);
             const Medium scattering_only =
                 weigh_absorption ? Medium{HomogeneousMedium{Color{0}, hm->sigma_s, Color{0}, hm->phase}} : Medium{};
+            // Direct light along the whole segment, as Cycles does: in a homogeneous medium one
+            // light sample at a point drawn from the free-flight density truncated to the
+            // segment, whether or not the path scatters in it (the path's own scattering events
+            // then skip light sampling). Both are unbiased for their MIS-weighted parts, the
+            // weights depending only on the directions; thin fog stops being a coin toss between
+            // "scattered, lit" and "passed, dark".
+            bool forced_nee = false;
+            if (hm && use_light && depth < settings_.max_depth && hm->sigma_s.max_component() > 0) {
+                const Color sigma = weigh_absorption ? hm->sigma_s : hm->sigma_a + hm->sigma_s;
+                const float s_h = sigma[hero];
+                if (s_h > 0) {
+                    forced_nee = true;
+                    const Color p_hit = Color{1} - transmittance(sigma, t_max);
+                    float t = -std::log1p(-rng.next() * p_hit[hero]) / s_h;
+                    if (!(t < t_max)) t = std::nextafter(t_max, 0.0f);
+                    const Color T_s = transmittance(sigma, t);
+                    const auto density = [&](int c) { return p_hit[c] > 0 ? sigma[c] * T_s[c] / p_hit[c] : 0.0f; };
+                    const Color pdf{density(0), density(1), density(2)};
+                    Color beta_f = beta * T_s * hm->sigma_s / pdf[hero];
+                    if (weigh_absorption) beta_f *= transmittance(hm->sigma_a, t);
+                    const Color r_f = r_u * pdf / pdf[hero];
+                    const Sample2 choices = samples.next_2d();
+                    const Sample2 u_light = samples.next_2d();
+                    const Vector3 wo = -ray.direction;
+                    const HgPhase& phase = hm->phase;
+                    const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
+                    const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
+                    if (is_finite(beta_f) && is_finite(r_f))
+                        next_event(beta_f, r_f, ray.at(t), nullptr, nullptr, f, pdf_of, choices.x, u_light);
+                }
+            }
             const Color T_maj = sample_t_maj(
                 weigh_absorption ? scattering_only : m, ray, t_max, rng.next(), rng, hero,
                 [&](Point3 p, const MediumPoint& mp, Color sigma_maj, Color T) {
@@ -202,10 +234,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                         const Sample2 choices = samples.next_2d();
                         const Sample2 u_light = samples.next_2d();
                         const Sample2 u_phase = samples.next_2d();
-                        if (use_light) {
+                        if (use_light && !forced_nee) {
                             const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
                             const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
-                            next_event(p, nullptr, nullptr, f, pdf_of, choices.x, u_light);
+                            next_event(beta, r_u, p, nullptr, nullptr, f, pdf_of, choices.x, u_light);
                         }
                         const PhaseSample ps = phase.sample(wo, u_phase);
                         beta *= Color{ps.p / ps.pdf};
@@ -280,7 +312,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 return same_side(si, wi) ? bsdf.eval(wo, wi) * std::abs(dot(si.ns, wi)) : Color{0};
             };
             const auto pdf_of = [&](Vector3 wi) { return bsdf.pdf(wo, wi); };
-            next_event(si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, choices.x, u_light);
+            next_event(beta, r_u, si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, choices.x, u_light);
         }
 
         // Continue the path.
