@@ -323,5 +323,33 @@ TEST(Volume, GridFileErrorsAreLocated) {
     std::filesystem::remove_all(dir);
 }
 
+// A grid medium from a .vdb (density 1 and an emission grid of 2 over a 16^3 block, voxels
+// 0.25 wide, moved by the medium's transform) that absorbs and emits: along a ray inside the
+// constant region the radiance is Le (1 - exp(-sigma_a L)) (emission-absorption, no scattering).
+TEST(Volume, EmittingGridMatchesEmissionAbsorptionClosedForm) {
+    const auto dir = std::filesystem::temp_directory_path() / "glint_volume_emission";
+    std::filesystem::create_directories(dir);
+    const VoxelGrid one = VoxelGrid::from_function({0, 0, 0}, {16, 16, 16}, [](int, int, int) { return 1.0f; });
+    const VoxelGrid two = VoxelGrid::from_function({0, 0, 0}, {16, 16, 16}, [](int, int, int) { return 2.0f; });
+    write_vdb(dir / "block.vdb", {{"density", &one}, {"glow", &two}}, 0.25f);
+    // World block [10, 13.75] x [0, 3.75] x [0, 3.75] (voxel centres); the boundary box lies
+    // inside the region where trilinear interpolation is exactly constant.
+    const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: 4}
+background: {type: constant, color: [0, 0, 0]}
+media:
+  block: {type: grid, file: block.vdb, sigma_a: [0.4, 0.8, 1.6], sigma_s: [0, 0, 0],
+          emission_grid: glow, emission: [1, 0.5, 0.25], emission_scale: 1.5, transform: {translate: [10, 0, 0]}}
+objects:
+  - {type: box, min: [10.5, 0.5, 0.5], max: [13.0, 3.0, 3.0], material: interface, interior: block}
+)", (dir / "scene.yaml").string());
+    const float len = 2.5f;
+    const Color sigma{0.4f, 0.8f, 1.6f}, le = Color{1, 0.5f, 0.25f} * (2 * 1.5f);
+    Color expect;
+    for (int c = 0; c < 3; ++c) (c == 0 ? expect.r : c == 1 ? expect.g : expect.b) = le[c] * (1 - std::exp(-sigma[c] * len));
+    expect_close(mean_li(job, Ray{{9, 1.7f, 1.9f}, {1, 0, 0}}, 60000), expect, "emitting grid", 2e-3f);
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace glint

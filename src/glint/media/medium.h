@@ -94,9 +94,9 @@ Color blackbody_rgb(float kelvin);
 /// calls f(p, point, sigma_maj, T_maj) with T_maj the majorant transmittance since the previous
 /// collision (or the start); f returns false to stop. Returns the majorant transmittance from
 /// the last collision to t_max (Color{1} if f stopped the walk). `u` is the first uniform
-/// number, `rng` supplies the rest.
+/// number, `rng` supplies the rest. The ray is taken by value: f may change the caller's ray.
 template <typename F>
-Color sample_t_maj(const Medium& medium, const Ray& ray, float t_max, float u, HashRng& rng,
+Color sample_t_maj(const Medium& medium, const Ray ray, float t_max, float u, HashRng& rng,
                    int hero, F&& f) {
     Color T_maj{1};
     // One segment [t0, t1) of constant majorant; false when f stopped.
