@@ -8,8 +8,10 @@
 # max_depth 16 (glint counts the first scattering too). Interface crossings are transparent
 # bounces in Cycles: up to 64.
 #
-# glint's frame is left-handed with y up, Blender's right-handed with z up: points map as
-# (x, y, z) -> (x, z, y), a mirror that shows the same image through both cameras.
+# glint's frame is left-handed with y up, Blender's right-handed with z up: points map by the
+# rotation (x, y, z) -> (-x, z, y), which shows the image mirrored left to right:
+# bench/compare_volumes.sh mirrors the written EXR back (oiiotool --flop). (Mapping by the mirror (x, z, y) instead would need a negative
+# determinant on the Volume object, and Cycles then samples the grid mirrored.)
 #
 #   blender -b --factory-startup -P bench/volume_cycles.py -- SCENE OUT.exr SPP THREADS [SEED] [STEP_RATE]
 #
@@ -30,7 +32,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 
 
 def P(p):
-    return Vector((p[0], p[2], p[1]))
+    return Vector((-p[0], p[2], p[1]))
 
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -66,18 +68,17 @@ def mesh_object(name, verts, faces, material):
 
 def quad(name, corner, e1, e2, material):
     c, a, b = Vector(corner), Vector(e1), Vector(e2)
-    obj = mesh_object(name, [c, c + a, c + a + b, c + b], [(0, 1, 2, 3)], material)
-    return obj
+    return mesh_object(name, [c, c + a, c + a + b, c + b], [(0, 1, 2, 3)], material)
 
 
 def box(name, lo, hi, material):
     x0, y0, z0 = lo
     x1, y1, z1 = hi
     v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
-    f = [(0, 1, 2, 3), (4, 7, 6, 5), (0, 4, 5, 1), (3, 2, 6, 7), (0, 3, 7, 4), (1, 5, 6, 2)]
-    obj = mesh_object(name, v, f, material)
-    obj.data.update()
-    return obj
+    # Wound so that every face's normal points out of the box (Cycles tells a volume's inside
+    # from the normals).
+    f = [(3, 2, 1, 0), (5, 6, 7, 4), (1, 5, 4, 0), (7, 6, 2, 3), (4, 7, 3, 0), (2, 6, 5, 1)]
+    return mesh_object(name, v, f, material)
 
 
 def sun(direction, irradiance, diameter_deg):
@@ -142,11 +143,12 @@ elif which == "cloud":
     bpy.data.lights["sun"].color = (1, 2.8 / 3, 2.5 / 3)
     quad("floor", (-8, 0, -8), (0, 0, 16), (16, 0, 0), diffuse("floor", (0.5, 0.5, 0.5)))
     vdb = os.path.join(here, "..", "scenes", "volumes", "cloud.vdb")
-    volume = bpy.data.volumes.load(vdb)
+    volume = bpy.data.volumes.new("cloud")
+    volume.filepath = vdb
     obj = bpy.data.objects.new("cloud", volume)
     scene.collection.objects.link(obj)
     # glint: world = translate(-3, -0.75, -3) scale(3) (VDB world); Blender adds the axis swap.
-    swap = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
+    swap = Matrix(((-1, 0, 0, 0), (0, 0, 1, 0), (0, 1, 0, 0), (0, 0, 0, 1)))
     obj.matrix_world = swap @ Matrix.Translation((-3, -0.75, -3)) @ Matrix.Scale(3, 4)
     m, nodes, links = node_material("cloud")
     out_node = nodes.new("ShaderNodeOutputMaterial")
