@@ -33,3 +33,13 @@ python3 scripts/make_gltf_scene.py "$gltf_dir" > /dev/null
 "$glint" render "$gltf_dir/textured.glb" --spp 256 --width 480 --height 320 -q -o docs/images/gltf-textured.png
 rm -rf "$gltf_dir"
 echo docs/images/gltf-textured.png
+# Volumes (scenes/volumes/; cloud.vdb is written by the build), and the four side by side for
+# docs/scene-format.md.
+"$glint" render scenes/volumes/fig14-fog.yaml --spp 1024 -q -o docs/images/fig14-fog.png
+"$glint" render scenes/volumes/glass.yaml --spp 256 -q -o docs/images/glass.png
+"$glint" render scenes/volumes/cloud.yaml --spp 256 -q -o docs/images/cloud.png
+"$glint" render scenes/volumes/milk-bunny.yaml --spp 256 -q -o docs/images/milk-bunny.png
+oiiotool docs/images/fig14-fog.png --resize 240x135 docs/images/glass.png --resize 240x135 \
+  docs/images/cloud.png --resize 240x135 docs/images/milk-bunny.png --resize 240x135 \
+  --mosaic 4x1 -o docs/images/volumes.png
+echo docs/images/fig14-fog.png docs/images/glass.png docs/images/cloud.png docs/images/milk-bunny.png docs/images/volumes.png

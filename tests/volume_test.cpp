@@ -176,6 +176,58 @@ objects:
     expect_close(mean_li(job, Ray{{0.5f, 0.25f, -1}, {0, 0, 1}}, 100000), Color{expect}, "slab", 1e-5f);
 }
 
+// Single scattering of a point light inside a chromatic slab (the light 0.3 off the camera
+// ray, where the 1/r^2 falloff peaks sharply), against the integral along the ray by Simpson's
+// rule: L = int_0^2 sigma_s e^{-sigma_t z} p(cos) I e^{-sigma_t r(z)} / r(z)^2 dz. The path
+// tracer draws the distance for light sampling from the free-flight and the equiangular density
+// mixed; the same holds with the light outside the slab, behind the ray's entry (equiangular only
+// partly inside the segment) and for a spot light whose cone (up to 73 degrees off its axis here)
+// covers the segment.
+TEST(Volume, PointLightSingleScatteringMatchesQuadrature) {
+    const Color sigma_a{0.05f, 0.1f, 0.2f}, sigma_s{0.4f, 0.3f, 0.2f};
+    const float g = 0.4f, I = 3;
+    for (const Point3 light : {Point3{0.3f, 0, 1}, Point3{0.5f, 0.2f, -0.4f}}) {
+        for (const bool spot : {false, true}) {
+            const std::string pos = "[" + std::to_string(light.x) + ", " + std::to_string(light.y) + ", " +
+                                    std::to_string(light.z) + "]";
+            const std::string light_yaml =
+                spot ? "{type: spot, position: " + pos + ", direction: [-1, 0, 0], cone_angle: 89, falloff_start: 89, intensity: [3, 3, 3]}"
+                     : "{type: point, position: " + pos + ", intensity: [3, 3, 3]}";
+            if (spot && light.z < 0) continue;  // the segment must lie inside the cone
+            const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: 1}
+background: {type: constant, color: [0, 0, 0]}
+lights:
+  - )" + light_yaml + R"(
+media:
+  slab: {type: homogeneous, sigma_a: [0.05, 0.1, 0.2], sigma_s: [0.4, 0.3, 0.2], g: 0.4}
+objects:
+  - {type: box, min: [-1000, -1000, 0], max: [1000, 1000, 2], material: interface, interior: slab}
+)");
+            Color expect;
+            for (int c = 0; c < 3; ++c) {
+                const double st = sigma_a[c] + sigma_s[c];
+                const auto f = [&](double z) {
+                    const double dx = light.x, dy = light.y, dz = light.z - z;
+                    const double r2 = dx * dx + dy * dy + dz * dz, r = std::sqrt(r2);
+                    const float cos = float(-dz / r);  // wo = -z, wi towards the light
+                    // Of the way to a light below the slab (z < 0), only the part above z = 0
+                    // lies in the medium.
+                    const double inside = light.z < 0 ? r * z / (z - light.z) : r;
+                    return sigma_s[c] * std::exp(-st * z) * HgPhase::eval_cos(cos, g) * I * std::exp(-st * inside) / r2;
+                };
+                const int n = 20000;
+                const double h = 2.0 / n;
+                double sum = f(0) + f(2);
+                for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(i * h);
+                (c == 0 ? expect.r : c == 1 ? expect.g : expect.b) = float(sum * h / 3);
+            }
+            expect_close(mean_li(job, Ray{{0, 0, -1}, {0, 0, 1}}, 200000, 11), expect,
+                         spot ? "spot light" : "point light", 1e-4f);
+        }
+    }
+}
+
 // The same slab under a soft sun: light sampling alone, phase sampling alone and MIS estimate
 // the same radiance (an area-like light every strategy can reach).
 TEST(Volume, LightPhaseAndMisStrategiesAgreeInMedia) {

@@ -135,6 +135,18 @@ int run_info(const RenderArgs& args) {
     fmt::print("meshes       {} ({} vertices), {} instances\n", i.meshes, i.vertices, i.instances);
     fmt::print("other shapes {}\n", i.analytic_shapes);
     fmt::print("lights       {} (area lights included)\n", job.scene.light_sampler().count());
+    if (!job.scene.media.empty()) {
+        std::size_t grids = 0, voxel_bytes = 0, bricks = 0;
+        for (const glint::Medium& m : job.scene.media) {
+            if (const auto* g = std::get_if<glint::GridMedium>(&m)) {
+                ++grids;
+                voxel_bytes += g->density.memory_bytes() + g->emission.memory_bytes();
+                bricks += g->density.brick_count() + g->emission.brick_count();
+            }
+        }
+        fmt::print("media        {} ({} homogeneous, {} grid: {} bricks of 8^3 voxels, {})\n",
+                   job.scene.media.size(), job.scene.media.size() - grids, grids, bricks, bytes(voxel_bytes));
+    }
     if (!i.bounds.empty())
         fmt::print("bounds       [{:.4g}, {:.4g}, {:.4g}] .. [{:.4g}, {:.4g}, {:.4g}]\n", i.bounds.lo.x,
                    i.bounds.lo.y, i.bounds.lo.z, i.bounds.hi.x, i.bounds.hi.y, i.bounds.hi.z);

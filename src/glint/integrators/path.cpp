@@ -181,17 +181,36 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 const float s_h = sigma[hero];
                 if (s_h > 0) {
                     forced_nee = true;
+                    const Sample2 choices = samples.next_2d();
+                    const Sample2 u_light = samples.next_2d();
+                    // Towards a point or spot light, the distance is drawn half the time by
+                    // equiangular sampling (density ~ 1/r^2 to the light), and weighed by the
+                    // mixture of the two densities (one-sample balance heuristic): near a light
+                    // in fog the free-flight density alone leaves fireflies.
+                    float pick_pmf = 0;
+                    const std::uint32_t l = lights.pick(choices.x, &pick_pmf);
+                    const std::optional<Point3> at = lights.position(l);
+                    const std::optional<Equiangular> eq =
+                        at ? Equiangular::make(ray, t_max, *at) : std::nullopt;
                     const Color p_hit = Color{1} - transmittance(sigma, t_max);
-                    float t = -std::log1p(-rng.next() * p_hit[hero]) / s_h;
-                    if (!(t < t_max)) t = std::nextafter(t_max, 0.0f);
+                    const float u_t = rng.next();
+                    float t = 0;
+                    if (eq && rng.next() < 0.5f) {
+                        t = std::clamp(eq->sample(u_t), 0.0f, std::nextafter(t_max, 0.0f));
+                    } else {
+                        t = -std::log1p(-u_t * p_hit[hero]) / s_h;
+                        if (!(t < t_max)) t = std::nextafter(t_max, 0.0f);
+                    }
                     const Color T_s = transmittance(sigma, t);
-                    const auto density = [&](int c) { return p_hit[c] > 0 ? sigma[c] * T_s[c] / p_hit[c] : 0.0f; };
+                    const float w_eq = eq ? 0.5f : 0.0f;
+                    const float eq_pdf = eq ? w_eq * eq->pdf(t) : 0.0f;
+                    const auto density = [&](int c) {
+                        return (p_hit[c] > 0 ? (1 - w_eq) * sigma[c] * T_s[c] / p_hit[c] : 0.0f) + eq_pdf;
+                    };
                     const Color pdf{density(0), density(1), density(2)};
                     Color beta_f = beta * T_s * hm->sigma_s / pdf[hero];
                     if (weigh_absorption) beta_f *= transmittance(hm->sigma_a, t);
                     const Color r_f = r_u * pdf / pdf[hero];
-                    const Sample2 choices = samples.next_2d();
-                    const Sample2 u_light = samples.next_2d();
                     const Vector3 wo = -ray.direction;
                     const HgPhase& phase = hm->phase;
                     const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };

@@ -65,6 +65,14 @@ public:
     /// Radiance a ray leaving the scene along unit `d` receives from distant light `light`.
     Color distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d) const;
     const Light& light(std::uint32_t i) const { return lights_[i]; }
+    /// Where a point or spot light sits (media sample distances towards it); nullopt for every
+    /// other light.
+    std::optional<Point3> position(std::uint32_t light) const {
+        if (light >= lights_.size()) return std::nullopt;
+        if (const auto* p = std::get_if<PointLight>(&lights_[light])) return p->position;
+        if (const auto* s = std::get_if<SpotLight>(&lights_[light])) return s->position;
+        return std::nullopt;
+    }
 
 private:
     std::vector<Light> lights_;  ///< the file's lights, then the area lights; the environment is last

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <variant>
 
 #include "glint/math/color.h"
@@ -83,6 +84,33 @@ inline Color transmittance(Color sigma, float d) {
     const auto one = [d](float s) { return s == 0 ? 1.0f : std::exp(-s * d); };
     return {one(sigma.r), one(sigma.g), one(sigma.b)};
 }
+
+/// Equiangular sampling of a distance along a ray towards a point (Kulla and Fajardo 2012): the
+/// density over t in [0, t_max) is proportional to 1/|x(t) - c|^2, the falloff of a point
+/// light's irradiance, so points near the light are drawn as often as they matter. Valid only
+/// when the point lies off the ray's line (D > 0) and the angle subtended is not zero.
+struct Equiangular {
+    float delta = 0;   ///< t of the point on the ray closest to c
+    float D = 0;       ///< distance from c to the ray's line
+    float theta_a = 0, theta_b = 0;
+
+    /// nullopt when c is on (or numerically at) the ray's line, or the interval is empty.
+    static std::optional<Equiangular> make(const Ray& ray, float t_max, Point3 c) {
+        const Vector3 oc = c - ray.origin;
+        const float delta = dot(oc, ray.direction);
+        const float D = length(oc - ray.direction * delta);
+        if (!(D > 1e-6f * std::max(1.0f, std::abs(delta)))) return std::nullopt;
+        const float a = std::atan2(-delta, D);
+        const float b = std::isinf(t_max) ? 1.57079632679f : std::atan2(t_max - delta, D);
+        if (!(b > a)) return std::nullopt;
+        return Equiangular{delta, D, a, b};
+    }
+    float sample(float u) const { return delta + D * std::tan(theta_a + u * (theta_b - theta_a)); }
+    float pdf(float t) const {
+        const float x = t - delta;
+        return D / ((theta_b - theta_a) * (D * D + x * x));
+    }
+};
 
 /// The linear sRGB colour of a blackbody at `kelvin`, normalised so that its spectral radiance
 /// peaks at 1 (the spectrum integrated against the CIE 1931 observer, divided by the integral of

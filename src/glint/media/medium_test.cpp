@@ -70,6 +70,39 @@ TEST(HgPhase, MeanCosineIsG) {
 
 // The fraction of delta-tracking walks that reach distance d with no real collision is
 // exp(-sigma_t d) (a binomial proportion: checked within 4 standard deviations).
+// Equiangular distance sampling: its density is proportional to 1/|x(t) - c|^2 (checked at
+// every sample), integrates to 1 over the interval (Simpson's rule), and the distance drawn
+// for u is the u-quantile of that density (the density integrated numerically up to it).
+TEST(Equiangular, DensityFollowsInverseSquareAndSamplesItsQuantiles) {
+    struct Case { Point3 c; float t_max; };
+    const Ray ray{{1, 2, 3}, normalize(Vector3{0.2f, -0.1f, 1})};
+    for (const Case k : {Case{{1.5f, 2.5f, 8}, 12}, Case{{0, 0, 0}, 5}, Case{{3, 2, 40}, 20},
+                         Case{{1.2f, 2.3f, 6}, std::numeric_limits<float>::infinity()}}) {
+        const auto eq = Equiangular::make(ray, k.t_max, k.c);
+        ASSERT_TRUE(eq);
+        const auto simpson = [&](double a, double b) {
+            const int n = 20000;
+            double h = (b - a) / n, sum = eq->pdf(float(a)) + eq->pdf(float(b));
+            for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * eq->pdf(float(a + i * h));
+            return sum * h / 3;
+        };
+        if (!std::isinf(k.t_max)) EXPECT_NEAR(simpson(0, k.t_max), 1, 1e-4);
+        double ratio0 = 0;
+        for (const float u : {0.01f, 0.2f, 0.5f, 0.8f, 0.99f}) {
+            const float t = eq->sample(u);
+            ASSERT_GE(t, 0);
+            if (!std::isinf(k.t_max)) ASSERT_LE(t, k.t_max);
+            const Vector3 d = ray.at(t) - k.c;
+            const double r2 = dot(d, d);
+            if (ratio0 == 0) ratio0 = eq->pdf(t) * r2;
+            EXPECT_NEAR(eq->pdf(t) * r2 / ratio0, 1, 1e-4);
+            EXPECT_NEAR(simpson(0, t), u, 1e-4) << "u = " << u;
+        }
+    }
+    // A point on the ray's line has no equiangular density.
+    EXPECT_FALSE(Equiangular::make(ray, 10, ray.at(4)));
+}
+
 TEST(Transmittance, DeltaTrackingHomogeneousMatchesClosedForm) {
     const Medium m = HomogeneousMedium{Color{0.3f}, Color{0.5f}, Color{0}, {}};
     const Ray ray{{0, 0, 0}, {0, 0, 1}};
