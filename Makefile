@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench bench-cycles bench-embree gallery sanitize clean
+.PHONY: all deps configure build demo test bench bench-cycles bench-embree bench-volumes gallery sanitize clean
 
 all: build
 
@@ -34,6 +34,13 @@ bench-cycles:
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
 	$(MAKE) build
 	THREADS_HIGH=2 bench/compare_cycles.sh $(BUILD) 3
+
+# Volumes beside Blender Cycles: the fog and the VDB cloud of bench/volumes/ (about 15 minutes).
+bench-volumes:
+	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
+	$(MAKE) build
+	bench/compare_volumes.sh $(BUILD) fog 3
+	bench/compare_volumes.sh $(BUILD) cloud 3
 
 # glint's BVH beside Embree 3 (glint bench on four scenes, 1 and 2 threads; about 2 minutes).
 bench-embree: build

@@ -4,16 +4,18 @@
 # coefficients and phase (Volume Scatter + Volume Absorption for the fog; a Volume object from
 # the same .vdb with a Principled Volume, absorption colour black, for the cloud, whose density
 # then multiplies the grid and whose colour is the albedo), box filter, no denoiser, no adaptive
-# sampling, no clamping, and the same path length: Cycles' 15 bounces of every kind are glint's
-# max_depth 16 (glint counts the first scattering too). Interface crossings are transparent
-# bounces in Cycles: up to 64.
+# sampling, no clamping, and the same path length: Cycles' N bounces of every kind are glint's
+# max_depth N + 1 (glint counts the first scattering too): 15 for the fog; for the dense cloud
+# (albedo 0.98, hundreds of scatterings inside) 1023, as good as no limit, so that the image is
+# the full transport and not each renderer's way of cutting it. Interface crossings are
+# transparent bounces in Cycles: up to 64.
 #
 # glint's frame is left-handed with y up, Blender's right-handed with z up: points map by the
 # rotation (x, y, z) -> (-x, z, y), which shows the image mirrored left to right:
 # bench/compare_volumes.sh mirrors the written EXR back (oiiotool --flop). (Mapping by the mirror (x, z, y) instead would need a negative
 # determinant on the Volume object, and Cycles then samples the grid mirrored.)
 #
-#   blender -b --factory-startup -P bench/volume_cycles.py -- SCENE OUT.exr SPP THREADS [SEED] [STEP_RATE]
+#   blender -b --factory-startup -P bench/volume_cycles.py -- SCENE OUT.exr SPP THREADS [SEED] [STEP_RATE] [BOUNCES]
 #
 # Prints "cycles render seconds: S" (the render alone, without Blender's start-up).
 import math
@@ -28,6 +30,7 @@ argv = sys.argv[sys.argv.index("--") + 1:]
 which, out, spp, threads = argv[0], argv[1], int(argv[2]), int(argv[3])
 seed = int(argv[4]) if len(argv) > 4 else 0
 step_rate = float(argv[5]) if len(argv) > 5 else 1.0
+bounces = int(argv[6]) if len(argv) > 6 else None  # overrides the scene's bounce limit
 here = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -136,15 +139,23 @@ if which == "fog":
     links.new(absorb.outputs["Volume"], add.inputs[1])
     links.new(add.outputs["Shader"], out_node.inputs["Volume"])
     box("fog", (-2.5, 0.001, -2.5), (2.5, 2.5, 2.5), m)
-elif which == "cloud":
+elif which in ("cloud", "cloud-absorb"):
+    # cloud-absorb (a diagnostic, docs/benchmarks.md): the cloud alone, albedo 0, in a world of
+    # radiance 1, no floor and no sun: each pixel is the cloud's transmittance along it.
+    alone = which != "cloud"
     camera((0, 1.2, -9), (0, 1.3, 0), 45, 320, 180)
-    world((0.3, 0.4, 0.6))
-    sun((-0.5, -0.6, 0.6), 3, 0.53)  # colour below
-    bpy.data.lights["sun"].color = (1, 2.8 / 3, 2.5 / 3)
-    quad("floor", (-8, 0, -8), (0, 0, 16), (16, 0, 0), diffuse("floor", (0.5, 0.5, 0.5)))
+    world((1, 1, 1) if alone else (0.3, 0.4, 0.6))
+    if not alone:
+        sun((-0.5, -0.6, 0.6), 3, 0.53)  # colour below
+        bpy.data.lights["sun"].color = (1, 2.8 / 3, 2.5 / 3)
+        quad("floor", (-8, 0, -8), (0, 0, 16), (16, 0, 0), diffuse("floor", (0.5, 0.5, 0.5)))
     vdb = os.path.join(here, "..", "scenes", "volumes", "cloud.vdb")
     volume = bpy.data.volumes.new("cloud")
     volume.filepath = vdb
+    # Blender drops densities below 0.001 by default ("clipping") and keeps grids in half
+    # precision: glint does neither, so neither does the comparison.
+    volume.render.clipping = 0
+    volume.render.precision = "FULL"
     obj = bpy.data.objects.new("cloud", volume)
     scene.collection.objects.link(obj)
     # glint: world = translate(-3, -0.75, -3) scale(3) (VDB world); Blender adds the axis swap.
@@ -153,7 +164,7 @@ elif which == "cloud":
     m, nodes, links = node_material("cloud")
     out_node = nodes.new("ShaderNodeOutputMaterial")
     pv = nodes.new("ShaderNodeVolumePrincipled")
-    pv.inputs["Color"].default_value = (0.98, 0.98, 0.98, 1)
+    pv.inputs["Color"].default_value = (0.98, 0.98, 0.98, 1) if which == "cloud" else (0, 0, 0, 1)
     pv.inputs["Density"].default_value = 6
     pv.inputs["Anisotropy"].default_value = 0.7
     pv.inputs["Absorption Color"].default_value = (0, 0, 0, 1)
@@ -178,8 +189,9 @@ c.use_adaptive_sampling = False
 c.use_denoising = False
 c.seed = seed
 c.pixel_filter_type = "BOX"
-c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.volume_bounces = 15
-c.transparent_max_bounces = 64
+c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.volume_bounces = \
+    {"fog": 15, "cloud": 1023, "cloud-absorb": 0}[which] if bounces is None else bounces
+c.transparent_max_bounces = {"fog": 64, "cloud": 1023, "cloud-absorb": 1023}[which]
 c.sample_clamp_direct = 0
 c.sample_clamp_indirect = 0
 c.volume_step_rate = step_rate
