@@ -17,6 +17,7 @@
 #include "glint/demo_scene.h"
 #include "glint/film/film.h"
 #include "glint/io/build.h"
+#include "glint/io/pbrt.h"
 #include "glint/io/image_io.h"
 #include "glint/io/scene_yaml.h"
 #include "glint/render/ray_bench.h"
@@ -31,6 +32,7 @@ struct RenderArgs {
     std::optional<std::uint64_t> seed;
     bool quiet = false;
     bool aovs = false;
+    bool strict = false;
     std::string accel;
     std::string camera;
 };
@@ -84,6 +86,7 @@ glint::RenderJob load_job(const RenderArgs& args) {
     const glint::SceneDescription description =
         args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
         : mesh             ? mesh_file_scene(args.scene, args.camera)
+        : glint::is_pbrt_file(args.scene) ? glint::load_pbrt_file(args.scene, sources, {args.strict})
                            : glint::load_scene_file(args.scene, sources);
     glint::Overrides overrides;
     overrides.width = args.width;
@@ -229,9 +232,11 @@ int main(int argc, char** argv) {
 
     RenderArgs args;
     CLI::App* render = app.add_subcommand(
-        "render", "Render a scene file (YAML or JSON); with no SCENE, the built-in demo "
+        "render", "Render a scene file (YAML, JSON or pbrt-v4); with no SCENE, the built-in demo "
                   "(the article's Figure 14) to glint.png");
-    render->add_option("SCENE", args.scene, "Scene file (.yaml, .yml or .json)");
+    render->add_option("SCENE", args.scene, "Scene file (.yaml, .yml, .json or .pbrt)");
+    const char* strict_help = "pbrt files: what glint cannot render is an error, not a warning";
+    render->add_flag("--strict", args.strict, strict_help);
     render->add_option("-o,--output", args.output,
                        "Output image; the format comes from the extension: .png (8-bit), "
                        ".exr (linear float), .ppm (8-bit)");
@@ -260,8 +265,9 @@ int main(int argc, char** argv) {
 
     CLI::App* info = app.add_subcommand(
         "info", "Print a scene's statistics: triangles, instances, bounds, memory");
-    info->add_option("SCENE", args.scene, "Scene file (.yaml, .json) or mesh (.obj, .ply)")->required();
+    info->add_option("SCENE", args.scene, "Scene file (.yaml, .json, .pbrt) or mesh (.obj, .ply)")->required();
     info->add_option("--accel", args.accel, accel_help);
+    info->add_flag("--strict", args.strict, strict_help);
 
     int runs = 3;
     CLI::App* bench = app.add_subcommand(

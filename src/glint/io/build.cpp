@@ -337,6 +337,11 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 std::shared_ptr<SourceFiles> sources) {
     Diagnostics diagnostics(std::move(sources));
     RenderJob job;
+    for (const Diagnostic& w : d.warnings) {
+        std::string text = format_warning(w, diagnostics.sources());
+        while (!text.empty() && text.back() == '\n') text.pop_back();
+        job.notes.push_back(std::move(text));
+    }
 
     // Film and sampling limits come first: nothing below allocates per pixel, but the render does.
     job.width = pick(d.film.width, overrides.width, "width", 1, kMaxFilmSide, diagnostics);
@@ -444,6 +449,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::optional<GltfCamera> camera;
     };
     std::map<std::string, LoadedFile> loaded;
+    std::map<const TriangleMesh*, std::uint32_t> inline_meshes;
     for (const ObjectDesc& o : d.objects) {
         MaterialId id = 0;
         const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
@@ -544,10 +550,22 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             }
             continue;
         }
+        if (const auto* inline_mesh = std::get_if<InlineMeshDesc>(&o.shape)) {
+            // Each mesh once, however many objects place it (pbrt's object instances).
+            auto it = inline_meshes.find(inline_mesh->mesh.get());
+            if (it == inline_meshes.end()) {
+                TriangleMesh m = *inline_mesh->mesh;
+                m.material = id;
+                it = inline_meshes.emplace(inline_mesh->mesh.get(), static_cast<std::uint32_t>(scene.meshes.size())).first;
+                scene.meshes.push_back(std::move(m));
+            }
+            scene.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id});
+            continue;
+        }
         std::visit(
             [&](auto shape) {
                 using S = decltype(shape);
-                if constexpr (!std::is_same_v<S, MeshFileDesc>) {
+                if constexpr (!std::is_same_v<S, MeshFileDesc> && !std::is_same_v<S, InlineMeshDesc>) {
                     shape.material = id;
                     if (o.transform) {
                         if (const auto why = transform_shape(shape, *o.transform)) {

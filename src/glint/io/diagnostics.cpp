@@ -63,10 +63,12 @@ std::size_t token_length(const std::string& line, std::size_t col) {
 
 }  // namespace
 
-std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources) {
+namespace {
+
+std::string format_as(const Diagnostic& d, const SourceFiles& sources, const char* severity) {
     std::string out;
     if (d.loc.line > 0) {
-        out = fmt::format("{}:{}:{}: error: {}\n", d.loc.file, d.loc.line, d.loc.column, d.message);
+        out = fmt::format("{}:{}:{}: {}: {}\n", d.loc.file, d.loc.line, d.loc.column, severity, d.message);
         const std::string text = sources.line(d.loc.file, d.loc.line);
         if (!text.empty()) {
             const auto col = static_cast<std::size_t>(std::max(0, d.loc.column - 1));
@@ -78,12 +80,18 @@ std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources) {
             out += fmt::format("    {}\n    {}\n", text, caret);
         }
     } else if (!d.loc.file.empty()) {
-        out = fmt::format("{}: error: {}\n", d.loc.file, d.message);
+        out = fmt::format("{}: {}: {}\n", d.loc.file, severity, d.message);
     } else {
-        out = fmt::format("error: {}\n", d.message);
+        out = fmt::format("{}: {}\n", severity, d.message);
     }
     return out;
 }
+
+}  // namespace
+
+std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources) { return format_as(d, sources, "error"); }
+
+std::string format_warning(const Diagnostic& d, const SourceFiles& sources) { return format_as(d, sources, "warning"); }
 
 SceneError::SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& sources)
     : std::runtime_error([&] {

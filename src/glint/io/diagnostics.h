@@ -56,6 +56,8 @@ private:
 /// One diagnostic as text: "file:line:col: error: message", then the source line and a caret
 /// under the offending token (~ under the rest of it).
 std::string format_diagnostic(const Diagnostic& d, const SourceFiles& sources);
+/// The same with "warning" in place of "error".
+std::string format_warning(const Diagnostic& d, const SourceFiles& sources);
 
 class SceneError : public std::runtime_error {
 public:

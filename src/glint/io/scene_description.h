@@ -22,6 +22,7 @@
 #include "glint/samplers/sampler.h"
 #include "glint/shapes/disk.h"
 #include "glint/shapes/plane.h"
+#include "glint/shapes/mesh.h"
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
 #include "glint/shapes/triangle.h"
@@ -172,9 +173,15 @@ struct MeshFileDesc {
     std::string camera;  ///< glTF: the camera to report (`glint render model.glb --camera NAME`)
 };
 
+/// A triangle mesh given in the scene file itself (pbrt's trianglemesh), in object space. Objects
+/// that share the pointer share the mesh and its BVH (instances).
+struct InlineMeshDesc {
+    std::shared_ptr<const TriangleMesh> mesh;
+};
+
 struct ObjectDesc {
     /// Material ids are set by build. A `box` in the file arrives here as six quads.
-    std::variant<Sphere, Plane, Quad, Disk, Triangle, MeshFileDesc> shape = Sphere{{0, 0, 0}, 1};
+    std::variant<Sphere, Plane, Quad, Disk, Triangle, MeshFileDesc, InlineMeshDesc> shape = Sphere{{0, 0, 0}, 1};
     /// For a mesh: whether `material` was given (it then replaces the file's materials).
     bool material_given = true;
     MaterialRef material;
@@ -206,6 +213,8 @@ struct SceneDescription {
     std::vector<NamedMedium> media;
     std::optional<Located<std::string>> medium;  ///< the camera's (the scene's) medium
     std::vector<ObjectDesc> objects;
+    /// What the reader approximated or left out (pbrt files), printed as located warnings.
+    std::vector<Diagnostic> warnings;
 };
 
 }  // namespace glint

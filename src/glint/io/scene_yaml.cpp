@@ -1,4 +1,5 @@
 #include "glint/io/scene_yaml.h"
+#include "glint/io/pbrt.h"
 
 #include <fmt/core.h>
 #include <yaml-cpp/yaml.h>
@@ -963,6 +964,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
 }
 
 SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources) {
+    if (is_pbrt_file(path)) return load_pbrt_file(path, std::move(sources));
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         Diagnostics d(sources);

@@ -1,0 +1,185 @@
+// The pbrt-v4 reader: errors at hand-counted line:column, transforms against hand-computed points,
+// the camera's handedness and field of view, instancing, warnings and --strict, truncated files,
+// and the Cornell box written as pbrt rendering bit-identical to scenes/cornell-box.yaml.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "glint/io/build.h"
+#include "glint/io/pbrt.h"
+#include "glint/io/scene_yaml.h"
+#include "glint/render/render.h"
+
+namespace glint {
+namespace {
+
+SceneDescription parse(const std::string& text, bool strict = false) {
+    return parse_pbrt(text, "test.pbrt", std::make_shared<SourceFiles>(), PbrtOptions{strict});
+}
+
+// The first error's "file:line:col: message" line.
+std::string first_error(const std::string& text, bool strict = false) {
+    try {
+        parse(text, strict);
+    } catch (const SceneError& e) {
+        const Diagnostic& d = e.diagnostics().front();
+        return d.loc.file + ":" + std::to_string(d.loc.line) + ":" + std::to_string(d.loc.column) + ": " + d.message;
+    }
+    return "no error";
+}
+
+TEST(Pbrt, ErrorsPointAtTheirToken) {
+    // Hand-counted positions.
+    EXPECT_EQ(first_error("WorldBegin\n  Shpe \"sphere\"\n"),
+              "test.pbrt:2:3: unknown directive 'Shpe'; did you mean 'Shape'?");
+    EXPECT_EQ(first_error("WorldBegin\nShape \"sphere\" \"float radus\" [ 2 ]\n"),
+              "test.pbrt:2:16: Shape \"sphere\": unknown parameter \"float radus\"");
+    EXPECT_EQ(first_error("WorldBegin\nShape \"sphere\" \"flot radius\" 2\n"),
+              "test.pbrt:2:16: unknown parameter type 'flot'; did you mean 'float'?");
+    EXPECT_EQ(first_error("WorldBegin\nShape \"sphere\" \"string radius\" \"big\"\n"),
+              "test.pbrt:2:16: \"radius\" must be a float, not string");
+    EXPECT_EQ(first_error("Film \"rgb\" \"string filename\" \"a.exr\n"), "test.pbrt:1:30: unterminated string");
+    EXPECT_EQ(first_error("WorldBegin\nAttributeEnd\n"), "test.pbrt:2:1: AttributeEnd without AttributeBegin");
+    EXPECT_EQ(first_error("AttributeBegin\nWorldBegin\n"), "test.pbrt:1:1: AttributeBegin without AttributeEnd");
+    EXPECT_EQ(first_error("Translate 1 2\n"), "test.pbrt:1:1: Translate takes 3 numbers, found 2");
+    EXPECT_EQ(first_error("LookAt 0 0 0  0 0 0  0 1 0\n"),
+              "test.pbrt:1:1: LookAt: the eye is at the target, or up is parallel to the view direction");
+    EXPECT_EQ(first_error("WorldBegin\nNamedMaterial \"glas\"\n"),
+              "test.pbrt:2:1: unknown named material \"glas\"");
+    EXPECT_EQ(first_error("WorldBegin\n  Include \"missing.pbrt\"\n").rfind("test.pbrt:2:3: Include: cannot open", 0), 0u);
+    EXPECT_EQ(first_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ] \"integer indices\" [ 0 1 3 ]\n"),
+              "test.pbrt:2:55: trianglemesh: vertex index 3 out of range (3 vertices)");
+    EXPECT_EQ(first_error("Sampler \"halton\" \"integer pixelsamples\" [ 0 ]\n"),
+              "test.pbrt:1:18: pixelsamples must be at least 1");
+    EXPECT_EQ(first_error("WorldBegin\nShape \"sphere\" \"float radius\" [ 1 \n"),
+              "test.pbrt:2:31: '[' without a matching ']'");
+}
+
+TEST(Pbrt, UnsupportedIsAWarningOrUnderStrictAnError) {
+    const std::string text = "WorldBegin\nMaterial \"measured\" \"string filename\" \"x.bsdf\"\nShape \"sphere\"\n";
+    const SceneDescription d = parse(text);
+    ASSERT_EQ(d.warnings.size(), 1u);
+    EXPECT_EQ(d.warnings[0].loc.line, 2);
+    EXPECT_EQ(d.warnings[0].loc.column, 1);
+    EXPECT_EQ(d.warnings[0].message, "material \"measured\" not supported; using diffuse 0.5");
+    EXPECT_EQ(first_error(text, true), "test.pbrt:2:1: material \"measured\" not supported; using diffuse 0.5 (--strict)");
+}
+
+Point3 apply(const ObjectDesc& o, Point3 p) { return o.transform ? o.transform->to_world.apply(p) : p; }
+
+void expect_point(Point3 got, Point3 want) {
+    EXPECT_NEAR(got.x, want.x, 1e-5f);
+    EXPECT_NEAR(got.y, want.y, 1e-5f);
+    EXPECT_NEAR(got.z, want.z, 1e-5f);
+}
+
+TEST(Pbrt, TransformsComposeAsInPbrt) {
+    // CTM = T(1,2,3) R(90 about z) S(2,1,1): the object point (1,0,0) -> S (2,0,0) -> R (0,2,0) -> T (1,4,3).
+    const SceneDescription d = parse(R"(WorldBegin
+AttributeBegin
+  Translate 1 2 3
+  Rotate 90 0 0 1
+  Scale 2 1 1
+  Shape "sphere"
+AttributeEnd
+Shape "sphere"
+TransformBegin
+  ConcatTransform [ 1 0 0 0  0 1 0 0  0 0 1 0  5 6 7 1 ]
+  CoordinateSystem "moved"
+TransformEnd
+CoordSysTransform "moved"
+Shape "sphere"
+Transform [ 0 1 0 0  -1 0 0 0  0 0 1 0  0 0 0 1 ]
+Shape "sphere"
+)");
+    ASSERT_EQ(d.objects.size(), 4u);
+    expect_point(apply(d.objects[0], {1, 0, 0}), {1, 4, 3});
+    EXPECT_FALSE(d.objects[1].transform);  // AttributeEnd restored the identity
+    expect_point(apply(d.objects[2], {0, 0, 0}), {5, 6, 7});  // a column-major matrix: translation last
+    expect_point(apply(d.objects[3], {1, 0, 0}), {0, 1, 0});  // columns: x -> (0, 1, 0)
+}
+
+TEST(Pbrt, CameraFromLookAtWithHandednessAndShorterAxisFov) {
+    const SceneDescription d = parse(R"(LookAt 1 2 3  1 2 10  0 1 0
+Camera "perspective" "float fov" [ 60 ]
+Film "rgb" "integer xresolution" [ 100 ] "integer yresolution" [ 200 ]
+WorldBegin
+)");
+    const auto& cam = std::get<LookAtCameraDesc>(d.camera);
+    expect_point(cam.from, {1, 2, 3});
+    expect_point(cam.to, {1, 2, 4});
+    EXPECT_FALSE(cam.right_handed);
+    // Portrait: pbrt's 60 degrees span the width; glint's fov is vertical: 2 atan(2 tan 30).
+    EXPECT_NEAR(cam.fov, 2 * std::atan(2 * std::tan(30 * M_PI / 180)) * 180 / M_PI, 1e-3);
+    const SceneDescription m = parse("Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n");
+    EXPECT_TRUE(std::get<LookAtCameraDesc>(m.camera).right_handed);
+}
+
+TEST(Pbrt, ObjectInstancesShareOneMesh) {
+    std::string mesh = "Shape \"trianglemesh\" \"point3 P\" [";
+    std::string idx;
+    for (int i = 0; i < 12; ++i) {  // 12 triangles: a mesh, not loose triangles
+        mesh += " " + std::to_string(i) + " 0 0  " + std::to_string(i) + " 1 0  " + std::to_string(i + 1) + " 0 0";
+        idx += " " + std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " + std::to_string(3 * i + 2);
+    }
+    mesh += " ] \"integer indices\" [" + idx + " ]\n";
+    const std::string text = "LookAt 0 0 -10  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nObjectBegin \"row\"\n" +
+                             mesh + "ObjectEnd\nObjectInstance \"row\"\nTranslate 0 5 0\nObjectInstance \"row\"\n"
+                             "Translate 0 5 0\nObjectInstance \"row\"\n";
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_pbrt(text, "test.pbrt", sources), {}, sources);
+    EXPECT_EQ(job.scene.meshes.size(), 1u);
+    ASSERT_EQ(job.scene.instances.size(), 3u);
+    expect_point(job.scene.instances[2].transform.to_world.apply(Point3{0, 0, 0}), {0, 10, 0});
+}
+
+TEST(Pbrt, EveryTruncationIsAnErrorOrAScene) {
+    std::ifstream in(std::filesystem::path(GLINT_SOURCE_DIR) / "scenes/pbrt/cornell-box.pbrt");
+    ASSERT_TRUE(in);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    int ok = 0, errors = 0;
+    for (std::size_t n = 0; n <= text.size(); n += 7) {
+        try {
+            parse(text.substr(0, n));
+            ++ok;
+        } catch (const SceneError&) {
+            ++errors;
+        }
+    }
+    EXPECT_GT(ok, 0);
+    EXPECT_GT(errors, 0);
+}
+
+// The Cornell box as pbrt and as glint YAML: the same shapes, materials, light and camera, so
+// the same image bit for bit (a smaller film and fewer samples than the files ask, by override).
+TEST(Pbrt, CornellBoxRendersBitIdenticalToTheYamlScene) {
+    const std::filesystem::path root(GLINT_SOURCE_DIR);
+    Overrides o;
+    o.width = 48;
+    o.height = 48;
+    o.spp = 4;
+    const auto render_file = [&](const std::filesystem::path& p) {
+        auto sources = std::make_shared<SourceFiles>();
+        const RenderJob job = build(load_scene_file(p.string(), sources), o, sources);
+        Film film(job.width, job.height);
+        render(job.scene, job.camera, *job.integrator, job.options, film);
+        return film;
+    };
+    const Film a = render_file(root / "scenes/pbrt/cornell-box.pbrt");
+    const Film b = render_file(root / "scenes/cornell-box.yaml");
+    ASSERT_EQ(a.pixels().size(), b.pixels().size());
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        EXPECT_EQ(a.pixels()[i].r, b.pixels()[i].r) << "pixel " << i;
+        EXPECT_EQ(a.pixels()[i].g, b.pixels()[i].g) << "pixel " << i;
+        EXPECT_EQ(a.pixels()[i].b, b.pixels()[i].b) << "pixel " << i;
+        sum += a.pixels()[i].r;
+    }
+    EXPECT_GT(sum, 0);  // not two black images
+}
+
+}  // namespace
+}  // namespace glint
