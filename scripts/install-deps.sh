@@ -16,6 +16,7 @@ packages=(
   libembree-dev            # the Embree backend (--accel embree) and its benchmark
   libfmt-dev               # formatting
   libopenvdb-dev libboost-dev  # grid media (smoke, clouds) read from .vdb files (its headers need Boost)
+  zlib1g-dev               # gzip-compressed PLY meshes (.ply.gz, as pbrt-v4 scenes ship them)
   python3                  # scripts/make_gltf_scene.py (the glTF test scene)
   libgtest-dev libgmock-dev
   libbenchmark-dev

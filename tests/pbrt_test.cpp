@@ -9,6 +9,7 @@
 #include <string>
 
 #include "glint/io/build.h"
+#include "glint/io/mesh_import.h"
 #include "glint/io/pbrt.h"
 #include "glint/io/scene_yaml.h"
 #include "glint/render/render.h"
@@ -134,6 +135,57 @@ TEST(Pbrt, ObjectInstancesShareOneMesh) {
     EXPECT_EQ(job.scene.meshes.size(), 1u);
     ASSERT_EQ(job.scene.instances.size(), 3u);
     expect_point(job.scene.instances[2].transform.to_world.apply(Point3{0, 0, 0}), {0, 10, 0});
+}
+
+TEST(Pbrt, CylinderAndLoopSubdivisionBecomeMeshes) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_pbrt(R"(WorldBegin
+Shape "cylinder" "float radius" 2 "float zmin" -1 "float zmax" 1
+Translate 10 0 0
+Shape "loopsubdiv" "integer levels" 2 "point3 P" [ 1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1 ]
+  "integer indices" [ 0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5 ]
+)", "test.pbrt", sources), {}, sources);
+    ASSERT_EQ(job.scene.meshes.size(), 2u);
+    EXPECT_EQ(job.scene.meshes[1].triangle_count(), 8u * 16u);
+    // A ray at height 0.3 meets the cylinder of radius 2 at x = sqrt(4 - 0.09), within the
+    // tessellation's sagitta r (1 - cos(pi / 256)) = 1.5e-4.
+    const auto hit = job.scene.intersect(Ray{{5, 0.3f, 0.2f}, {-1, 0, 0}});
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->t, 5 - std::sqrt(4 - 0.09), 2e-4);
+}
+
+// A gzip-compressed PLY (written here with the system's gzip) reads as the PLY does, from a
+// plymesh in a pbrt file too; a truncated one is an error naming the file.
+TEST(Pbrt, PlyGzReadsAsThePly) {
+    const std::filesystem::path model = std::filesystem::path(GLINT_TEST_MODEL_DIR) / "stanford-bunny.ply";
+    if (!std::filesystem::exists(model)) GTEST_SKIP() << "no " << model;
+    const auto dir = std::filesystem::temp_directory_path() / "glint_pbrt_plygz";
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(model, dir / "bunny.ply", std::filesystem::copy_options::overwrite_existing);
+    ASSERT_EQ(std::system(("gzip -kf '" + (dir / "bunny.ply").string() + "'").c_str()), 0);
+    const ImportedFile plain = import_ply(dir / "bunny.ply");
+    const ImportedFile gz = import_mesh_file(dir / "bunny.ply.gz");
+    ASSERT_EQ(gz.meshes.size(), 1u);
+    EXPECT_EQ(gz.meshes[0].positions.size(), plain.meshes[0].positions.size());
+    EXPECT_EQ(gz.meshes[0].indices, plain.meshes[0].indices);
+    EXPECT_EQ(gz.meshes[0].positions.back().x, plain.meshes[0].positions.back().x);
+    {
+        std::ofstream(dir / "scene.pbrt") << "WorldBegin\nShape \"plymesh\" \"string filename\" \"bunny.ply.gz\"\n";
+        auto sources = std::make_shared<SourceFiles>();
+        const RenderJob job = build(load_scene_file((dir / "scene.pbrt").string(), sources), {}, sources);
+        ASSERT_EQ(job.scene.meshes.size(), 1u);
+        EXPECT_EQ(job.scene.meshes[0].triangle_count(), plain.meshes[0].triangle_count());
+    }
+    // Truncated: half the compressed bytes.
+    const auto size = std::filesystem::file_size(dir / "bunny.ply.gz");
+    std::filesystem::resize_file(dir / "bunny.ply.gz", size / 2);
+    try {
+        import_mesh_file(dir / "bunny.ply.gz");
+        ADD_FAILURE() << "a truncated .ply.gz was read";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("bunny.ply.gz: byte"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Pbrt, EveryTruncationIsAnErrorOrAScene) {

@@ -10,6 +10,11 @@ std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".ply") return MeshFormat::kPly;
+    if (ext == ".gz") {  // a gzip-compressed PLY (pbrt-v4's scenes ship them)
+        std::string inner = path.stem().extension().string();
+        for (char& c : inner) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (inner == ".ply") return MeshFormat::kPly;
+    }
     if (ext == ".obj") return MeshFormat::kObj;
     if (ext == ".gltf") return MeshFormat::kGltf;
     if (ext == ".glb") return MeshFormat::kGlb;
@@ -19,7 +24,7 @@ std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
 ImportedFile import_mesh_file(const std::filesystem::path& path) {
     const auto format = mesh_format(path);
     if (!format)
-        throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .gltf, .glb)", path.string(),
+        throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .ply.gz, .gltf, .glb)", path.string(),
                                   path.extension().string()));
     switch (*format) {
         case MeshFormat::kPly: return import_ply(path);

@@ -17,6 +17,7 @@
 #include "glint/io/image_io.h"
 #include "glint/materials/metals.h"
 #include "glint/media/medium.h"
+#include "glint/shapes/subdivision.h"
 
 namespace glint {
 
@@ -1152,6 +1153,79 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
                 add_object(std::move(one), gs_.ctm);
             }
             return;
+        }
+        o.shape = InlineMeshDesc{mesh};
+        add_object(std::move(o), gs_.ctm);
+    } else if (type == "loopsubdiv") {
+        const auto P = get_floats(pl, "P", "point3", 3);
+        const auto indices = get_floats(pl, "indices", "integer", 3);
+        const int levels = get_int(pl, "levels").value_or(3);
+        check_unused(pl, what);
+        if (!P || !indices) {
+            diag_.error(t.loc, "loopsubdiv: needs \"point3 P\" and \"integer indices\"");
+            return;
+        }
+        if (levels < 0 || levels > 8) {
+            diag_.error(pl.find("levels")->loc, "loopsubdiv: levels must be in [0, 8]");
+            return;
+        }
+        const std::size_t nv = P->size() / 3;
+        std::vector<Point3> points;
+        for (std::size_t i = 0; i < nv; ++i) points.push_back({Float((*P)[3 * i]), Float((*P)[3 * i + 1]), Float((*P)[3 * i + 2])});
+        std::vector<std::uint32_t> idx;
+        for (double i : *indices) {
+            if (!(i >= 0 && i < double(nv))) {
+                diag_.error(pl.find("indices")->loc, fmt::format("loopsubdiv: vertex index {} out of range ({} vertices)", i, nv));
+                return;
+            }
+            idx.push_back(static_cast<std::uint32_t>(i));
+        }
+        if (double(idx.size()) * std::pow(4.0, levels) > 1e8) {
+            diag_.error(pl.find("levels") ? pl.find("levels")->loc : t.loc, "loopsubdiv: more than 10^8 triangles after subdivision");
+            return;
+        }
+        SubdividedMesh sub = loop_subdivide(std::move(points), std::move(idx), levels);
+        auto mesh = std::make_shared<TriangleMesh>();
+        mesh->positions = std::move(sub.positions);
+        mesh->normals = std::move(sub.normals);
+        mesh->indices = std::move(sub.indices);
+        if (gs_.reverse_orientation) {
+            for (std::size_t i = 0; i < mesh->indices.size(); i += 3) std::swap(mesh->indices[i + 1], mesh->indices[i + 2]);
+            for (Normal3& n : mesh->normals) n = -n;
+        }
+        validate_and_drop_degenerate(*mesh);
+        if (mesh->indices.empty()) return;
+        o.shape = InlineMeshDesc{mesh};
+        add_object(std::move(o), gs_.ctm);
+    } else if (type == "cylinder") {
+        // Tessellated: 256 quads around, each two triangles, with the exact radial normals.
+        const double r = get_float(pl, "radius").value_or(1), z0 = get_float(pl, "zmin").value_or(-1),
+                     z1 = get_float(pl, "zmax").value_or(1), phimax = get_float(pl, "phimax").value_or(360);
+        check_unused(pl, what);
+        if (!(r > 0) || !(z1 != z0) || !(phimax > 0 && phimax <= 360)) {
+            diag_.error(t.loc, "cylinder: radius > 0, zmin != zmax and phimax in (0, 360] needed");
+            return;
+        }
+        const int n = 256;
+        const bool closed = phimax == 360;
+        auto mesh = std::make_shared<TriangleMesh>();
+        const int columns = closed ? n : n + 1;
+        for (int i = 0; i < columns; ++i) {
+            const double phi = phimax * std::numbers::pi / 180 * i / n;
+            const Float x = Float(r * std::cos(phi)), y = Float(r * std::sin(phi));
+            const Float sign = gs_.reverse_orientation ? -1.0f : 1.0f;
+            for (const double z : {z0, z1}) {
+                mesh->positions.push_back({x, y, Float(z)});
+                mesh->normals.push_back(Normal3{Float(std::cos(phi)) * sign, Float(std::sin(phi)) * sign, 0});
+            }
+        }
+        for (int i = 0; i < n; ++i) {
+            const auto a = std::uint32_t(2 * i), b = std::uint32_t(2 * ((i + 1) % columns));
+            // Outward (for zmax > zmin): (a0, b0, b1) and (a0, b1, a1).
+            std::array<std::uint32_t, 6> q{a, b, b + 1, a, b + 1, a + 1};
+            const bool flip = gs_.reverse_orientation != (z1 < z0);
+            if (flip) std::swap(q[1], q[2]), std::swap(q[4], q[5]);
+            mesh->indices.insert(mesh->indices.end(), q.begin(), q.end());
         }
         o.shape = InlineMeshDesc{mesh};
         add_object(std::move(o), gs_.ctm);

@@ -6,8 +6,11 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
+#include <array>
 #include <fstream>
 #include <sstream>
+
+#include <zlib.h>
 
 #include <fmt/format.h>
 
@@ -336,11 +339,53 @@ ImportedFile parse_ply(const std::string& bytes, const std::string& name) {
     return PlyReader(bytes, name).read();
 }
 
+namespace {
+
+// The bytes of a gzip file (pbrt scenes ship meshes as .ply.gz), inflated by zlib; a limit on
+// the inflated size guards against a small file that inflates to exhaust memory.
+std::string gunzip(const std::string& bytes, const std::string& name) {
+    constexpr std::size_t kMaxInflated = std::size_t(8) << 30;
+    z_stream z{};
+    if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) throw IoError(fmt::format("{}: cannot start zlib", name));
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+    z.avail_in = static_cast<uInt>(std::min<std::size_t>(bytes.size(), 0xffffffffu));
+    std::string out;
+    std::array<char, 1 << 16> chunk;
+    int rc = Z_OK;
+    while (rc != Z_STREAM_END) {
+        z.next_out = reinterpret_cast<Bytef*>(chunk.data());
+        z.avail_out = static_cast<uInt>(chunk.size());
+        rc = inflate(&z, Z_NO_FLUSH);
+        if (rc != Z_OK && rc != Z_STREAM_END) {
+            const std::string why = z.msg ? z.msg : "truncated or corrupt data";
+            const auto at = z.total_in;
+            inflateEnd(&z);
+            throw IoError(fmt::format("{}: byte {}: gzip: {}", name, at, rc == Z_BUF_ERROR ? "truncated" : why));
+        }
+        out.append(chunk.data(), chunk.size() - z.avail_out);
+        if (out.size() > kMaxInflated) {
+            inflateEnd(&z);
+            throw IoError(fmt::format("{}: inflates to more than 8 GiB", name));
+        }
+        if (rc == Z_OK && z.avail_in == 0 && z.avail_out != 0) {
+            inflateEnd(&z);
+            throw IoError(fmt::format("{}: byte {}: gzip: truncated", name, bytes.size()));
+        }
+    }
+    inflateEnd(&z);
+    return out;
+}
+
+}  // namespace
+
 ImportedFile import_ply(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno)));
     std::ostringstream s;
     s << in.rdbuf();
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".gz") return parse_ply(gunzip(s.str(), path.string()), path.string());
     return parse_ply(s.str(), path.string());
 }
 
