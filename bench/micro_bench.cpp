@@ -2,9 +2,11 @@
 // Run: build/bench/glint_bench [--benchmark_repetitions=5 --benchmark_report_aggregates_only]
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <vector>
 
 #include "glint/io/build.h"
+#include "glint/io/pbrt.h"
 #include "glint/io/scene_yaml.h"
 #include "glint/render/render.h"
 #include "glint/samplers/hash.h"
@@ -96,5 +98,34 @@ BENCHMARK(BM_WhittedFig14)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace glint
+
+
+// The pbrt-v4 parser on a generated trianglemesh of 2^17 triangles (a 513 x 129 vertex grid,
+// coordinates with six digits, as exporters write them): parse only, no build. Reports MB/s.
+void BM_PbrtParseTriangleMesh(benchmark::State& state) {
+    std::string text = "WorldBegin\nShape \"trianglemesh\"\n  \"point3 P\" [\n";
+    const int nx = 513, ny = 129;
+    char buf[96];
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            std::snprintf(buf, sizeof buf, "  %.6f %.6f %.6f\n", i * 0.013579, j * 0.024681, 0.001 * ((i * 7 + j * 13) % 97));
+            text += buf;
+        }
+    text += "  ]\n  \"integer indices\" [\n";
+    for (int j = 0; j + 1 < ny; ++j)
+        for (int i = 0; i + 1 < nx; ++i) {
+            const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+            std::snprintf(buf, sizeof buf, "  %d %d %d %d %d %d\n", a, b, d, a, d, c);
+            text += buf;
+        }
+    text += "  ]\n";
+    for (auto _ : state) {
+        auto d = glint::parse_pbrt(text, "mesh.pbrt", std::make_shared<glint::SourceFiles>());
+        benchmark::DoNotOptimize(d);
+    }
+    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(text.size()));
+    state.counters["MB"] = double(text.size()) / 1e6;
+}
+BENCHMARK(BM_PbrtParseTriangleMesh)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

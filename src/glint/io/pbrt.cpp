@@ -6,7 +6,9 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <charconv>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -29,23 +31,53 @@ namespace {
 struct Token {
     enum class Kind { kWord, kNumber, kString, kOpen, kClose };
     Kind kind;
-    std::string text;  ///< a string's contents, unquoted and unescaped
+    std::string_view text;  ///< a string's contents, unquoted and unescaped; a view into the file
     double number = 0;
-    SourceLoc loc;
+    const std::string* file = nullptr;
+    int line = 0, column = 0;
+    SourceLoc loc() const { return {*file, line, column}; }
 };
 
-// Splits pbrt text into tokens; errors (an unterminated string, a stray character) go to `diag`.
-std::vector<Token> tokenize(const std::string& text, const std::string& file, Diagnostics& diag) {
-    std::vector<Token> out;
-    int line = 1;
-    std::size_t line_start = 0;
-    std::size_t i = 0;
-    const auto loc_at = [&](std::size_t pos) { return SourceLoc{file, line, static_cast<int>(pos - line_start) + 1}; };
-    while (i < text.size()) {
-        const char c = text[i];
+// Reads pbrt text a token at a time (views into `text`, which must outlive them); errors (an
+// unterminated string, a stray character) go to `diag`. Strings with escapes are unescaped into
+// `unescaped`, whose elements do not move. One token of look-ahead: no token array, so a large
+// mesh costs no more memory than its numbers.
+class Lexer {
+public:
+    Lexer(const std::string& text, const std::string* file, Diagnostics& diag, std::deque<std::string>& unescaped)
+        : base_(text.data()), n_(text.size()), file_(file), diag_(diag), unescaped_(unescaped) {
+        advance();
+    }
+    bool done() const { return !has_; }
+    const Token& peek() const { return tok_; }
+    Token next() {
+        Token t = tok_;
+        advance();
+        return t;
+    }
+
+private:
+    void advance();
+    const char* base_;
+    std::size_t n_, i_ = 0, line_start_ = 0;
+    int line_ = 1;
+    const std::string* file_;
+    Diagnostics& diag_;
+    std::deque<std::string>& unescaped_;
+    Token tok_{};
+    bool has_ = false;
+};
+
+void Lexer::advance() {
+    const char* const base = base_;
+    const std::size_t n = n_;
+    std::size_t i = i_;
+    has_ = false;
+    while (i < n) {
+        const char c = base[i];
         if (c == '\n') {
-            ++line;
-            line_start = ++i;
+            ++line_;
+            line_start_ = ++i;
             continue;
         }
         if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
@@ -53,64 +85,79 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, Di
             continue;
         }
         if (c == '#') {
-            while (i < text.size() && text[i] != '\n') ++i;
+            while (i < n && base[i] != '\n') ++i;
             continue;
         }
-        const SourceLoc loc = loc_at(i);
+        Token tok;
+        tok.file = file_;
+        tok.line = line_;
+        tok.column = static_cast<int>(i - line_start_) + 1;
         if (c == '[' || c == ']') {
-            out.push_back({c == '[' ? Token::Kind::kOpen : Token::Kind::kClose, std::string(1, c), 0, loc});
+            tok.kind = c == '[' ? Token::Kind::kOpen : Token::Kind::kClose;
+            tok.text = std::string_view(base + i, 1);
             ++i;
-            continue;
-        }
-        if (c == '"') {
-            std::string s;
-            ++i;
-            bool closed = false;
-            while (i < text.size()) {
-                const char d = text[i];
-                if (d == '"') {
-                    closed = true;
+        } else if (c == '"') {
+            const std::size_t start = ++i;
+            bool escaped = false;
+            while (i < n && base[i] != '"' && base[i] != '\n') {
+                if (base[i] == '\\' && i + 1 < n && base[i + 1] != '\n') {
+                    escaped = true;
                     ++i;
-                    break;
                 }
-                if (d == '\n') break;
-                if (d == '\\' && i + 1 < text.size()) {
-                    const char e = text[i + 1];
-                    s += e == 'n' ? '\n' : e == 't' ? '\t' : e;
-                    i += 2;
-                    continue;
-                }
-                s += d;
                 ++i;
             }
-            if (!closed) {
-                diag.error(loc, "unterminated string");
+            if (i >= n || base[i] != '"') {
+                diag_.error(tok.loc(), "unterminated string");
                 continue;
             }
-            out.push_back({Token::Kind::kString, std::move(s), 0, loc});
-            continue;
-        }
-        std::size_t j = i;
-        while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j])) && text[j] != '"' &&
-               text[j] != '[' && text[j] != ']' && text[j] != '#')
-            ++j;
-        std::string word = text.substr(i, j - i);
-        i = j;
-        if (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '-' || word[0] == '+' || word[0] == '.') {
-            char* end = nullptr;
-            const double v = std::strtod(word.c_str(), &end);
-            if (end != word.c_str() + word.size() || !std::isfinite(v)) {
-                diag.error(loc, fmt::format("'{}' is not a number", word));
-                continue;
+            tok.kind = Token::Kind::kString;
+            tok.text = std::string_view(base + start, i - start);
+            ++i;
+            if (escaped) {
+                std::string u;
+                for (std::size_t k = 0; k < tok.text.size(); ++k) {
+                    char e = tok.text[k];
+                    if (e == '\\' && k + 1 < tok.text.size()) {
+                        e = tok.text[++k];
+                        e = e == 'n' ? '\n' : e == 't' ? '\t' : e;
+                    }
+                    u += e;
+                }
+                unescaped_.push_back(std::move(u));
+                tok.text = unescaped_.back();
             }
-            out.push_back({Token::Kind::kNumber, std::move(word), v, loc});
-        } else if (std::isalpha(static_cast<unsigned char>(word[0]))) {
-            out.push_back({Token::Kind::kWord, std::move(word), 0, loc});
         } else {
-            diag.error(loc, fmt::format("unexpected '{}'", word));
+            std::size_t j = i;
+            while (j < n && base[j] != ' ' && base[j] != '\n' && base[j] != '\t' && base[j] != '\r' && base[j] != '"' &&
+                   base[j] != '[' && base[j] != ']' && base[j] != '#' && base[j] != '\f' && base[j] != '\v')
+                ++j;
+            tok.text = std::string_view(base + i, j - i);
+            i = j;
+            const char first = tok.text[0];
+            if ((first >= '0' && first <= '9') || first == '-' || first == '+' || first == '.') {
+                const char* b = tok.text.data();
+                const char* e = b + tok.text.size();
+                if (*b == '+') ++b;  // from_chars takes no plus sign
+                double v = 0;
+                const auto r = std::from_chars(b, e, v);
+                if (r.ec != std::errc() || r.ptr != e || !std::isfinite(v)) {
+                    diag_.error(tok.loc(), fmt::format("'{}' is not a number", tok.text));
+                    continue;
+                }
+                tok.kind = Token::Kind::kNumber;
+                tok.number = v;
+            } else if ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z')) {
+                tok.kind = Token::Kind::kWord;
+            } else {
+                diag_.error(tok.loc(), fmt::format("unexpected '{}'", tok.text));
+                continue;
+            }
         }
+        tok_ = tok;
+        has_ = true;
+        break;
     }
-    return out;
+    i_ = i;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -280,13 +327,7 @@ public:
 
 private:
     // token stream of one file
-    struct Stream {
-        const std::vector<Token>* tokens;
-        std::size_t pos = 0;
-        bool done() const { return pos >= tokens->size(); }
-        const Token& peek() const { return (*tokens)[pos]; }
-        const Token& next() { return (*tokens)[pos++]; }
-    };
+    using Stream = Lexer;
 
     void warn(const SourceLoc& loc, std::string message) {
         if (options_.strict) {
@@ -306,7 +347,8 @@ private:
     std::optional<int> get_int(ParamList& pl, const std::string& name);
     std::optional<bool> get_bool(ParamList& pl, const std::string& name);
     std::optional<std::string> get_string(ParamList& pl, const std::string& name);
-    std::optional<std::vector<double>> get_floats(ParamList& pl, const std::string& name, const char* type, int multiple);
+    /// The values (in the ParamList, not copied: meshes are large), or null.
+    const std::vector<double>* get_floats(ParamList& pl, const std::string& name, const char* type, int multiple);
     std::optional<Color> get_color(ParamList& pl, const std::string& name, bool illuminant);
     std::optional<TextureDesc> get_texture(ParamList& pl, const std::string& name, bool is_float, float fallback);
 
@@ -340,7 +382,8 @@ private:
     // ObjectBegin .. ObjectEnd: the objects recorded (their transforms relative to the world)
     std::map<std::string, std::vector<ObjectDesc>> instances_;
     std::optional<std::pair<std::string, SourceLoc>> defining_;
-    std::vector<std::vector<Token>> files_;  ///< keeps included files' tokens alive
+    std::deque<std::string> names_;      ///< file names the tokens point to (a deque: they do not move)
+    std::deque<std::string> unescaped_;  ///< strings with escapes, unescaped
 };
 
 constexpr int kMaxIncludeDepth = 32;
@@ -399,10 +442,10 @@ std::optional<std::string> Parser::get_string(ParamList& pl, const std::string& 
     return p->strings[0];
 }
 
-std::optional<std::vector<double>> Parser::get_floats(ParamList& pl, const std::string& name, const char* type,
+const std::vector<double>* Parser::get_floats(ParamList& pl, const std::string& name, const char* type,
                                                       int multiple) {
     Param* p = pl.find(name);
-    if (!p) return std::nullopt;
+    if (!p) return nullptr;
     p->used = true;
     const std::string t = p->type;
     const bool ok = t == type || (std::strcmp(type, "point3") == 0 && t == "point") ||
@@ -411,13 +454,13 @@ std::optional<std::vector<double>> Parser::get_floats(ParamList& pl, const std::
                     (std::strcmp(type, "float") == 0 && t == "integer");
     if (!ok) {
         diag_.error(p->loc, fmt::format("\"{}\" must be of type {}, not {}", name, type, t));
-        return std::nullopt;
+        return nullptr;
     }
     if (p->numbers.size() % static_cast<std::size_t>(multiple) != 0) {
         diag_.error(p->loc, fmt::format("\"{}\": {} values is not a multiple of {}", name, p->numbers.size(), multiple));
-        return std::nullopt;
+        return nullptr;
     }
-    return p->numbers;
+    return &p->numbers;
 }
 
 // pbrt-v4's named spectra that glint knows as metals (the rest are reported).
@@ -514,7 +557,7 @@ bool Parser::numbers(Stream& s, const Token& at, int n, std::vector<double>& out
     out.clear();
     for (int i = 0; i < n; ++i) {
         if (s.done() || s.peek().kind != Token::Kind::kNumber) {
-            diag_.error(s.done() ? at.loc : s.peek().loc,
+            diag_.error(s.done() ? at.loc() : s.peek().loc(),
                         fmt::format("{} takes {} numbers, found {}", at.text, n, i));
             return false;
         }
@@ -525,82 +568,80 @@ bool Parser::numbers(Stream& s, const Token& at, int n, std::vector<double>& out
 
 std::optional<std::string> Parser::string_arg(Stream& s, const Token& at) {
     if (s.done() || s.peek().kind != Token::Kind::kString) {
-        diag_.error(s.done() ? at.loc : s.peek().loc, fmt::format("{} needs a quoted string here", at.text));
+        diag_.error(s.done() ? at.loc() : s.peek().loc(), fmt::format("{} needs a quoted string here", at.text));
         return std::nullopt;
     }
-    return s.next().text;
+    return std::string(s.next().text);
 }
 
 ParamList Parser::params(Stream& s) {
     ParamList pl;
     while (!s.done() && s.peek().kind == Token::Kind::kString) {
-        const Token& decl = s.next();
-        std::istringstream words(decl.text);
+        const Token decl = s.next();
+        std::istringstream words{std::string(decl.text)};
         Param p;
         std::string extra;
         words >> p.type >> p.name >> extra;
-        p.loc = decl.loc;
+        p.loc = decl.loc();
+        bool ok = true;
         if (p.name.empty() || !extra.empty()) {
-            diag_.error(decl.loc, fmt::format("a parameter is declared \"type name\", not \"{}\"", decl.text));
+            diag_.error(decl.loc(), fmt::format("a parameter is declared \"type name\", not \"{}\"", decl.text));
+            ok = false;
         } else if (std::find(kParamTypes.begin(), kParamTypes.end(), p.type) == kParamTypes.end()) {
             std::vector<std::string> types(kParamTypes.begin(), kParamTypes.end());
             const std::string guess = closest_match(p.type, types);
-            diag_.error(decl.loc, fmt::format("unknown parameter type '{}'{}", p.type,
-                                              guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess)));
-            p.name.clear();
+            diag_.error(decl.loc(), fmt::format("unknown parameter type '{}'{}", p.type,
+                                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess)));
+            ok = false;
         }
-        // The value: one token or a bracketed list.
-        std::vector<const Token*> values;
         if (s.done()) {
-            diag_.error(decl.loc, fmt::format("parameter \"{}\" has no value", decl.text));
+            diag_.error(decl.loc(), fmt::format("parameter \"{}\" has no value", decl.text));
             break;
         }
-        if (s.peek().kind == Token::Kind::kOpen) {
-            const Token& open = s.next();
-            while (!s.done() && s.peek().kind != Token::Kind::kClose) {
-                if (s.peek().kind == Token::Kind::kOpen || s.peek().kind == Token::Kind::kWord) break;
-                values.push_back(&s.next());
+        // A value is a string for these types (a spectrum: a name, or numbers).
+        int count = 0;
+        bool stringy = p.type == "string" || p.type == "texture" || p.type == "bool";
+        const auto take = [&](const Token& v) {
+            if (count++ == 0 && p.type == "spectrum") stringy = v.kind == Token::Kind::kString;
+            if (!ok) return;
+            if (stringy != (v.kind == Token::Kind::kString)) {
+                diag_.error(v.loc(), fmt::format("\"{}\": expected {}, got '{}'", decl.text,
+                                                 stringy ? "quoted strings" : "numbers", v.text));
+                ok = false;
+            } else if (p.type == "bool") {
+                if (v.text != "true" && v.text != "false") {
+                    diag_.error(v.loc(), fmt::format("\"{}\": expected \"true\" or \"false\"", decl.text));
+                    ok = false;
+                }
+                p.bools.push_back(v.text == "true");
+            } else if (stringy) {
+                p.strings.emplace_back(v.text);
+            } else {
+                p.numbers.push_back(v.number);
             }
+        };
+        if (s.peek().kind == Token::Kind::kOpen) {
+            const Token open = s.next();
+            while (!s.done() && (s.peek().kind == Token::Kind::kNumber || s.peek().kind == Token::Kind::kString))
+                take(s.next());
             if (s.done() || s.peek().kind != Token::Kind::kClose) {
-                diag_.error(open.loc, "'[' without a matching ']'");
+                diag_.error(open.loc(), "'[' without a matching ']'");
                 continue;
             }
             s.next();
         } else if (s.peek().kind == Token::Kind::kNumber || s.peek().kind == Token::Kind::kString) {
-            values.push_back(&s.next());
+            take(s.next());
         } else {
-            diag_.error(s.peek().loc, fmt::format("parameter \"{}\" has no value", decl.text));
+            diag_.error(s.peek().loc(), fmt::format("parameter \"{}\" has no value", decl.text));
             continue;
         }
-        const bool stringy = p.type == "string" || p.type == "texture" || p.type == "bool" ||
-                             (p.type == "spectrum" && !values.empty() && values[0]->kind == Token::Kind::kString);
-        for (const Token* v : values) {
-            if (stringy != (v->kind == Token::Kind::kString)) {
-                diag_.error(v->loc, fmt::format("\"{}\": expected {}, got '{}'", decl.text,
-                                                stringy ? "quoted strings" : "numbers", v->text));
-                p.name.clear();
-                break;
-            }
-            if (p.type == "bool") {
-                if (v->text != "true" && v->text != "false") {
-                    diag_.error(v->loc, fmt::format("\"{}\": expected \"true\" or \"false\"", decl.text));
-                    p.name.clear();
-                    break;
-                }
-                p.bools.push_back(v->text == "true");
-            } else if (stringy) {
-                p.strings.push_back(v->text);
-            } else {
-                p.numbers.push_back(v->number);
-            }
+        if (count == 0) {
+            diag_.error(decl.loc(), fmt::format("parameter \"{}\" has an empty value", decl.text));
+            ok = false;
         }
-        if (values.empty()) {
-            diag_.error(decl.loc, fmt::format("parameter \"{}\" has an empty value", decl.text));
-            p.name.clear();
-        }
-        if (p.name.empty()) continue;
+        if (!ok) continue;
         if (pl.find(p.name)) {
-            diag_.error(decl.loc, fmt::format("parameter \"{}\" given twice", p.name));
+            diag_.error(decl.loc(), fmt::format("parameter \"{}\" given twice", p.name));
             continue;
         }
         pl.params.push_back(std::move(p));
@@ -624,26 +665,23 @@ void Parser::run_file(const std::string& text, const std::string& path, int dept
         dir_set_ = true;
     }
     sources_->add(path, text);
-    files_.push_back(tokenize(text, path, diag_));
-    Stream s{&files_.back()};
-    // files_ may reallocate on Include: keep the tokens by index, not by reference.
-    const std::size_t index = files_.size() - 1;
+    names_.push_back(path);
+    // The tokens view into `text`, which outlives this call (parameters keep copies).
+    Lexer s(text, &names_.back(), diag_, unescaped_);
     while (!s.done()) {
-        s.tokens = &files_[index];
-        const Token& t = s.next();
+        const Token t = s.next();
         if (t.kind != Token::Kind::kWord) {
-            diag_.error(t.loc, fmt::format("expected a directive, found '{}'", t.text));
+            diag_.error(t.loc(), fmt::format("expected a directive, found '{}'", t.text));
             // Skip to the next word.
             while (!s.done() && s.peek().kind != Token::Kind::kWord) s.next();
             continue;
         }
-        const Token copy = t;
-        directive(s, copy, depth);
+        directive(s, t, depth);
     }
 }
 
 void Parser::directive(Stream& s, const Token& t, int depth) {
-    const std::string& name = t.text;
+    const std::string name(t.text);
     std::vector<double> v;
     const auto concat = [&](const M4& m) { gs_.ctm = gs_.ctm * m; };
     if (name == "Translate") {
@@ -653,7 +691,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
     } else if (name == "Rotate") {
         if (numbers(s, t, 4, v)) {
             if (!(v[1] * v[1] + v[2] * v[2] + v[3] * v[3] > 0))
-                diag_.error(t.loc, "Rotate: the axis is zero");
+                diag_.error(t.loc(), "Rotate: the axis is zero");
             else
                 concat(rotate(v[0], v[1], v[2], v[3]));
         }
@@ -661,7 +699,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         if (numbers(s, t, 9, v)) {
             const auto m = look_at({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]});
             if (!m)
-                diag_.error(t.loc, "LookAt: the eye is at the target, or up is parallel to the view direction");
+                diag_.error(t.loc(), "LookAt: the eye is at the target, or up is parallel to the view direction");
             else
                 concat(*m);
         }
@@ -676,7 +714,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         }
         if (bracket) {
             if (!s.done() && s.peek().kind == Token::Kind::kClose) s.next();
-            else diag_.error(t.loc, fmt::format("{}: '[' without a matching ']'", name));
+            else diag_.error(t.loc(), fmt::format("{}: '[' without a matching ']'", name));
         }
     } else if (name == "CoordinateSystem") {
         if (auto n = string_arg(s, t)) coordinate_systems_[*n] = gs_.ctm;
@@ -684,26 +722,26 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         if (auto n = string_arg(s, t)) {
             const auto it = coordinate_systems_.find(*n);
             if (it == coordinate_systems_.end())
-                diag_.error(t.loc, fmt::format("CoordSysTransform: no coordinate system \"{}\"", *n));
+                diag_.error(t.loc(), fmt::format("CoordSysTransform: no coordinate system \"{}\"", *n));
             else
                 gs_.ctm = it->second;
         }
     } else if (name == "ReverseOrientation") {
         gs_.reverse_orientation = !gs_.reverse_orientation;
     } else if (name == "AttributeBegin") {
-        stack_.push_back({gs_, t.loc});
+        stack_.push_back({gs_, t.loc()});
     } else if (name == "AttributeEnd") {
         if (stack_.empty()) {
-            diag_.error(t.loc, "AttributeEnd without AttributeBegin");
+            diag_.error(t.loc(), "AttributeEnd without AttributeBegin");
         } else {
             gs_ = stack_.back().first;
             stack_.pop_back();
         }
     } else if (name == "TransformBegin") {
-        transform_stack_.push_back({gs_.ctm, t.loc});
+        transform_stack_.push_back({gs_.ctm, t.loc()});
     } else if (name == "TransformEnd") {
         if (transform_stack_.empty()) {
-            diag_.error(t.loc, "TransformEnd without TransformBegin");
+            diag_.error(t.loc(), "TransformEnd without TransformBegin");
         } else {
             gs_.ctm = transform_stack_.back().first;
             transform_stack_.pop_back();
@@ -712,20 +750,20 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         const auto file = string_arg(s, t);
         if (!file) return;
         if (depth >= kMaxIncludeDepth) {
-            diag_.error(t.loc, fmt::format("{} nested deeper than {} files", name, kMaxIncludeDepth));
+            diag_.error(t.loc(), fmt::format("{} nested deeper than {} files", name, kMaxIncludeDepth));
             return;
         }
         const std::filesystem::path p = std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : dir_ / *file;
         std::ifstream in(p, std::ios::binary);
         if (!in) {
-            diag_.error(t.loc, fmt::format("{}: cannot open '{}': {}", name, p.string(), std::strerror(errno)));
+            diag_.error(t.loc(), fmt::format("{}: cannot open '{}': {}", name, p.string(), std::strerror(errno)));
             return;
         }
         std::ostringstream text;
         text << in.rdbuf();
         run_file(text.str(), p.string(), depth + 1);
     } else if (name == "WorldBegin") {
-        if (world_) diag_.error(t.loc, "WorldBegin given twice");
+        if (world_) diag_.error(t.loc(), "WorldBegin given twice");
         world_ = true;
         gs_.ctm = M4{};
         coordinate_systems_["world"] = gs_.ctm;
@@ -759,7 +797,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
                 }
             if (*type != "independent" && *type != "stratified" && *type != "sobol" && *type != "zsobol" &&
                 *type != "paddedsobol" && *type != "halton" && *type != "pmj02bn")
-                diag_.error(t.loc, fmt::format("unknown sampler \"{}\"", *type));
+                diag_.error(t.loc(), fmt::format("unknown sampler \"{}\"", *type));
         } else if (name == "Integrator") {
             d_.integrator.kind = IntegratorKind::kPath;
             d_.integrator.max_depth.value = 5;  // pbrt's default
@@ -768,14 +806,14 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
                 else d_.integrator.max_depth = {*n, pl.find("maxdepth")->loc};
             }
             if (*type != "path" && *type != "volpath")
-                warn(t.loc, fmt::format("integrator \"{}\" not supported; using path", *type));
+                warn(t.loc(), fmt::format("integrator \"{}\" not supported; using path", *type));
             for (Param& p : pl.params)
                 if (!p.used) {
                     p.used = true;
                     warn(p.loc, fmt::format("Integrator: parameter \"{}\" ignored", p.name));
                 }
         } else if (name == "PixelFilter") {
-            const auto radius = get_floats(pl, "radius", "float", 1).value_or(std::vector<double>{});
+            get_floats(pl, "radius", "float", 1);  // pbrt-v3's; the filters below take x/yradius
             const auto xr = get_float(pl, "xradius"), yr = get_float(pl, "yradius");
             if (*type == "box") {
                 d_.film.filter = FilterDesc{FilterType::kBox, float(xr.value_or(0.5)), 0.5f};
@@ -785,12 +823,11 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             } else if (*type == "triangle") {
                 d_.film.filter = FilterDesc{FilterType::kTent, float(xr.value_or(2)), 0.5f};
             } else {
-                warn(t.loc, fmt::format("pixel filter \"{}\" not supported; using gaussian", *type));
+                warn(t.loc(), fmt::format("pixel filter \"{}\" not supported; using gaussian", *type));
                 for (Param& p : pl.params) p.used = true;
                 d_.film.filter = FilterDesc{FilterType::kGaussian, 1.5f, 0.5f};
             }
             (void)yr;
-            (void)radius;
             check_unused(pl, "PixelFilter");
         } else if (name == "Shape") {
             shape(t, *type, std::move(pl));
@@ -801,12 +838,12 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         } else if (name == "Material") {
             if (auto m = material(t, *type, pl)) {
                 const std::string n = fmt::format("pbrt-material-{}", ++material_count_);
-                d_.materials.push_back({n, *m, t.loc});
+                d_.materials.push_back({n, *m, t.loc()});
                 gs_.material = n;
             }
             check_unused(pl, "Material \"" + *type + "\"");
         } else {  // Accelerator
-            warn(t.loc, "Accelerator ignored (glint builds its own BVH)");
+            warn(t.loc(), "Accelerator ignored (glint builds its own BVH)");
         }
     } else if (name == "MakeNamedMaterial") {
         const auto n = string_arg(s, t);
@@ -814,12 +851,12 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         if (!n) return;
         const auto type = get_string(pl, "type");
         if (!type) {
-            diag_.error(t.loc, fmt::format("MakeNamedMaterial \"{}\": no \"string type\"", *n));
+            diag_.error(t.loc(), fmt::format("MakeNamedMaterial \"{}\": no \"string type\"", *n));
             return;
         }
         if (auto m = material(t, *type, pl)) {
             const std::string inner = fmt::format("pbrt-named-{}", ++material_count_);
-            d_.materials.push_back({inner, *m, t.loc});
+            d_.materials.push_back({inner, *m, t.loc()});
             named_materials_[*n] = inner;
         }
         check_unused(pl, "MakeNamedMaterial \"" + *n + "\"");
@@ -830,7 +867,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
                 std::vector<std::string> names;
                 for (const auto& [k, _] : named_materials_) names.push_back(k);
                 const std::string guess = closest_match(*n, names);
-                diag_.error(t.loc, fmt::format("unknown named material \"{}\"{}", *n,
+                diag_.error(t.loc(), fmt::format("unknown named material \"{}\"{}", *n,
                                                guess.empty() ? "" : fmt::format("; did you mean \"{}\"?", guess)));
             } else {
                 gs_.material = it->second;
@@ -850,21 +887,21 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         const auto inside = string_arg(s, t);
         if (!inside) return;
         std::string outside = *inside;
-        if (!s.done() && s.peek().kind == Token::Kind::kString) outside = s.next().text;
+        if (!s.done() && s.peek().kind == Token::Kind::kString) outside = std::string(s.next().text);
         for (const std::string& m : {*inside, outside})
-            if (!m.empty() && !media_.count(m)) diag_.error(t.loc, fmt::format("MediumInterface: unknown medium \"{}\"", m));
+            if (!m.empty() && !media_.count(m)) diag_.error(t.loc(), fmt::format("MediumInterface: unknown medium \"{}\"", m));
         gs_.inside = *inside;
         gs_.outside = outside;
     } else if (name == "ObjectBegin") {
         if (const auto n = string_arg(s, t)) {
-            if (defining_) diag_.error(t.loc, "ObjectBegin inside another ObjectBegin");
-            stack_.push_back({gs_, t.loc});
-            defining_ = {*n, t.loc};
+            if (defining_) diag_.error(t.loc(), "ObjectBegin inside another ObjectBegin");
+            stack_.push_back({gs_, t.loc()});
+            defining_ = {*n, t.loc()};
             instances_[*n];
         }
     } else if (name == "ObjectEnd") {
         if (!defining_) {
-            diag_.error(t.loc, "ObjectEnd without ObjectBegin");
+            diag_.error(t.loc(), "ObjectEnd without ObjectBegin");
         } else {
             defining_.reset();
             if (!stack_.empty()) {
@@ -876,11 +913,11 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         if (const auto n = string_arg(s, t)) {
             const auto it = instances_.find(*n);
             if (it == instances_.end()) {
-                diag_.error(t.loc, fmt::format("ObjectInstance: no object \"{}\"", *n));
+                diag_.error(t.loc(), fmt::format("ObjectInstance: no object \"{}\"", *n));
             } else {
                 for (const ObjectDesc& o : it->second) {
                     ObjectDesc copy = o;
-                    copy.loc = t.loc;
+                    copy.loc = t.loc();
                     M4 place = gs_.ctm;
                     if (o.transform) {
                         M4 inner;
@@ -894,22 +931,22 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         }
     } else if (name == "ColorSpace") {
         if (const auto n = string_arg(s, t))
-            if (*n != "srgb") warn(t.loc, fmt::format("color space \"{}\": glint renders in linear sRGB; colours used as given", *n));
+            if (*n != "srgb") warn(t.loc(), fmt::format("color space \"{}\": glint renders in linear sRGB; colours used as given", *n));
     } else if (name == "Option") {
         ParamList pl = params(s);
         for (Param& p : pl.params) warn(p.loc, fmt::format("Option \"{}\" ignored", p.name));
     } else if (name == "Attribute") {
         const auto target = string_arg(s, t);
         ParamList pl = params(s);
-        if (target) warn(t.loc, fmt::format("Attribute \"{}\": default parameters are not supported; ignored", *target));
+        if (target) warn(t.loc(), fmt::format("Attribute \"{}\": default parameters are not supported; ignored", *target));
     } else if (name == "TransformTimes" || name == "ActiveTransform") {
-        warn(t.loc, fmt::format("{}: motion blur is not supported; ignored", name));
+        warn(t.loc(), fmt::format("{}: motion blur is not supported; ignored", name));
         if (name == "TransformTimes") numbers(s, t, 2, v);
         else if (!s.done() && s.peek().kind == Token::Kind::kWord) s.next();
     } else {
         std::vector<std::string> names(kDirectives.begin(), kDirectives.end());
         const std::string guess = closest_match(name, names);
-        diag_.error(t.loc, fmt::format("unknown directive '{}'{}", name,
+        diag_.error(t.loc(), fmt::format("unknown directive '{}'{}", name,
                                        guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess)));
         // Skip its arguments.
         while (!s.done() && s.peek().kind != Token::Kind::kWord) s.next();
@@ -920,7 +957,7 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     camera_seen_ = true;
     const auto world_from_camera = gs_.ctm.inverse();
     if (!world_from_camera) {
-        diag_.error(t.loc, "Camera: the current transform is singular");
+        diag_.error(t.loc(), "Camera: the current transform is singular");
         return;
     }
     coordinate_systems_["camera"] = *world_from_camera;
@@ -934,7 +971,7 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     // mirrored in glint's left-handed look-at frame: the camera is right-handed then.
     cam.right_handed = c.det3() < 0;
     const float fov = float(get_float(pl, "fov").value_or(90));
-    if (!(fov > 0 && fov < 180)) diag_.error(pl.find("fov") ? pl.find("fov")->loc : t.loc, "fov must be in (0, 180)");
+    if (!(fov > 0 && fov < 180)) diag_.error(pl.find("fov") ? pl.find("fov")->loc : t.loc(), "fov must be in (0, 180)");
     cam.fov = fov;  // on the shorter image axis: turned into glint's vertical fov in finish()
     cam.aperture_radius = float(get_float(pl, "lensradius").value_or(0));
     if (auto f = get_float(pl, "focaldistance")) cam.focus_distance = float(*f);
@@ -946,23 +983,23 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     for (const char* ignored : {"shutteropen", "shutterclose"})
         if (get_float(pl, ignored)) warn(pl.find(ignored)->loc, fmt::format("\"{}\" ignored (no motion blur)", ignored));
     if (type == "orthographic") {
-        warn(t.loc, "orthographic camera not supported; using a perspective camera of fov 30 from the same place");
+        warn(t.loc(), "orthographic camera not supported; using a perspective camera of fov 30 from the same place");
         cam.fov = 30;
         for (Param& p : pl.params) p.used = true;
     } else if (type != "perspective") {
-        warn(t.loc, fmt::format("camera \"{}\" not supported; using perspective", type));
+        warn(t.loc(), fmt::format("camera \"{}\" not supported; using perspective", type));
         for (Param& p : pl.params) p.used = true;
     }
     check_unused(pl, "Camera \"" + type + "\"");
     d_.camera = cam;
-    if (!gs_.outside.empty()) d_.medium = Located<std::string>{gs_.outside, t.loc};
+    if (!gs_.outside.empty()) d_.medium = Located<std::string>{gs_.outside, t.loc()};
 }
 
 void Parser::film(const Token& t, const std::string& type, ParamList pl) {
     if (type != "rgb" && type != "gbuffer" && type != "spectral")
-        diag_.error(t.loc, fmt::format("unknown film \"{}\"", type));
-    d_.film.width = {1280, t.loc};
-    d_.film.height = {720, t.loc};
+        diag_.error(t.loc(), fmt::format("unknown film \"{}\"", type));
+    d_.film.width = {1280, t.loc()};
+    d_.film.height = {720, t.loc()};
     if (auto x = get_int(pl, "xresolution")) d_.film.width = {*x, pl.find("xresolution")->loc};
     if (auto y = get_int(pl, "yresolution")) d_.film.height = {*y, pl.find("yresolution")->loc};
     if (auto f = get_string(pl, "filename")) d_.film.filename = {*f, pl.find("filename")->loc};
@@ -1021,11 +1058,11 @@ std::string Parser::material_for_shape() {
 
 void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
     ObjectDesc o;
-    o.loc = t.loc;
-    o.material = MaterialRef{material_for_shape(), t.loc};
+    o.loc = t.loc();
+    o.material = MaterialRef{material_for_shape(), t.loc()};
     if (!gs_.inside.empty() || !gs_.outside.empty()) {
-        o.interior = Located<std::string>{gs_.inside.empty() ? "none" : gs_.inside, t.loc};
-        o.exterior = Located<std::string>{gs_.outside.empty() ? "none" : gs_.outside, t.loc};
+        o.interior = Located<std::string>{gs_.inside.empty() ? "none" : gs_.inside, t.loc()};
+        o.exterior = Located<std::string>{gs_.outside.empty() ? "none" : gs_.outside, t.loc()};
     }
     for (const char* ignored : {"alpha", "emissionfilename"})
         if (Param* p = pl.find(ignored)) {
@@ -1038,10 +1075,10 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         for (const char* partial : {"zmin", "zmax", "phimax"})
             if (get_float(pl, partial)) warn(pl.find(partial)->loc, fmt::format("\"{}\": partial spheres not supported; a whole sphere", partial));
         if (!(r > 0)) {
-            diag_.error(t.loc, "sphere: radius must be positive");
+            diag_.error(t.loc(), "sphere: radius must be positive");
             return;
         }
-        if (gs_.reverse_orientation && gs_.area_light) warn(t.loc, "ReverseOrientation on an emitting sphere: glint's sphere emits outwards");
+        if (gs_.reverse_orientation && gs_.area_light) warn(t.loc(), "ReverseOrientation on an emitting sphere: glint's sphere emits outwards");
         o.shape = Sphere{{0, 0, 0}, Float(r)};
         check_unused(pl, what);
         add_object(std::move(o), gs_.ctm);
@@ -1050,7 +1087,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         if (get_float(pl, "innerradius").value_or(0) != 0) warn(pl.find("innerradius")->loc, "innerradius not supported; a full disk");
         if (get_float(pl, "phimax")) warn(pl.find("phimax")->loc, "phimax not supported; a full disk");
         if (!(r > 0)) {
-            diag_.error(t.loc, "disk: radius must be positive");
+            diag_.error(t.loc(), "disk: radius must be positive");
             return;
         }
         o.shape = Disk{{0, 0, Float(h)}, Normal3{0, 0, gs_.reverse_orientation ? -1.0f : 1.0f}, Float(r)};
@@ -1059,7 +1096,8 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
     } else if (type == "trianglemesh" || type == "bilinearmesh") {
         const bool bilinear = type == "bilinearmesh";
         const auto P = get_floats(pl, "P", "point3", 3);
-        auto indices = get_floats(pl, "indices", "integer", bilinear ? 4 : 3);
+        const std::vector<double>* indices = get_floats(pl, "indices", "integer", bilinear ? 4 : 3);
+        std::vector<double> implied;  // indices 0, 1, 2 (3) when a lone face leaves them out
         const auto N = get_floats(pl, "N", "normal3", 3);
         const auto uv = get_floats(pl, "uv", "point2", 2);
         for (const char* ignored : {"S", "faceIndices"})
@@ -1069,21 +1107,21 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             }
         check_unused(pl, what);
         if (!P) {
-            diag_.error(t.loc, fmt::format("{}: no \"point3 P\"", type));
+            diag_.error(t.loc(), fmt::format("{}: no \"point3 P\"", type));
             return;
         }
         const std::size_t nv = P->size() / 3, per = bilinear ? 4 : 3;
         if (!indices) {
             if (nv != per) {
-                diag_.error(t.loc, fmt::format("{}: \"indices\" may be left out only with {} vertices", type, per));
+                diag_.error(t.loc(), fmt::format("{}: \"indices\" may be left out only with {} vertices", type, per));
                 return;
             }
-            indices = std::vector<double>(per);
-            for (std::size_t i = 0; i < per; ++i) (*indices)[i] = double(i);
+            for (std::size_t i = 0; i < per; ++i) implied.push_back(double(i));
+            indices = &implied;
         }
         for (double i : *indices)
             if (!(i >= 0 && i < double(nv))) {
-                diag_.error(pl.find("indices") ? pl.find("indices")->loc : t.loc,
+                diag_.error(pl.find("indices") ? pl.find("indices")->loc : t.loc(),
                             fmt::format("{}: vertex index {} out of range ({} vertices)", type, i, nv));
                 return;
             }
@@ -1140,7 +1178,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             }
         }
         const std::size_t dropped = validate_and_drop_degenerate(*mesh);
-        if (dropped > 0) warn(t.loc, fmt::format("{}: dropped {} degenerate triangle{}", type, dropped, dropped == 1 ? "" : "s"));
+        if (dropped > 0) warn(t.loc(), fmt::format("{}: dropped {} degenerate triangle{}", type, dropped, dropped == 1 ? "" : "s"));
         if (mesh->indices.empty()) return;
         // A few triangles without attributes become glint's triangle shapes, as the YAML reader's
         // polygons do; larger meshes are meshes (a BVH of their own, instanced).
@@ -1162,7 +1200,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         const int levels = get_int(pl, "levels").value_or(3);
         check_unused(pl, what);
         if (!P || !indices) {
-            diag_.error(t.loc, "loopsubdiv: needs \"point3 P\" and \"integer indices\"");
+            diag_.error(t.loc(), "loopsubdiv: needs \"point3 P\" and \"integer indices\"");
             return;
         }
         if (levels < 0 || levels > 8) {
@@ -1181,7 +1219,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             idx.push_back(static_cast<std::uint32_t>(i));
         }
         if (double(idx.size()) * std::pow(4.0, levels) > 1e8) {
-            diag_.error(pl.find("levels") ? pl.find("levels")->loc : t.loc, "loopsubdiv: more than 10^8 triangles after subdivision");
+            diag_.error(pl.find("levels") ? pl.find("levels")->loc : t.loc(), "loopsubdiv: more than 10^8 triangles after subdivision");
             return;
         }
         SubdividedMesh sub = loop_subdivide(std::move(points), std::move(idx), levels);
@@ -1203,7 +1241,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
                      z1 = get_float(pl, "zmax").value_or(1), phimax = get_float(pl, "phimax").value_or(360);
         check_unused(pl, what);
         if (!(r > 0) || !(z1 != z0) || !(phimax > 0 && phimax <= 360)) {
-            diag_.error(t.loc, "cylinder: radius > 0, zmin != zmax and phimax in (0, 360] needed");
+            diag_.error(t.loc(), "cylinder: radius > 0, zmin != zmax and phimax in (0, 360] needed");
             return;
         }
         const int n = 256;
@@ -1238,17 +1276,17 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             }
         check_unused(pl, what);
         if (!file) {
-            diag_.error(t.loc, "plymesh: no \"string filename\"");
+            diag_.error(t.loc(), "plymesh: no \"string filename\"");
             return;
         }
-        if (gs_.reverse_orientation && gs_.area_light) warn(t.loc, "ReverseOrientation on an emitting plymesh is not applied");
+        if (gs_.reverse_orientation && gs_.area_light) warn(t.loc(), "ReverseOrientation on an emitting plymesh is not applied");
         MeshFileDesc f;
         f.file = {*file, pl.find("filename")->loc};
         o.shape = f;
         o.material_given = true;
         add_object(std::move(o), gs_.ctm);
     } else {
-        warn(t.loc, fmt::format("shape \"{}\" not supported; left out", type));
+        warn(t.loc(), fmt::format("shape \"{}\" not supported; left out", type));
         for (Param& p : pl.params) p.used = true;
     }
 }
@@ -1293,7 +1331,7 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         m.kind = K::kConductor;
         const std::string prefix = type == "coatedconductor" ? "conductor." : "";
         if (type == "coatedconductor") {
-            warn(t.loc, "coatedconductor approximated by its conductor (no coat)");
+            warn(t.loc(), "coatedconductor approximated by its conductor (no coat)");
             ignore({"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta", "thickness",
                     "albedo", "g", "maxdepth", "nsamples"}, "ignored (no coat)");
         }
@@ -1327,13 +1365,13 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
     } else if (type == "interface") {
         m.kind = K::kInterface;
     } else if (type == "diffusetransmission") {
-        warn(t.loc, "diffusetransmission approximated by diffuse reflection (its \"reflectance\")");
+        warn(t.loc(), "diffusetransmission approximated by diffuse reflection (its \"reflectance\")");
         m.kind = K::kDiffuse;
         m.color = get_texture(pl, "reflectance", false, 0.25f).value_or(TextureDesc{});
         if (!pl.find("reflectance")) m.color.value = Color{0.25f};
         ignore({"transmittance", "scale"}, "ignored");
     } else if (type == "mix") {
-        warn(t.loc, "mix material approximated by the first of its two materials");
+        warn(t.loc(), "mix material approximated by the first of its two materials");
         Param* mats = pl.find("materials");
         if (mats) mats->used = true;
         ignore({"amount"}, "ignored");
@@ -1347,10 +1385,10 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
             diag_.error(mats->loc, fmt::format("mix: unknown material \"{}\"", mats->strings[0]));
             return std::nullopt;
         }
-        diag_.error(t.loc, "mix: needs \"string materials\" [ \"a\" \"b\" ]");
+        diag_.error(t.loc(), "mix: needs \"string materials\" [ \"a\" \"b\" ]");
         return std::nullopt;
     } else {
-        warn(t.loc, fmt::format("material \"{}\" not supported; using diffuse 0.5", type));
+        warn(t.loc(), fmt::format("material \"{}\" not supported; using diffuse 0.5", type));
         for (Param& p : pl.params) p.used = true;
         m.kind = K::kDiffuse;
         m.color.value = Color{0.5f};
@@ -1381,7 +1419,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         const D3 wf = gs_.ctm.point(f[0], f[1], f[2]), wt = gs_.ctm.point(to[0], to[1], to[2]);
         const D3 dir = sub(wt, wf);
         if (!(len3(dir) > 0)) {
-            diag_.error(t.loc, "spot light: from and to are the same point");
+            diag_.error(t.loc(), "spot light: from and to are the same point");
             return;
         }
         const D3 u = unit3(dir);
@@ -1394,7 +1432,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         const D3 f = pt("from", {0, 0, 0}), to = pt("to", {0, 0, 1});
         const D3 dir = gs_.ctm.vector(to[0] - f[0], to[1] - f[1], to[2] - f[2]);
         if (!(len3(dir) > 0)) {
-            diag_.error(t.loc, "distant light: from and to are the same point");
+            diag_.error(t.loc(), "distant light: from and to are the same point");
             return;
         }
         const D3 u = unit3(dir);
@@ -1423,7 +1461,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
             warn(p->loc, "\"portal\" ignored");
         }
     } else {
-        warn(t.loc, fmt::format("light \"{}\" not supported; left out", type));
+        warn(t.loc(), fmt::format("light \"{}\" not supported; left out", type));
         for (Param& p : pl.params) p.used = true;
     }
     check_unused(pl, "LightSource \"" + type + "\"");
@@ -1431,7 +1469,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
 
 void Parser::area_light(const Token& t, const std::string& type, ParamList pl) {
     if (type != "diffuse") {
-        warn(t.loc, fmt::format("area light \"{}\" not supported; the shapes do not emit", type));
+        warn(t.loc(), fmt::format("area light \"{}\" not supported; the shapes do not emit", type));
         for (Param& p : pl.params) p.used = true;
         return;
     }
@@ -1448,13 +1486,13 @@ void Parser::area_light(const Token& t, const std::string& type, ParamList pl) {
     }
     check_unused(pl, "AreaLightSource");
     gs_.area_light = e;
-    gs_.area_light_loc = t.loc;
+    gs_.area_light_loc = t.loc();
 }
 
 void Parser::texture(const Token& t, const std::string& name, const std::string& kind, const std::string& type,
                      ParamList pl) {
     if (kind != "spectrum" && kind != "float" && kind != "color" && kind != "rgb") {
-        diag_.error(t.loc, fmt::format("Texture \"{}\": the kind is \"spectrum\" or \"float\", not \"{}\"", name, kind));
+        diag_.error(t.loc(), fmt::format("Texture \"{}\": the kind is \"spectrum\" or \"float\", not \"{}\"", name, kind));
         return;
     }
     const bool is_float = kind == "float";
@@ -1472,7 +1510,7 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
         e.desc.kind = K::kImage;
         const auto file = get_string(pl, "filename");
         if (!file) {
-            diag_.error(t.loc, fmt::format("Texture \"{}\": imagemap needs \"string filename\"", name));
+            diag_.error(t.loc(), fmt::format("Texture \"{}\": imagemap needs \"string filename\"", name));
             return;
         }
         e.desc.filename = {*file, pl.find("filename")->loc};
@@ -1516,9 +1554,9 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
         if (auto dim = get_int(pl, "dimension"); dim && *dim != 3)
             warn(pl.find("dimension")->loc, "2D checkerboard rendered as glint's 3D checker");
         else if (!dim)
-            warn(t.loc, "2D checkerboard rendered as glint's 3D checker");
+            warn(t.loc(), "2D checkerboard rendered as glint's 3D checker");
     } else {
-        warn(t.loc, fmt::format("texture \"{}\" not supported; using a constant 0.5", type));
+        warn(t.loc(), fmt::format("texture \"{}\" not supported; using a constant 0.5", type));
         for (Param& p : pl.params) p.used = true;
         e.desc.kind = K::kConstant;
         e.desc.value = Color{0.5f};
@@ -1530,14 +1568,14 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
 void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
     const auto type = get_string(pl, "type");
     if (!type) {
-        diag_.error(t.loc, fmt::format("MakeNamedMedium \"{}\": no \"string type\"", name));
+        diag_.error(t.loc(), fmt::format("MakeNamedMedium \"{}\": no \"string type\"", name));
         return;
     }
     media_.insert(name);
     if (*type != "homogeneous") {
-        warn(t.loc, fmt::format("medium \"{}\" of type \"{}\" not supported; treated as empty", name, *type));
+        warn(t.loc(), fmt::format("medium \"{}\" of type \"{}\" not supported; treated as empty", name, *type));
         for (Param& p : pl.params) p.used = true;
-        d_.media.push_back({name, MediumDesc{}, t.loc});
+        d_.media.push_back({name, MediumDesc{}, t.loc()});
         return;
     }
     MediumDesc m;
@@ -1552,7 +1590,7 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
         warn(p->loc, "named scattering presets are not known to glint; using sigma_a and sigma_s");
     }
     check_unused(pl, "MakeNamedMedium \"" + name + "\"");
-    d_.media.push_back({name, m, t.loc});
+    d_.media.push_back({name, m, t.loc()});
 }
 
 void Parser::finish() {
