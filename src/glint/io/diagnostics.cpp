@@ -37,7 +37,7 @@ namespace {
 
 // How many characters the token starting at `col` (0-based) spans: a quoted string, a flow
 // list or map up to its matching bracket, or a plain scalar up to a separator.
-std::size_t token_length(const std::string& line, std::size_t col) {
+std::size_t token_length(const std::string& line, std::size_t col, bool words = false) {
     if (col >= line.size()) return 1;
     const char c = line[col];
     if (c == '"' || c == '\'') {
@@ -54,6 +54,10 @@ std::size_t token_length(const std::string& line, std::size_t col) {
         return line.size() - col;
     }
     std::size_t end = col;
+    if (words) {  // pbrt: a token ends at white space or a bracket
+        while (end < line.size() && line[end] != ' ' && line[end] != '\t' && line[end] != '[' && line[end] != ']') ++end;
+        return std::max<std::size_t>(1, end - col);
+    }
     while (end < line.size() && line[end] != ',' && line[end] != ']' && line[end] != '}' &&
            line[end] != '#' && !(line[end] == ':' && (end + 1 == line.size() || line[end + 1] == ' ')))
         ++end;
@@ -76,7 +80,8 @@ std::string format_as(const Diagnostic& d, const SourceFiles& sources, const cha
             for (std::size_t i = 0; i < col && i < text.size(); ++i)
                 caret += text[i] == '\t' ? '\t' : ' ';
             caret += '^';
-            caret += std::string(token_length(text, col) - 1, '~');
+            const bool pbrt = d.loc.file.size() >= 5 && d.loc.file.compare(d.loc.file.size() - 5, 5, ".pbrt") == 0;
+            caret += std::string(token_length(text, col, pbrt) - 1, '~');
             out += fmt::format("    {}\n    {}\n", text, caret);
         }
     } else if (!d.loc.file.empty()) {

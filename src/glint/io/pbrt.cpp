@@ -600,15 +600,16 @@ ParamList Parser::params(Stream& s) {
         }
         // A value is a string for these types (a spectrum: a name, or numbers).
         int count = 0;
-        bool stringy = p.type == "string" || p.type == "texture" || p.type == "bool";
+        const bool is_bool = p.type == "bool", is_spectrum = p.type == "spectrum";
+        bool stringy = p.type == "string" || p.type == "texture" || is_bool;
         const auto take = [&](const Token& v) {
-            if (count++ == 0 && p.type == "spectrum") stringy = v.kind == Token::Kind::kString;
+            if (count++ == 0 && is_spectrum) stringy = v.kind == Token::Kind::kString;
             if (!ok) return;
             if (stringy != (v.kind == Token::Kind::kString)) {
                 diag_.error(v.loc(), fmt::format("\"{}\": expected {}, got '{}'", decl.text,
                                                  stringy ? "quoted strings" : "numbers", v.text));
                 ok = false;
-            } else if (p.type == "bool") {
+            } else if (is_bool) {
                 if (v.text != "true" && v.text != "false") {
                     diag_.error(v.loc(), fmt::format("\"{}\": expected \"true\" or \"false\"", decl.text));
                     ok = false;
