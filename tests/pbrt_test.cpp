@@ -3,6 +3,7 @@
 // and the Cornell box written as pbrt rendering bit-identical to scenes/cornell-box.yaml.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "glint/io/mesh_import.h"
 #include "glint/io/pbrt.h"
 #include "glint/io/scene_yaml.h"
+#include "glint/materials/metals.h"
 #include "glint/render/render.h"
 
 namespace glint {
@@ -57,6 +59,36 @@ TEST(Pbrt, ErrorsPointAtTheirToken) {
               "test.pbrt:1:18: pixelsamples must be at least 1");
     EXPECT_EQ(first_error("WorldBegin\nShape \"sphere\" \"float radius\" [ 1 \n"),
               "test.pbrt:2:31: '[' without a matching ']'");
+}
+
+TEST(Pbrt, ParameterValuesOfEveryForm) {
+    const SceneDescription d = parse(R"(WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "blackbody L" 6500 "bool twosided" true "float scale" [ 2 ]
+  Shape "sphere" "float radius" 0.5
+AttributeEnd
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 1 2 3 ] "bool twosided" [ "false" ]
+  Shape "disk"
+AttributeEnd
+MakeNamedMaterial "gold" "string type" [ "conductor" ] "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"
+)");
+    ASSERT_EQ(d.objects.size(), 2u);
+    const auto material_of = [&](const ObjectDesc& o) {
+        const std::string& n = std::get<std::string>(o.material.value);
+        return std::find_if(d.materials.begin(), d.materials.end(), [&](const NamedMaterial& m) { return m.name == n; })->material;
+    };
+    const Emission a = material_of(d.objects[0]).emission, b = material_of(d.objects[1]).emission;
+    EXPECT_TRUE(a.two_sided);
+    EXPECT_FALSE(b.two_sided);
+    // A blackbody light is normalised to luminance 1, then scaled.
+    EXPECT_NEAR(0.2126f * a.radiance.r + 0.7152f * a.radiance.g + 0.0722f * a.radiance.b, 2, 1e-4);
+    EXPECT_EQ(b.radiance, (Color{1, 2, 3}));
+    const auto gold = std::find_if(d.materials.begin(), d.materials.end(),
+                                   [](const NamedMaterial& m) { return m.material.kind == MaterialDesc::Kind::kConductor; });
+    ASSERT_NE(gold, d.materials.end());
+    EXPECT_EQ(gold->material.eta, kMetals[3].eta);  // gold
+    EXPECT_EQ(gold->material.k, kMetals[3].k);
 }
 
 TEST(Pbrt, UnsupportedIsAWarningOrUnderStrictAnError) {
@@ -189,20 +221,22 @@ TEST(Pbrt, PlyGzReadsAsThePly) {
 }
 
 TEST(Pbrt, EveryTruncationIsAnErrorOrAScene) {
-    std::ifstream in(std::filesystem::path(GLINT_SOURCE_DIR) / "scenes/pbrt/cornell-box.pbrt");
-    ASSERT_TRUE(in);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    int ok = 0, errors = 0;
-    for (std::size_t n = 0; n <= text.size(); n += 7) {
-        try {
-            parse(text.substr(0, n));
-            ++ok;
-        } catch (const SceneError&) {
-            ++errors;
+    for (const char* name : {"scenes/pbrt/cornell-room.pbrt", "scenes/pbrt/materials.pbrt"}) {
+        std::ifstream in(std::filesystem::path(GLINT_SOURCE_DIR) / name);
+        ASSERT_TRUE(in) << name;
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        int ok = 0, errors = 0;
+        for (std::size_t n = 0; n <= text.size(); n += 3) {
+            try {
+                parse(text.substr(0, n));
+                ++ok;
+            } catch (const SceneError&) {
+                ++errors;
+            }
         }
+        EXPECT_GT(ok, 0) << name;
+        EXPECT_GT(errors, 0) << name;
     }
-    EXPECT_GT(ok, 0);
-    EXPECT_GT(errors, 0);
 }
 
 // The Cornell box as pbrt and as glint YAML: the same shapes, materials, light and camera, so

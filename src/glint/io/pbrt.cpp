@@ -605,7 +605,10 @@ ParamList Parser::params(Stream& s) {
         const auto take = [&](const Token& v) {
             if (count++ == 0 && is_spectrum) stringy = v.kind == Token::Kind::kString;
             if (!ok) return;
-            if (stringy != (v.kind == Token::Kind::kString)) {
+            const bool bare_bool = v.kind == Token::Kind::kWord;  // true / false unquoted
+            if (is_bool && bare_bool) {
+                p.bools.push_back(v.text == "true");
+            } else if (stringy != (v.kind == Token::Kind::kString)) {
                 diag_.error(v.loc(), fmt::format("\"{}\": expected {}, got '{}'", decl.text,
                                                  stringy ? "quoted strings" : "numbers", v.text));
                 ok = false;
@@ -621,16 +624,20 @@ ParamList Parser::params(Stream& s) {
                 p.numbers.push_back(v.number);
             }
         };
+        // pbrt-v4 writes bools bare or quoted: `"bool twosided" true`, `[ "true" ]`.
+        const auto is_value = [&](const Token& v) {
+            return v.kind == Token::Kind::kNumber || v.kind == Token::Kind::kString ||
+                   (is_bool && v.kind == Token::Kind::kWord && (v.text == "true" || v.text == "false"));
+        };
         if (s.peek().kind == Token::Kind::kOpen) {
             const Token open = s.next();
-            while (!s.done() && (s.peek().kind == Token::Kind::kNumber || s.peek().kind == Token::Kind::kString))
-                take(s.next());
+            while (!s.done() && is_value(s.peek())) take(s.next());
             if (s.done() || s.peek().kind != Token::Kind::kClose) {
                 diag_.error(open.loc(), "'[' without a matching ']'");
                 continue;
             }
             s.next();
-        } else if (s.peek().kind == Token::Kind::kNumber || s.peek().kind == Token::Kind::kString) {
+        } else if (is_value(s.peek())) {
             take(s.next());
         } else {
             diag_.error(s.peek().loc(), fmt::format("parameter \"{}\" has no value", decl.text));
