@@ -151,6 +151,28 @@ WorldBegin
     EXPECT_TRUE(std::get<LookAtCameraDesc>(m.camera).right_handed);
 }
 
+// pbrt's front side: the geometric normal of the (object-space) winding carried by the inverse
+// transpose, so a mirroring transform keeps it, and ReverseOrientation flips it.
+TEST(Pbrt, FrontSidesFollowPbrt) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_pbrt(R"(WorldBegin
+AttributeBegin
+  Scale -1 1 1
+  Shape "bilinearmesh" "point3 P" [ 0 0 0  0 0 1  1 0 0  1 0 1 ]
+  Shape "trianglemesh" "point3 P" [ 0 0 0  0 0 1  1 0 0 ]
+AttributeEnd
+ReverseOrientation
+Shape "bilinearmesh" "point3 P" [ 0 0 0  0 0 1  1 0 0  1 0 1 ]
+)", "test.pbrt", sources), {}, sources);
+    // (0,0,1) x (1,0,0) = (0, 1, 0): the patch and the triangle face +y in object space.
+    ASSERT_EQ(job.scene.quads.size(), 2u);
+    ASSERT_EQ(job.scene.triangles.size(), 1u);
+    EXPECT_GT(job.scene.quads[0].n_raw.y, 0);  // mirrored in x: still +y
+    const Triangle& t = job.scene.triangles[0];
+    EXPECT_GT(cross(t.p1 - t.p0, t.p2 - t.p0).y, 0);
+    EXPECT_LT(job.scene.quads[1].n_raw.y, 0);  // ReverseOrientation
+}
+
 TEST(Pbrt, ObjectInstancesShareOneMesh) {
     std::string mesh = "Shape \"trianglemesh\" \"point3 P\" [";
     std::string idx;

@@ -1149,10 +1149,8 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             const Vector3 e1 = p10 - p00, e2 = p01 - p00;
             const Vector3 diag = (p11 - p00) - (e1 + e2);
             if (length(diag) <= 1e-6f * (length(e1) + length(e2)) && length(cross(e1, e2)) > 0) {
-                // glint's quad faces e1 x e2 of its transformed edges, which a mirroring
-                // transform turns around; pbrt keeps the front side under mirrors.
-                const bool flip = gs_.reverse_orientation != (gs_.ctm.det3() < 0);
-                o.shape = flip ? Quad::make(p00, e2, e1) : Quad::make(p00, e1, e2);
+                // Under a mirroring transform both pbrt and glint's build keep the front side.
+                o.shape = gs_.reverse_orientation ? Quad::make(p00, e2, e1) : Quad::make(p00, e1, e2);
                 add_object(std::move(o), gs_.ctm);
                 return;
             }
@@ -1194,8 +1192,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             for (std::uint32_t tri = 0; tri < mesh->triangle_count(); ++tri) {
                 const auto v3 = mesh->vertices(tri);
                 ObjectDesc one = o;
-                // As for quads: glint's triangle shapes turn around under a mirroring transform.
-                one.shape = gs_.ctm.det3() < 0 ? Triangle{v3[0], v3[2], v3[1]} : Triangle{v3[0], v3[1], v3[2]};
+                one.shape = Triangle{v3[0], v3[1], v3[2]};  // the mesh's winding, flips applied
                 add_object(std::move(one), gs_.ctm);
             }
             return;
