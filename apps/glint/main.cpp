@@ -19,6 +19,7 @@
 #include "glint/io/build.h"
 #include "glint/io/pbrt.h"
 #include "glint/io/image_io.h"
+#include "glint/io/scene_writer.h"
 #include "glint/io/scene_yaml.h"
 #include "glint/render/ray_bench.h"
 #include "glint/render/render.h"
@@ -128,6 +129,30 @@ std::string bytes(std::uint64_t b) {
     if (b >= (1ull << 20)) return fmt::format("{:.2f} MiB", b / double(1ull << 20));
     if (b >= (1ull << 10)) return fmt::format("{:.1f} KiB", b / double(1ull << 10));
     return fmt::format("{} B", b);
+}
+
+// glint convert: the scene description written back as YAML, atomically (a temporary file,
+// then a rename), after the scene has been checked by building it.
+int run_convert(const RenderArgs& args, const std::string& out) {
+    auto sources = std::make_shared<glint::SourceFiles>();
+    const glint::SceneDescription d = glint::is_pbrt_file(args.scene)
+                                          ? glint::load_pbrt_file(args.scene, sources, {args.strict})
+                                          : glint::load_scene_file(args.scene, sources);
+    (void)glint::build(d, {}, sources);  // every error of the source, before anything is written
+    if (!args.quiet)
+        for (const auto& w : d.warnings) fmt::print(stderr, "glint: note: {}", glint::format_warning(w, *sources));
+    const glint::WrittenScene w = glint::write_scene_yaml(d, out);
+    const std::filesystem::path target(out);
+    const std::filesystem::path tmp = target.string() + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << w.yaml;
+        f.close();
+        if (!f) throw glint::IoError(fmt::format("{}: cannot write", tmp.string()));
+    }
+    std::filesystem::rename(tmp, target);
+    fmt::print("wrote {}{}\n", out, w.meshes.empty() ? "" : fmt::format(" and {} mesh file{}", w.meshes.size(), w.meshes.size() == 1 ? "" : "s"));
+    return 0;
 }
 
 int run_info(const RenderArgs& args) {
@@ -280,6 +305,15 @@ int main(int argc, char** argv) {
     bench->add_option("--height", args.height, "Film height (overrides the scene)");
     bench->add_option("--runs", runs, "Repetitions; medians are reported")->check(CLI::Range(1, 100));
 
+    std::string convert_out;
+    CLI::App* convert = app.add_subcommand(
+        "convert", "Write a scene (a pbrt-v4 file, or YAML) as a glint YAML scene; meshes given inline "
+                   "become PLY files beside it");
+    convert->add_option("SCENE", args.scene, "Scene file (.pbrt, .yaml, .json)")->required();
+    convert->add_option("-o,--output", convert_out, "The YAML file to write")->required();
+    convert->add_flag("--strict", args.strict, strict_help);
+    convert->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -288,6 +322,7 @@ int main(int argc, char** argv) {
 
     try {
         if (info->parsed()) return run_info(args);
+        if (convert->parsed()) return run_convert(args, convert_out);
         if (bench->parsed()) {
             // The backends to compare; the scene itself is loaded with the default one.
             const std::string set = args.accel == "both" ? "" : args.accel;

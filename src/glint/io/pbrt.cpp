@@ -863,7 +863,12 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             return;
         }
         if (auto m = material(t, *type, pl)) {
-            const std::string inner = fmt::format("pbrt-named-{}", ++material_count_);
+            // The pbrt name where it is free (a redefinition gets a new one: pbrt's replaces it).
+            std::string inner = *n;
+            const auto taken = [&](const std::string& x) {
+                return std::any_of(d_.materials.begin(), d_.materials.end(), [&](const NamedMaterial& m) { return m.name == x; });
+            };
+            if (taken(inner) || inner.rfind("pbrt-", 0) == 0) inner = fmt::format("pbrt-named-{}-{}", *n, ++material_count_);
             d_.materials.push_back({inner, *m, t.loc()});
             named_materials_[*n] = inner;
         }
