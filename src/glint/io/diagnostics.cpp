@@ -3,6 +3,10 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
 #include <numeric>
 
 namespace glint {
@@ -105,6 +109,23 @@ SceneError::SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& s
           return all;
       }()),
       diagnostics_(std::move(diagnostics)) {}
+
+std::string read_scene_text(const std::string& path, const std::shared_ptr<SourceFiles>& sources) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        Diagnostics d(sources);
+        d.error({path, 0, 0}, fmt::format("cannot open scene file: {}", std::strerror(errno)));
+        d.throw_if_errors();
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) {
+        Diagnostics d(sources);
+        d.error({path, 0, 0}, "cannot read scene file");
+        d.throw_if_errors();
+    }
+    return text.str();
+}
 
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
     std::string best;

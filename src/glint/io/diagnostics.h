@@ -68,6 +68,9 @@ private:
     std::vector<Diagnostic> diagnostics_;
 };
 
+/// A scene file's whole text; a file that cannot be opened or read is a SceneError naming it.
+std::string read_scene_text(const std::string& path, const std::shared_ptr<SourceFiles>& sources);
+
 /// The closest of `candidates` to `word` by edit distance, if close enough to be a likely typo.
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
 

@@ -1653,15 +1653,8 @@ SceneDescription parse_pbrt(const std::string& text, const std::string& path, st
 
 SceneDescription load_pbrt_file(const std::string& path, std::shared_ptr<SourceFiles> sources,
                                 const PbrtOptions& options) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        Diagnostics d(sources);
-        d.error({path, 0, 0}, fmt::format("cannot open scene file: {}", std::strerror(errno)));
-        d.throw_if_errors();
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_pbrt(text.str(), path, std::move(sources), options);
+    const std::string text = read_scene_text(path, sources);
+    return parse_pbrt(text, path, std::move(sources), options);
 }
 
 }  // namespace glint

@@ -965,20 +965,8 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
 
 SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources) {
     if (is_pbrt_file(path)) return load_pbrt_file(path, std::move(sources));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        Diagnostics d(sources);
-        d.error({path, 0, 0}, fmt::format("cannot open scene file: {}", std::strerror(errno)));
-        d.throw_if_errors();
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) {
-        Diagnostics d(sources);
-        d.error({path, 0, 0}, "cannot read scene file");
-        d.throw_if_errors();
-    }
-    return parse_scene(text.str(), path, std::move(sources));
+    const std::string text = read_scene_text(path, sources);
+    return parse_scene(text, path, std::move(sources));
 }
 
 }  // namespace glint
