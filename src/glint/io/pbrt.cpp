@@ -1027,7 +1027,13 @@ void Parser::film(const Token& t, const std::string& type, ParamList pl) {
 
 void Parser::add_object(ObjectDesc o, const M4& m) {
     if (defining_) {  // recorded for ObjectInstance, with the transform at definition
-        if (!m.identity()) o.transform = Transform::from(m.to34());
+        if (!m.identity()) {
+            o.transform = m.affine() ? Transform::from(m.to34()) : std::nullopt;
+            if (!o.transform) {
+                diag_.error(o.loc, "the shape's transform is singular or projective");
+                return;
+            }
+        }
         instances_[defining_->first].push_back(std::move(o));
         return;
     }
