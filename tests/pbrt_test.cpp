@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "glint/background.h"
 #include "glint/io/build.h"
 #include "glint/io/mesh_import.h"
 #include "glint/io/pbrt.h"
@@ -339,6 +340,57 @@ Shape "loopsubdiv" "integer levels" 2 "point3 P" [ 1 0 0  -1 0 0  0 1 0  0 -1 0 
     ASSERT_TRUE(hit_a && hit_b);
     EXPECT_EQ(hit_a->t, hit_b->t);
     std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// pbrt-v4's equal-area octahedral map: known points, equal areas (uniform directions fill an
+// 8 x 8 grid of the square evenly), and the resampling to lat-long with pbrt's usual
+// `Rotate -90 1 0 0` (the map's +z pole becomes world +y).
+TEST(Pbrt, EqualAreaEnvironmentMaps) {
+    const auto at = [](Vector3 d, float u, float v) {
+        const Point2 p = equal_area_sphere_to_square(d);
+        EXPECT_NEAR(p.x, u, 1e-6f) << d.x << " " << d.y << " " << d.z;
+        EXPECT_NEAR(p.y, v, 1e-6f) << d.x << " " << d.y << " " << d.z;
+    };
+    at({0, 0, 1}, 0.5f, 0.5f);
+    at({1, 0, 0}, 1, 0.5f);
+    at({-1, 0, 0}, 0, 0.5f);
+    at({0, 1, 0}, 0.5f, 1);
+    at({0, -1, 0}, 0.5f, 0);
+    const Point2 south = equal_area_sphere_to_square({0, 0, -1});
+    EXPECT_TRUE((south.x == 0 || south.x == 1) && (south.y == 0 || south.y == 1));
+    std::array<int, 64> cells{};
+    std::uint32_t state = 99;
+    const auto rnd = [&] {
+        state = state * 1664525u + 1013904223u;
+        return (state >> 8) * (1.0f / 16777216.0f);
+    };
+    const int n = 640000;
+    for (int i = 0; i < n; ++i) {
+        const float z = 1 - 2 * rnd(), phi = 2 * float(M_PI) * rnd(), r = std::sqrt(std::max(0.0f, 1 - z * z));
+        const Point2 p = equal_area_sphere_to_square({r * std::cos(phi), r * std::sin(phi), z});
+        ++cells[std::size_t(std::min(7, int(p.y * 8)) * 8 + std::min(7, int(p.x * 8)))];
+    }
+    for (int c : cells) EXPECT_NEAR(c, n / 64, 5 * std::sqrt(n / 64.0)) << "cell count";
+
+    Image square{64, 64, std::vector<Color>(64 * 64)};
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const float u = 2 * (x + 0.5f) / 64 - 1, v = 2 * (y + 0.5f) / 64 - 1;
+            square.texels[std::size_t(y * 64 + x)] = Color{std::abs(u) + std::abs(v) < 1 ? 1.0f : 0.0f};
+        }
+    // world_to_light = Rotate(+90 about x), the inverse of pbrt's Rotate -90 1 0 0.
+    const Transform r = Transform::rotate(90, {1, 0, 0});
+    const EnvironmentMap env = EnvironmentMap::make(equal_area_to_latlong(square, r.to_world), 1);
+    EXPECT_EQ(env.image.width, 128);
+    EXPECT_NEAR(env.eval(normalize(Vector3{0.3f, 1, 0.2f})).r, 1, 1e-6f);   // up: the map's +z half
+    EXPECT_NEAR(env.eval(normalize(Vector3{-0.2f, -1, 0.5f})).r, 0, 1e-6f);  // down
+    EXPECT_NEAR(r.to_world.apply(Vector3{0, 1, 0}).z, 1, 1e-6f);  // the rotation is the one meant
 }
 
 }  // namespace

@@ -50,3 +50,49 @@ Color EnvironmentMap::eval(Vector3 d) const {
 }
 
 }  // namespace glint
+
+namespace glint {
+
+Point2 equal_area_sphere_to_square(Vector3 d) {
+    const float x = std::abs(d.x), y = std::abs(d.y), z = std::abs(d.z);
+    const float r = std::sqrt(std::max(0.0f, 1 - z));
+    const float a = std::max(x, y), b = a == 0 ? 0 : std::min(x, y) / a;
+    float phi = std::atan(b) * 2 * std::numbers::inv_pi_v<float>;
+    if (x < y) phi = 1 - phi;
+    float v = phi * r;
+    float u = r - v;
+    if (d.z < 0) {
+        std::swap(u, v);
+        u = 1 - u;
+        v = 1 - v;
+    }
+    u = std::copysign(u, d.x);
+    v = std::copysign(v, d.y);
+    return {0.5f * (u + 1), 0.5f * (v + 1)};
+}
+
+Image equal_area_to_latlong(const Image& square, const Matrix34& world_to_light) {
+    const int n = square.width;
+    Image out;
+    out.width = 2 * n;
+    out.height = n;
+    out.texels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+    const auto texel = [&](int x, int y) {
+        return square.texel(std::clamp(x, 0, n - 1), std::clamp(y, 0, square.height - 1));
+    };
+    for (int j = 0; j < out.height; ++j)
+        for (int i = 0; i < out.width; ++i) {
+            const Vector3 d = EnvironmentMap::uv_to_direction({(i + 0.5f) / float(out.width), (j + 0.5f) / float(out.height)});
+            const Point2 st = equal_area_sphere_to_square(normalize(world_to_light.apply(d)));
+            // Bilinear between texel centres (pbrt's image rows run down from v = 0).
+            const float fx = st.x * float(n) - 0.5f, fy = st.y * float(square.height) - 0.5f;
+            const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+            const float tx = fx - float(x0), ty = fy - float(y0);
+            const Color c = texel(x0, y0) * ((1 - tx) * (1 - ty)) + texel(x0 + 1, y0) * (tx * (1 - ty)) +
+                            texel(x0, y0 + 1) * ((1 - tx) * ty) + texel(x0 + 1, y0 + 1) * (tx * ty);
+            out.texels[static_cast<std::size_t>(j) * static_cast<std::size_t>(out.width) + static_cast<std::size_t>(i)] = c;
+        }
+    return out;
+}
+
+}  // namespace glint

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "glint/math/color.h"
+#include "glint/math/transform.h"
 #include "glint/math/vector.h"
 #include "glint/samplers/distribution.h"
 #include "glint/textures/texture.h"
@@ -27,6 +28,16 @@ struct ConstantBackground {
     Color color;
     Color eval(Vector3) const { return color; }
 };
+
+/// pbrt-v4's equal-area octahedral mapping (Clarberg's) of a unit direction to the square
+/// [0,1]^2: +z at the centre, -z at the corners, the +z hemisphere the inner diamond; u grows with
+/// x, v with y (v = 0 is the image's top row, as pbrt stores images).
+Point2 equal_area_sphere_to_square(Vector3 d);
+
+/// An equal-area octahedral environment image (square) resampled to glint's latitude-longitude
+/// layout (2n x n for an n x n source): each texel takes the bilinearly filtered source at the
+/// direction world_to_light(d) (pbrt's light transform, inverted).
+Image equal_area_to_latlong(const Image& square, const Matrix34& world_to_light);
 
 /// An HDR environment in the latitude-longitude layout: the image's top row is straight up
 /// (+y), its bottom row straight down, its centre column looks along +z (where the default

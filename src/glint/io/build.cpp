@@ -187,8 +187,26 @@ public:
     }
 
     /// The environment image: loaded linear (an HDR radiance map), relative to the scene file.
-    void set_environment(const EnvironmentDesc& e) {
+    /// Notes for the user go to `notes`.
+    void set_environment(const EnvironmentDesc& e, std::vector<std::string>& notes) {
         const ImageId id = add_image(e.filename, ImageEncoding::kAuto);
+        if (e.equal_area) {
+            const Image& square = scene_.images[id];
+            if (square.width == 2 * square.height) {  // a latitude-longitude map after all
+                notes.push_back(fmt::format("{}:{}:{}: warning: {} is 2:1, read as a latitude-longitude map (y up, the "
+                                             "light's transform not applied); pbrt-v4 expects square equal-area maps",
+                                             e.filename.loc.file, e.filename.loc.line, e.filename.loc.column, e.filename.value));
+                scene_.background = EnvironmentMap::make(square, e.scale);
+                return;
+            }
+            if (square.width != square.height) {
+                diagnostics_.error(e.filename.loc, fmt::format("{}: an equal-area environment map must be square, not {}x{}",
+                                                               e.filename.value, square.width, square.height));
+                return;
+            }
+            scene_.background = EnvironmentMap::make(equal_area_to_latlong(square, e.world_to_light), e.scale);
+            return;
+        }
         scene_.background = EnvironmentMap::make(scene_.images[id], e.scale);
     }
 
@@ -434,7 +452,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     };
     if (d.medium) scene.camera_medium = medium_id(*d.medium).value_or(kNoMedium);
     MaterialBuilder materials(scene, diagnostics, std::filesystem::path(d.path).parent_path());
-    if (d.environment) materials.set_environment(*d.environment);
+    if (d.environment) materials.set_environment(*d.environment, job.notes);
     std::vector<std::string> names;
     for (const NamedMaterial& m : d.materials) {
         names.push_back(m.name);

@@ -1455,15 +1455,16 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         d_.lights.push_back(DirectionalLight{Vector3{Float(u[0]), Float(u[1]), Float(u[2])}, L});
     } else if (type == "infinite") {
         if (auto file = get_string(pl, "filename")) {
-            const std::string ext = std::filesystem::path(*file).extension().string();
-            warn(pl.find("filename")->loc,
-                 "image environment maps from pbrt files are read as latitude-longitude maps; pbrt-v4's "
-                 "equal-area octahedral maps are not converted yet");
+            // pbrt-v4's environment maps are square, equal-area octahedral images with +z at
+            // their centre, oriented by the light's transform: resampled at load. (A 2:1 map
+            // would be a pbrt-v3 lat-long one, which pbrt-v4 refuses; build says so.)
             EnvironmentDesc e;
             e.filename = {*file, pl.find("filename")->loc};  // build resolves it against the scene's folder
             e.scale = s;
+            e.equal_area = true;
+            const auto inv = gs_.ctm.inverse();
+            if (inv) e.world_to_light = inv->to34();
             d_.environment = e;
-            (void)ext;
         } else {
             const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
             d_.background = ConstantBackground{L};

@@ -61,6 +61,10 @@ struct LookAtCameraDesc {
 struct EnvironmentDesc {
     Located<std::string> filename;
     float scale = 1;
+    /// pbrt-v4's equal-area octahedral layout (a square image), seen through the light's
+    /// transform: resampled to latitude-longitude when loaded.
+    bool equal_area = false;
+    Matrix34 world_to_light;
 };
 
 using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;

@@ -216,6 +216,9 @@ WrittenScene Writer::run() {
     else
         y += fmt::format("integrator: {{type: whitted, ambient: {}, shadows: {}, max_depth: {}}}\n", num(d_.integrator.ambient),
                          d_.integrator.shadows, d_.integrator.max_depth.value);
+    if (d_.environment && d_.environment->equal_area)
+        throw IoError("convert: pbrt-v4's equal-area environment maps are not written yet (glint's YAML reads "
+                      "latitude-longitude maps)");
     if (d_.environment) {
         y += fmt::format("background: {{type: environment, filename: {}, scale: {}}}\n", yaml_quoted(file(d_.environment->filename.value)),
                          num(d_.environment->scale));
