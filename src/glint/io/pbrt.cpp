@@ -397,6 +397,10 @@ std::optional<double> Parser::get_float(ParamList& pl, const std::string& name) 
     Param* p = pl.find(name);
     if (!p) return std::nullopt;
     p->used = true;
+    if (p->type == "texture") {  // pbrt allows float textures in many places; glint, constants
+        warn(p->loc, fmt::format("\"{}\": float textures are not supported here; using the default", name));
+        return std::nullopt;
+    }
     if (p->type != "float" && p->type != "integer") {
         diag_.error(p->loc, fmt::format("\"{}\" must be a float, not {}", name, p->type));
         return std::nullopt;
