@@ -1087,11 +1087,14 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         o.interior = Located<std::string>{gs_.inside.empty() ? "none" : gs_.inside, t.loc()};
         o.exterior = Located<std::string>{gs_.outside.empty() ? "none" : gs_.outside, t.loc()};
     }
-    for (const char* ignored : {"alpha", "emissionfilename"})
-        if (Param* p = pl.find(ignored)) {
-            p->used = true;
-            warn(p->loc, fmt::format("\"{}\" not supported yet; the shape is opaque", ignored));
-        }
+    if (Param* p = pl.find("alpha")) {
+        p->used = true;
+        warn(p->loc, "\"alpha\" (cut-outs) not supported yet; the shape is opaque");
+    }
+    if (Param* p = pl.find("emissionfilename")) {
+        p->used = true;
+        warn(p->loc, "\"emissionfilename\" not supported; the area light's L is used");
+    }
     const std::string what = "Shape \"" + type + "\"";
     if (type == "sphere") {
         const double r = get_float(pl, "radius").value_or(1);
