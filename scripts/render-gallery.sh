@@ -43,3 +43,14 @@ oiiotool docs/images/fig14-fog.png --resize 240x135 docs/images/glass.png --resi
   docs/images/cloud.png --resize 240x135 docs/images/milk-bunny.png --resize 240x135 \
   --mosaic 4x1 -o docs/images/volumes.png
 echo docs/images/fig14-fog.png docs/images/glass.png docs/images/cloud.png docs/images/milk-bunny.png docs/images/volumes.png
+# pbrt-v4 scenes (scenes/pbrt/), side by side for the README.
+gallery_tmp=$(mktemp -d)
+for name in cornell-box bunny materials; do
+  "$glint" render "scenes/pbrt/$name.pbrt" -q -o "$gallery_tmp/$name.png"
+done
+oiiotool "$gallery_tmp/cornell-box.png" --resize 256x256 "$gallery_tmp/bunny.png" --resize 256x256 --mosaic 2x1 \
+  -o "$gallery_tmp/ab.png"
+oiiotool "$gallery_tmp/ab.png" "$gallery_tmp/materials.png" --resize 512x256 --mosaic 2x1 --resize 768x192 \
+  -o docs/images/pbrt-scenes.png
+rm -rf "$gallery_tmp"
+echo docs/images/pbrt-scenes.png
