@@ -18,6 +18,8 @@
 #include "glint/materials/metals.h"
 #include "glint/render/render.h"
 
+#include "testing.h"
+
 namespace glint {
 namespace {
 
@@ -215,8 +217,8 @@ Shape "loopsubdiv" "integer levels" 2 "point3 P" [ 1 0 0  -1 0 0  0 1 0  0 -1 0 
 TEST(Pbrt, PlyGzReadsAsThePly) {
     const std::filesystem::path model = std::filesystem::path(GLINT_TEST_MODEL_DIR) / "stanford-bunny.ply";
     if (!std::filesystem::exists(model)) GTEST_SKIP() << "no " << model;
-    const auto dir = std::filesystem::temp_directory_path() / "glint_pbrt_plygz";
-    std::filesystem::create_directories(dir);
+    const testing::TempDir tmp;  // removed at the end of the test, whatever fails
+    const std::filesystem::path& dir = tmp.path();
     std::filesystem::copy_file(model, dir / "bunny.ply", std::filesystem::copy_options::overwrite_existing);
     ASSERT_EQ(std::system(("gzip -kf '" + (dir / "bunny.ply").string() + "'").c_str()), 0);
     const ImportedFile plain = import_ply(dir / "bunny.ply");
@@ -241,14 +243,12 @@ TEST(Pbrt, PlyGzReadsAsThePly) {
     } catch (const IoError& e) {
         EXPECT_NE(std::string(e.what()).find("bunny.ply.gz: byte"), std::string::npos) << e.what();
     }
-    std::filesystem::remove_all(dir);
 }
 
 TEST(Pbrt, EveryTruncationIsAnErrorOrAScene) {
     for (const char* name : {"scenes/pbrt/cornell-room.pbrt", "scenes/pbrt/materials.pbrt"}) {
-        std::ifstream in(std::filesystem::path(GLINT_SOURCE_DIR) / name);
-        ASSERT_TRUE(in) << name;
-        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string text = testing::read_file(std::filesystem::path(GLINT_SOURCE_DIR) / name);
+        ASSERT_FALSE(text.empty()) << name;
         int ok = 0, errors = 0;
         for (std::size_t n = 0; n <= text.size(); n += 3) {
             try {
@@ -301,8 +301,8 @@ namespace {
 // bit; a scene with an inline mesh (a Loop surface) gets a PLY file that reads back the same.
 TEST(Pbrt, ConvertedScenesRenderTheSame) {
     const std::filesystem::path root(GLINT_SOURCE_DIR);
-    const auto dir = std::filesystem::temp_directory_path() / "glint_pbrt_convert";
-    std::filesystem::create_directories(dir);
+    const testing::TempDir tmp;  // removed at the end of the test, whatever fails
+    const std::filesystem::path& dir = tmp.path();
     Overrides o;
     o.width = 40;
     o.height = 40;
@@ -339,7 +339,6 @@ Shape "loopsubdiv" "integer levels" 2 "point3 P" [ 1 0 0  -1 0 0  0 1 0  0 -1 0 
     const auto hit_b = from_yaml.scene.intersect(Ray{{1.1f, 2.2f, -5}, {0, 0, 1}});
     ASSERT_TRUE(hit_a && hit_b);
     EXPECT_EQ(hit_a->t, hit_b->t);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 #include "glint/io/vdb.h"
 #include "glint/render/render.h"
 
+#include "testing.h"
+
 namespace glint {
 namespace {
 
@@ -352,8 +354,8 @@ objects:
 }
 
 TEST(Volume, GridFileErrorsAreLocated) {
-    const auto dir = std::filesystem::temp_directory_path() / "glint_volume_errors";
-    std::filesystem::create_directories(dir);
+    const testing::TempDir tmp;  // removed at the end of the test, whatever fails
+    const std::filesystem::path& dir = tmp.path();
     const VoxelGrid v = VoxelGrid::from_function({0, 0, 0}, {4, 4, 4}, [](int, int, int) { return 1.0f; });
     write_vdb(dir / "cloud.vdb", {{"density", &v}, {"heat", &v}}, 0.1f);
     const std::string scene = (dir / "scene.yaml").string();
@@ -372,15 +374,14 @@ TEST(Volume, GridFileErrorsAreLocated) {
     EXPECT_NE(e.find("not a readable OpenVDB file"), std::string::npos) << e;
     // The good file builds.
     EXPECT_EQ(errors_of(media("{type: grid, file: cloud.vdb, temperature_grid: heat, temperature_scale: 1000}"), scene), "");
-    std::filesystem::remove_all(dir);
 }
 
 // A grid medium from a .vdb (density 1 and an emission grid of 2 over a 16^3 block, voxels
 // 0.25 wide, moved by the medium's transform) that absorbs and emits: along a ray inside the
 // constant region the radiance is Le (1 - exp(-sigma_a L)) (emission-absorption, no scattering).
 TEST(Volume, EmittingGridMatchesEmissionAbsorptionClosedForm) {
-    const auto dir = std::filesystem::temp_directory_path() / "glint_volume_emission";
-    std::filesystem::create_directories(dir);
+    const testing::TempDir tmp;  // removed at the end of the test, whatever fails
+    const std::filesystem::path& dir = tmp.path();
     const VoxelGrid one = VoxelGrid::from_function({0, 0, 0}, {16, 16, 16}, [](int, int, int) { return 1.0f; });
     const VoxelGrid two = VoxelGrid::from_function({0, 0, 0}, {16, 16, 16}, [](int, int, int) { return 2.0f; });
     write_vdb(dir / "block.vdb", {{"density", &one}, {"glow", &two}}, 0.25f);
@@ -400,7 +401,6 @@ objects:
     Color expect;
     for (int c = 0; c < 3; ++c) (c == 0 ? expect.r : c == 1 ? expect.g : expect.b) = le[c] * (1 - std::exp(-sigma[c] * len));
     expect_close(mean_li(job, Ray{{9, 1.7f, 1.9f}, {1, 0, 0}}, 60000), expect, "emitting grid", 2e-3f);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -49,10 +49,6 @@ Color EnvironmentMap::eval(Vector3 d) const {
     return c * scale;
 }
 
-}  // namespace glint
-
-namespace glint {
-
 Point2 equal_area_sphere_to_square(Vector3 d) {
     const float x = std::abs(d.x), y = std::abs(d.y), z = std::abs(d.z);
     const float r = std::sqrt(std::max(0.0f, 1 - z));

@@ -120,11 +120,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     // Next-event estimation from p: one light, its radiance times f (the BSDF with its cosine,
     // or the phase function) and the transmittance to it. `ng`: the surface's geometric normal
     // (null inside a medium).
+    // `l`: the light, chosen with probability `pmf`.
     const auto next_event = [&](Color path_beta, Color path_r, Point3 p, const Normal3* ng,
                                 const MediumInterface* mi, const auto& f_of, const auto& pdf_of,
-                                float u_choice, Sample2 u_light) {
-        float pmf = 0;
-        const std::uint32_t l = lights.pick(u_choice, &pmf);
+                                std::uint32_t l, float pmf, Sample2 u_light) {
         if (!(pmf > 0)) return;
         const auto ls = lights.sample_li(scene, l, p, u_light);
         if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
@@ -216,7 +215,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                     const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
                     const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
                     if (is_finite(beta_f) && is_finite(r_f))
-                        next_event(beta_f, r_f, ray.at(t), nullptr, nullptr, f, pdf_of, choices.x, u_light);
+                        next_event(beta_f, r_f, ray.at(t), nullptr, nullptr, f, pdf_of, l, pick_pmf, u_light);
                 }
             }
             const Color T_maj = sample_t_maj(
@@ -256,7 +255,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                         if (use_light && !forced_nee) {
                             const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
                             const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
-                            next_event(beta, r_u, p, nullptr, nullptr, f, pdf_of, choices.x, u_light);
+                            float pmf = 0;
+                            const std::uint32_t l = lights.pick(choices.x, &pmf);
+                            next_event(beta, r_u, p, nullptr, nullptr, f, pdf_of, l, pmf, u_light);
                         }
                         const PhaseSample ps = phase.sample(wo, u_phase);
                         beta *= Color{ps.p / ps.pdf};
@@ -331,7 +332,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 return same_side(si, wi) ? bsdf.eval(wo, wi) * std::abs(dot(si.ns, wi)) : Color{0};
             };
             const auto pdf_of = [&](Vector3 wi) { return bsdf.pdf(wo, wi); };
-            next_event(beta, r_u, si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, choices.x, u_light);
+            float pmf = 0;
+            const std::uint32_t l = lights.pick(choices.x, &pmf);
+            next_event(beta, r_u, si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, l, pmf, u_light);
         }
 
         // Continue the path.

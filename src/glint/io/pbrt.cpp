@@ -291,6 +291,10 @@ struct Param {
 
 struct ParamList {
     std::vector<Param> params;
+    /// Marks every parameter read: the directive was replaced as a whole (and warned about).
+    void use_all() {
+        for (Param& p : params) p.used = true;
+    }
     Param* find(const std::string& name) {
         for (Param& p : params)
             if (p.name == name) return &p;
@@ -341,6 +345,22 @@ private:
     std::optional<std::string> string_arg(Stream& s, const Token& at);
     ParamList params(Stream& s);
     void check_unused(ParamList& pl, const std::string& what);
+    /// A parameter glint accepts but does not apply: read, and warned about with `message`.
+    void ignore(ParamList& pl, const std::string& name, const std::string& message) {
+        if (Param* p = pl.find(name)) {
+            p->used = true;
+            warn(p->loc, message);
+        }
+    }
+    /// The same for several parameters, each warned about as "name" `why`.
+    void ignore(ParamList& pl, std::initializer_list<const char*> names, const char* why) {
+        for (const char* n : names) ignore(pl, n, fmt::format("\"{}\" {}", n, why));
+    }
+    /// Every parameter not read yet: warned about, `message` formatted with its name.
+    void ignore_rest(ParamList& pl, const std::string& message) {
+        for (Param& p : pl.params)
+            if (!p.used) ignore(pl, p.name, fmt::format(fmt::runtime(message), p.name));
+    }
 
     // typed parameter access (marks used; wrong types are errors)
     std::optional<double> get_float(ParamList& pl, const std::string& name);
@@ -802,11 +822,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             else if (*type == "stratified") d_.sampler.type = SamplerType::kStratified;
             else d_.sampler.type = SamplerType::kSobol;
             if (auto seed = get_int(pl, "seed")) d_.sampler.seed = static_cast<std::uint64_t>(std::max(0, *seed));
-            for (Param& p : pl.params)
-                if (!p.used) {
-                    p.used = true;
-                    warn(p.loc, fmt::format("Sampler \"{}\": parameter \"{}\" ignored", *type, p.name));
-                }
+            ignore_rest(pl, fmt::format("Sampler \"{}\": parameter \"{{}}\" ignored", *type));
             if (*type != "independent" && *type != "stratified" && *type != "sobol" && *type != "zsobol" &&
                 *type != "paddedsobol" && *type != "halton" && *type != "pmj02bn")
                 diag_.error(t.loc(), fmt::format("unknown sampler \"{}\"", *type));
@@ -819,11 +835,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             }
             if (*type != "path" && *type != "volpath")
                 warn(t.loc(), fmt::format("integrator \"{}\" not supported; using path", *type));
-            for (Param& p : pl.params)
-                if (!p.used) {
-                    p.used = true;
-                    warn(p.loc, fmt::format("Integrator: parameter \"{}\" ignored", p.name));
-                }
+            ignore_rest(pl, "Integrator: parameter \"{}\" ignored");
         } else if (name == "PixelFilter") {
             get_floats(pl, "radius", "float", 1);  // pbrt-v3's; the filters below take x/yradius
             const auto xr = get_float(pl, "xradius"), yr = get_float(pl, "yradius");
@@ -836,7 +848,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
                 d_.film.filter = FilterDesc{FilterType::kTent, float(xr.value_or(2)), 0.5f};
             } else {
                 warn(t.loc(), fmt::format("pixel filter \"{}\" not supported; using gaussian", *type));
-                for (Param& p : pl.params) p.used = true;
+                pl.use_all();
                 d_.film.filter = FilterDesc{FilterType::kGaussian, 1.5f, 0.5f};
             }
             (void)yr;
@@ -1002,10 +1014,10 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     if (type == "orthographic") {
         warn(t.loc(), "orthographic camera not supported; using a perspective camera of fov 30 from the same place");
         cam.fov = 30;
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
     } else if (type != "perspective") {
         warn(t.loc(), fmt::format("camera \"{}\" not supported; using perspective", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
     }
     check_unused(pl, "Camera \"" + type + "\"");
     d_.camera = cam;
@@ -1022,11 +1034,7 @@ void Parser::film(const Token& t, const std::string& type, ParamList pl) {
     if (auto f = get_string(pl, "filename")) d_.film.filename = {*f, pl.find("filename")->loc};
     if (get_floats(pl, "cropwindow", "float", 4)) warn(pl.find("cropwindow")->loc, "cropwindow not supported; rendering the whole frame");
     if (get_floats(pl, "pixelbounds", "integer", 4)) warn(pl.find("pixelbounds")->loc, "pixelbounds not supported; rendering the whole frame");
-    for (Param& p : pl.params) {
-        if (p.used) continue;
-        p.used = true;
-        warn(p.loc, fmt::format("Film: parameter \"{}\" ignored (glint writes linear radiance)", p.name));
-    }
+    ignore_rest(pl, "Film: parameter \"{}\" ignored (glint writes linear radiance)");
 }
 
 void Parser::add_object(ObjectDesc o, const M4& m) {
@@ -1087,14 +1095,8 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         o.interior = Located<std::string>{gs_.inside.empty() ? "none" : gs_.inside, t.loc()};
         o.exterior = Located<std::string>{gs_.outside.empty() ? "none" : gs_.outside, t.loc()};
     }
-    if (Param* p = pl.find("alpha")) {
-        p->used = true;
-        warn(p->loc, "\"alpha\" (cut-outs) not supported yet; the shape is opaque");
-    }
-    if (Param* p = pl.find("emissionfilename")) {
-        p->used = true;
-        warn(p->loc, "\"emissionfilename\" not supported; the area light's L is used");
-    }
+    ignore(pl, "alpha", "\"alpha\" (cut-outs) not supported yet; the shape is opaque");
+    ignore(pl, "emissionfilename", "\"emissionfilename\" not supported; the area light's L is used");
     const std::string what = "Shape \"" + type + "\"";
     if (type == "sphere") {
         const double r = get_float(pl, "radius").value_or(1);
@@ -1126,11 +1128,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         std::vector<double> implied;  // indices 0, 1, 2 (3) when a lone face leaves them out
         const auto N = get_floats(pl, "N", "normal3", 3);
         const auto uv = get_floats(pl, "uv", "point2", 2);
-        for (const char* ignored : {"S", "faceIndices"})
-            if (Param* p = pl.find(ignored)) {
-                p->used = true;
-                warn(p->loc, fmt::format("\"{}\" ignored", ignored));
-            }
+        for (const char* name : {"S", "faceIndices"}) ignore(pl, name, fmt::format("\"{}\" ignored", name));
         check_unused(pl, what);
         if (!P) {
             diag_.error(t.loc(), fmt::format("{}: no \"point3 P\"", type));
@@ -1292,11 +1290,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         add_object(std::move(o), gs_.ctm);
     } else if (type == "plymesh") {
         const auto file = get_string(pl, "filename");
-        for (const char* ignored : {"displacement", "edgelength"})
-            if (Param* p = pl.find(ignored)) {
-                p->used = true;
-                warn(p->loc, fmt::format("\"{}\" ignored (no displacement)", ignored));
-            }
+        for (const char* name : {"displacement", "edgelength"}) ignore(pl, name, fmt::format("\"{}\" ignored (no displacement)", name));
         check_unused(pl, what);
         if (!file) {
             diag_.error(t.loc(), "plymesh: no \"string filename\"");
@@ -1310,7 +1304,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         add_object(std::move(o), gs_.ctm);
     } else {
         warn(t.loc(), fmt::format("shape \"{}\" not supported; left out", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
     }
 }
 
@@ -1331,14 +1325,7 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         const double alpha = remap ? std::sqrt(std::max(0.0, r)) : std::max(0.0, r);
         return float(std::sqrt(alpha));
     };
-    const auto ignore = [&](std::initializer_list<const char*> names, const char* why) {
-        for (const char* n : names)
-            if (Param* p = pl.find(n)) {
-                p->used = true;
-                warn(p->loc, fmt::format("\"{}\" {}", n, why));
-            }
-    };
-    ignore({"displacement", "normalmap"}, "ignored (no bump or normal maps from pbrt files yet)");
+    ignore(pl, {"displacement", "normalmap"}, "ignored (no bump or normal maps from pbrt files yet)");
     if (type == "diffuse") {
         m.kind = K::kDiffuse;
         m.color = get_texture(pl, "reflectance", false, 0.5f).value_or(TextureDesc{});
@@ -1349,13 +1336,13 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         if (!pl.find("reflectance")) m.color.value = Color{0.5f};
         m.roughness = roughness(0);
         if (auto eta = get_float(pl, "eta")) m.ior = float(*eta);
-        ignore({"thickness", "albedo", "g", "maxdepth", "nsamples"}, "ignored (glint's plastic: no layer medium)");
+        ignore(pl, {"thickness", "albedo", "g", "maxdepth", "nsamples"}, "ignored (glint's plastic: no layer medium)");
     } else if (type == "conductor" || type == "coatedconductor") {
         m.kind = K::kConductor;
         const std::string prefix = type == "coatedconductor" ? "conductor." : "";
         if (type == "coatedconductor") {
             warn(t.loc(), "coatedconductor approximated by its conductor (no coat)");
-            ignore({"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta", "thickness",
+            ignore(pl, {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta", "thickness",
                     "albedo", "g", "maxdepth", "nsamples"}, "ignored (no coat)");
         }
         if (pl.find("reflectance")) {
@@ -1392,12 +1379,12 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         m.kind = K::kDiffuse;
         m.color = get_texture(pl, "reflectance", false, 0.25f).value_or(TextureDesc{});
         if (!pl.find("reflectance")) m.color.value = Color{0.25f};
-        ignore({"transmittance", "scale"}, "ignored");
+        ignore(pl, {"transmittance", "scale"}, "ignored");
     } else if (type == "mix") {
         warn(t.loc(), "mix material approximated by the first of its two materials");
         Param* mats = pl.find("materials");
         if (mats) mats->used = true;
-        ignore({"amount"}, "ignored");
+        ignore(pl, {"amount"}, "ignored");
         if (mats && mats->strings.size() == 2) {
             const auto it = named_materials_.find(mats->strings[0]);
             if (it != named_materials_.end()) {
@@ -1412,7 +1399,7 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         return std::nullopt;
     } else {
         warn(t.loc(), fmt::format("material \"{}\" not supported; using diffuse 0.5", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
         m.kind = K::kDiffuse;
         m.color.value = Color{0.5f};
     }
@@ -1422,10 +1409,7 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
 
 void Parser::light(const Token& t, const std::string& type, ParamList pl) {
     const float s = float(get_float(pl, "scale").value_or(1));
-    if (Param* p = pl.find("power")) {
-        p->used = true;
-        warn(p->loc, "\"power\" not supported; using the given radiance or intensity times scale");
-    }
+    ignore(pl, "power", "\"power\" not supported; using the given radiance or intensity times scale");
     const auto pt = [&](const char* name, D3 fallback) {
         const auto v = get_floats(pl, name, "point3", 3);
         return v && v->size() == 3 ? D3{(*v)[0], (*v)[1], (*v)[2]} : fallback;
@@ -1476,17 +1460,11 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
             const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
             d_.background = ConstantBackground{L};
         }
-        if (Param* p = pl.find("illuminance")) {
-            p->used = true;
-            warn(p->loc, "\"illuminance\" not supported; ignored");
-        }
-        if (Param* p = pl.find("portal")) {
-            p->used = true;
-            warn(p->loc, "\"portal\" ignored");
-        }
+        ignore(pl, "illuminance", "\"illuminance\" not supported; ignored");
+        ignore(pl, "portal", "\"portal\" ignored");
     } else {
         warn(t.loc(), fmt::format("light \"{}\" not supported; left out", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
     }
     check_unused(pl, "LightSource \"" + type + "\"");
 }
@@ -1494,20 +1472,14 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
 void Parser::area_light(const Token& t, const std::string& type, ParamList pl) {
     if (type != "diffuse") {
         warn(t.loc(), fmt::format("area light \"{}\" not supported; the shapes do not emit", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
         return;
     }
     Emission e;
     e.radiance = get_color(pl, "L", true).value_or(Color{1}) * float(get_float(pl, "scale").value_or(1));
     e.two_sided = get_bool(pl, "twosided").value_or(false);
-    if (Param* p = pl.find("power")) {
-        p->used = true;
-        warn(p->loc, "\"power\" not supported; using L times scale");
-    }
-    if (Param* p = pl.find("filename")) {
-        p->used = true;
-        warn(p->loc, "image area lights not supported; using L");
-    }
+    ignore(pl, "power", "\"power\" not supported; using L times scale");
+    ignore(pl, "filename", "image area lights not supported; using L");
     check_unused(pl, "AreaLightSource");
     gs_.area_light = e;
     gs_.area_light_loc = t.loc();
@@ -1523,12 +1495,10 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
     TextureEntry e;
     e.is_float = is_float;
     using K = TextureDesc::Kind;
-    for (const char* ignored : {"filter", "maxanisotropy", "invert", "mapping", "udelta", "vdelta"})
-        if (Param* p = pl.find(ignored)) {
-            p->used = true;
-            if (std::strcmp(ignored, "filter") != 0 && std::strcmp(ignored, "maxanisotropy") != 0)
-                warn(p->loc, fmt::format("texture \"{}\": \"{}\" ignored", name, ignored));
-        }
+    for (const char* quiet : {"filter", "maxanisotropy"})  // filtering is glint's own choice
+        if (Param* p = pl.find(quiet)) p->used = true;
+    for (const char* n : {"invert", "mapping", "udelta", "vdelta"})
+        ignore(pl, n, fmt::format("texture \"{}\": \"{}\" ignored", name, n));
     const double us = get_float(pl, "uscale").value_or(1), vs = get_float(pl, "vscale").value_or(1);
     if (type == "imagemap") {
         e.desc.kind = K::kImage;
@@ -1581,7 +1551,7 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
             warn(t.loc(), "2D checkerboard rendered as glint's 3D checker");
     } else {
         warn(t.loc(), fmt::format("texture \"{}\" not supported; using a constant 0.5", type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
         e.desc.kind = K::kConstant;
         e.desc.value = Color{0.5f};
     }
@@ -1598,7 +1568,7 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
     media_.insert(name);
     if (*type != "homogeneous") {
         warn(t.loc(), fmt::format("medium \"{}\" of type \"{}\" not supported; treated as empty", name, *type));
-        for (Param& p : pl.params) p.used = true;
+        pl.use_all();
         d_.media.push_back({name, MediumDesc{}, t.loc()});
         return;
     }
@@ -1609,10 +1579,7 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
     m.emission = get_color(pl, "Le", true).value_or(Color{0}) * float(get_float(pl, "Lescale").value_or(1));
     m.g = float(get_float(pl, "g").value_or(0));
     if (!(std::abs(m.g) < 1)) diag_.error(pl.find("g")->loc, "g must be in (-1, 1)");
-    if (Param* p = pl.find("preset")) {
-        p->used = true;
-        warn(p->loc, "named scattering presets are not known to glint; using sigma_a and sigma_s");
-    }
+    ignore(pl, "preset", "named scattering presets are not known to glint; using sigma_a and sigma_s");
     check_unused(pl, "MakeNamedMedium \"" + name + "\"");
     d_.media.push_back({name, m, t.loc()});
 }

@@ -13,6 +13,8 @@
 #include "glint/media/transmittance.h"
 #include "sphere_chi2.h"
 
+#include "testing.h"
+
 namespace glint {
 namespace {
 
@@ -266,8 +268,8 @@ TEST(Blackbody, WhiteNearD65AndRedderWhenCooler) {
 }
 
 TEST(Vdb, RoundTripKeepsValuesAndTransform) {
-    const auto dir = std::filesystem::temp_directory_path() / "glint_vdb_test";
-    std::filesystem::create_directories(dir);
+    const testing::TempDir tmp;  // removed at the end of the test, whatever fails
+    const std::filesystem::path& dir = tmp.path();
     const auto path = dir / "grid.vdb";
     const VoxelGrid v = VoxelGrid::from_function({-3, 1, 2}, {12, 9, 10}, [](int i, int j, int k) {
         return float((i + 3) * 100 + j * 10 + k) / 1000.0f;
@@ -287,7 +289,6 @@ TEST(Vdb, RoundTripKeepsValuesAndTransform) {
     EXPECT_FLOAT_EQ(w.z, -0.5f);
     EXPECT_THROW(read_vdb_grid(path, "density"), IoError);
     EXPECT_THROW(read_vdb_grid(dir / "missing.vdb", "smoke"), IoError);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace
