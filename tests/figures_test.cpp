@@ -30,7 +30,7 @@ Film render_figure(const std::string& name, int w = kW, int h = kH) {
     const RenderJob job = build(
         load_scene_file(std::string(GLINT_SOURCE_DIR) + "/scenes/seed/" + name, sources), o,
         sources);
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
     return film;
 }
@@ -106,7 +106,7 @@ TEST(Figures, Fig10RawPngHoldsTheArticlesDisplayValues) {
         load_scene_file(std::string(GLINT_SOURCE_DIR) + "/scenes/seed/fig10-diffuse.yaml", sources),
         o, sources);
     ASSERT_EQ(job.display.encoding, Encoding::kRaw);
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
     const testing::TempDir dir;
     const auto path = dir / "fig10.png";

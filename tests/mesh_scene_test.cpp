@@ -129,7 +129,7 @@ TEST(MeshScene, BvhAndEmbreeRenderTheSameImage) {
         o.seed = seed;
         o.accel = accel;
         RenderJob job = build(load_scene_file(scene.string(), sources), o, sources);
-        Film film(job.width, job.height);
+        Film film(job.film_width, job.film_height);
         render(job.scene, job.camera, *job.integrator, job.options, film, nullptr);
         return film.pixels();
     };

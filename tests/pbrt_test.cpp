@@ -155,6 +155,57 @@ WorldBegin
     EXPECT_TRUE(std::get<LookAtCameraDesc>(m.camera).right_handed);
 }
 
+TEST(Pbrt, OrthographicCameraScreenWindowCropAndImagingRatio) {
+    const SceneDescription d = parse(R"(LookAt 0 0 0  0 0 1  0 1 0
+Camera "orthographic" "float screenwindow" [ -2 2 -1 1 ] "float shutteropen" 0 "float shutterclose" 0.5
+Film "rgb" "integer xresolution" [ 100 ] "integer yresolution" [ 200 ] "float iso" 400
+  "float cropwindow" [ 0 0.5 0.25 1 ]
+WorldBegin
+)");
+    const auto& cam = std::get<LookAtCameraDesc>(d.camera);
+    EXPECT_TRUE(cam.orthographic);
+    // Portrait: pbrt's shorter axis (x) spans [-1, 1]; glint's units are half the height, 2x as
+    // long, so the window halves and the visible height is 4.
+    EXPECT_FLOAT_EQ(cam.height, 4);
+    ASSERT_TRUE(cam.window);
+    EXPECT_FLOAT_EQ((*cam.window)[0], -1);
+    EXPECT_FLOAT_EQ((*cam.window)[1], 1);
+    EXPECT_FLOAT_EQ((*cam.window)[2], -0.5f);
+    EXPECT_FLOAT_EQ((*cam.window)[3], 0.5f);
+    ASSERT_TRUE(d.film.crop_window);
+    EXPECT_EQ(d.film.crop_window->value[3], 1);
+    EXPECT_FLOAT_EQ(d.film.scale, 0.5f * 4);  // exposure 0.5 s x iso 400 / 100
+    EXPECT_EQ(first_error("Camera \"perspective\" \"float screenwindow\" [ 1 -1 0 1 ]\n"),
+              "test.pbrt:1:22: screenwindow: expected [x0 x1 y0 y1] with x0 < x1 and y0 < y1");
+}
+
+// An orthographic view of a black sphere of radius 0.9 before a white sky, 2 units across on a
+// 20 x 20 film: pixel centres within 0.9 of the axis see the sphere (0), the others the sky (1).
+// A perspective camera from the same place would show a much smaller disk.
+TEST(Pbrt, OrthographicViewOfASphereIsItsSilhouette) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
+Camera "orthographic"
+Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
+Sampler "independent" "integer pixelsamples" [ 1 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+Shape "sphere" "float radius" [ 0.9 ]
+)"), {}, sources);
+    Film film(job.film_width, job.film_height);
+    render(job.scene, job.camera, *job.integrator, job.options, film);
+    int checked = 0;
+    for (int row = 0; row < 20; ++row)
+        for (int col = 0; col < 20; ++col) {
+            const double x = -1 + (col + 0.5) * 0.1, y = 1 - (row + 0.5) * 0.1, r = std::hypot(x, y);
+            if (std::abs(r - 0.9) < 0.01) continue;
+            EXPECT_EQ(film.at(col, row).g, r < 0.9 ? 0.0f : 1.0f) << col << "," << row;
+            ++checked;
+        }
+    EXPECT_GT(checked, 390);
+}
+
 // pbrt's front side: the geometric normal of the (object-space) winding carried by the inverse
 // transpose, so a mirroring transform keeps it, and ReverseOrientation flips it.
 TEST(Pbrt, FrontSidesFollowPbrt) {
@@ -274,7 +325,7 @@ TEST(Pbrt, CornellBoxRendersBitIdenticalToTheYamlScene) {
     const auto render_file = [&](const std::filesystem::path& p) {
         auto sources = std::make_shared<SourceFiles>();
         const RenderJob job = build(load_scene_file(p.string(), sources), o, sources);
-        Film film(job.width, job.height);
+        Film film(job.film_width, job.film_height);
         render(job.scene, job.camera, *job.integrator, job.options, film);
         return film;
     };
@@ -309,7 +360,7 @@ TEST(Pbrt, ConvertedScenesRenderTheSame) {
     o.spp = 4;
     const auto render_desc = [&](const SceneDescription& d, const std::shared_ptr<SourceFiles>& sources) {
         const RenderJob job = build(d, o, sources);
-        Film film(job.width, job.height);
+        Film film(job.film_width, job.film_height);
         render(job.scene, job.camera, *job.integrator, job.options, film);
         return film;
     };

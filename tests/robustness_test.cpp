@@ -70,7 +70,7 @@ TEST(Robustness, MutatedScenesBuildOrFailCleanly) {
             small.spp = 1;
             small.max_depth = 3;
             const RenderJob job = build(parse_scene(text, "fuzz.yaml", sources), small, sources);
-            Film film(job.width, job.height);
+            Film film(job.film_width, job.film_height);
             render(job.scene, job.camera, *job.integrator, job.options, film);
             // Huge but representable inputs (a colour of 999999999999) may legitimately
             // overflow float arithmetic; every other scene that builds renders finite pixels.

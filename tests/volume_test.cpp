@@ -27,7 +27,7 @@ RenderJob job_from(const std::string& yaml, const std::string& path = "scene.yam
 }
 
 Film render_job(const RenderJob& job, int spp, int threads = 0) {
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     RenderOptions o = job.options;
     o.spp = spp;
     o.threads = threads;

@@ -231,14 +231,15 @@ int run_render(const RenderArgs& args) {
     const auto mode = args.quiet                 ? glint::ProgressMode::kQuiet
                       : ::isatty(::fileno(stderr)) ? glint::ProgressMode::kBar
                                                    : glint::ProgressMode::kSummary;
-    glint::Film film(job.width, job.height);
+    glint::Film film(job.film_width, job.film_height);
     if (job.aovs) film.enable_aovs();
     glint::Progress progress(mode, stderr,
-                             static_cast<std::uint64_t>(job.width) * static_cast<std::uint64_t>(job.height));
+                             static_cast<std::uint64_t>(job.film_width) *
+                                 static_cast<std::uint64_t>(job.film_height));
     const glint::RenderStats stats =
         glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress);
     glint::write_image(out, film, job.display);
-    progress.finish(stats, job.width, job.height, job.options.spp);
+    progress.finish(stats, job.film_width, job.film_height, job.options.spp);
     if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
     return 0;
 }

@@ -21,11 +21,21 @@ Camera::Camera(Point3 position, Vector3 direction, Vector3 up, Float viewport_wi
     : position_(position),
       v_(normalize(direction)),
       basis_(camera_basis(v_, up)),
-      film_height_(static_cast<Float>(film_height)) {
+      film_height_(static_cast<Float>(film_height)),
+      near_(near_distance) {
     const Vector3 b = basis_.h * (-viewport_width / 2) - basis_.u * (viewport_height / 2);
     corner_ = b + v_ * near_distance;
     h_step_ = basis_.h * (viewport_width / static_cast<Float>(film_width));
     u_step_ = basis_.u * (viewport_height / static_cast<Float>(film_height));
+}
+
+void Camera::set_window(Float x0, Float x1, Float y0, Float y1, int film_width) {
+    const Float sw = static_cast<Float>(film_width);
+    const Float half = length(u_step_) * film_height_ / 2;
+    const Vector3 centre = v_ * near_;
+    corner_ = centre + basis_.h * (x0 * half) + basis_.u * (y0 * half);
+    h_step_ = basis_.h * ((x1 - x0) * half / sw);
+    u_step_ = basis_.u * ((y1 - y0) * half / film_height_);
 }
 
 Camera Camera::look_at(Point3 from, Point3 to, Vector3 up, Float vertical_fov_degrees,

@@ -20,6 +20,11 @@
 // point starts at a point of the lens disk P + a (lx H + ly U) and passes through the point where
 // the pinhole ray meets the focus plane (the plane perpendicular to V at the focus distance), so
 // everything on that plane is sharp. With a = 0 the ray is exactly the pinhole ray.
+//
+// Orthographic (pbrt's `orthographic`): the film point A gives the ray's origin instead of its
+// direction: origin = P + A - zV, direction V; the viewport's size is then the visible extent in
+// world units. A window (pbrt's `screenwindow`) shows part of the viewport: [x0, x1] x [y0, y1]
+// in units of half the viewport's height, (0, 0) at its centre, y up.
 #include "glint/ray.h"
 #include "glint/samplers/warp.h"
 
@@ -51,6 +56,11 @@ public:
         focus_distance_ = focus_distance;
     }
     Float aperture_radius() const { return aperture_radius_; }
+    /// Rays parallel to V from the film points (see above).
+    void make_orthographic() { orthographic_ = true; }
+    bool orthographic() const { return orthographic_; }
+    /// Shows only [x0, x1] x [y0, y1] of the viewport (see above); before make_right_handed.
+    void set_window(Float x0, Float x1, Float y0, Float y1, int film_width);
     /// For right-handed scene data (the Cornell box's): H becomes -H, so the image is the
     /// mirror image of the left-handed one and right-handed data appears as in its own renders.
     void make_right_handed(int film_width) {
@@ -66,6 +76,7 @@ public:
         const Float x = fx;
         const Float y = film_height_ - fy;
         const Vector3 a = corner_ + h_step_ * x + u_step_ * y;
+        if (orthographic_) return Ray{position_ + (a - v_ * near_), v_};
         return Ray{position_, normalize(a)};
     }
 
@@ -78,7 +89,7 @@ public:
             pinhole.at(focus_distance_ / dot(pinhole.direction, v_));  // on the focus plane
         const Point2 d = sample_uniform_disk_concentric(lens);
         const Point3 origin =
-            position_ + (basis_.h * d.x + basis_.u * d.y) * aperture_radius_;
+            pinhole.origin + (basis_.h * d.x + basis_.u * d.y) * aperture_radius_;
         return Ray{origin, normalize(focus - origin)};
     }
 
@@ -93,6 +104,8 @@ private:
     Vector3 h_step_;  ///< (w/Sw) H
     Vector3 u_step_;  ///< (h/Sh) U
     Float film_height_ = 1;
+    Float near_ = 1;
+    bool orthographic_ = false;
     Float aperture_radius_ = 0;
     Float focus_distance_ = 1;
 };

@@ -67,6 +67,36 @@ TEST(Camera, LookAtBuildsTheSameCameraAsTheArticleForm) {
             expect_vec(a.generate_ray(fx, fy).direction, b.generate_ray(fx, fy).direction, 1e-6f);
 }
 
+TEST(Camera, OrthographicRaysLeaveTheFilmPointsParallelToTheView) {
+    // From (1, 2, 3) along +z, a viewport 8 x 4 world units on a 200 x 100 film: H = (1, 0, 0),
+    // U = (0, 1, 0), so film (0, 0) is P - 4H + 2U and film (200, 100) is P + 4H - 2U.
+    Camera c({1, 2, 3}, {0, 0, 1}, {0, 1, 0}, 8, 4, 1, 200, 100);
+    c.make_orthographic();
+    const auto expect_ray = [&](float fx, float fy, Vector3 origin) {
+        const Ray r = c.generate_ray(fx, fy);
+        expect_vec(r.origin - Point3{0, 0, 0}, origin, 1e-5f);
+        expect_vec(r.direction, {0, 0, 1}, 0);
+    };
+    expect_ray(0, 0, {-3, 4, 3});
+    expect_ray(200, 100, {5, 0, 3});
+    expect_ray(100, 50, {1, 2, 3});
+    expect_ray(150, 25, {3, 3, 3});
+}
+
+TEST(Camera, AWindowShowsPartOfTheView) {
+    // fov 90: the viewport at z = 1 spans [-1, 1]^2. The window [0, 1] x [0, 1] is its top-right
+    // quarter: film (0, 0) looks through (0, 1, 1), film (100, 100) through (1, 0, 1).
+    Camera c = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 90, 100, 100);
+    const Camera whole = c;
+    c.set_window(-1, 1, -1, 1, 100);  // the whole viewport: the same rays
+    for (float f : {0.5f, 33.0f, 99.5f})
+        expect_vec(c.generate_ray(f, 100 - f).direction, whole.generate_ray(f, 100 - f).direction, 1e-6f);
+    c.set_window(0, 1, 0, 1, 100);
+    expect_vec(c.generate_ray(0, 0).direction, normalize(Vector3{0, 1, 1}), 1e-6f);
+    expect_vec(c.generate_ray(100, 100).direction, normalize(Vector3{1, 0, 1}), 1e-6f);
+    expect_vec(c.generate_ray(50, 50).direction, normalize(Vector3{0.5f, 0.5f, 1}), 1e-6f);
+}
+
 Sample2 lens_sample(std::uint32_t i) {
     return {static_cast<float>((i * 7919u) % 1000u) / 1000.0f,
             static_cast<float>((i * 104729u) % 997u) / 997.0f};

@@ -20,7 +20,7 @@ RenderJob job_from(const std::string& yaml, Overrides o = {}) {
 }
 
 Film render_job(const RenderJob& job, int spp, std::uint64_t seed = 0) {
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     RenderOptions o = job.options;
     o.spp = spp;
     o.seed = seed;

@@ -3,6 +3,8 @@
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <algorithm>
+#include <array>
 #include <map>
 #include <cmath>
 #include <cstdlib>
@@ -371,6 +373,37 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                                            "of {} pixels",
                                            job.width, job.height, pixels, kMaxFilmPixels));
     }
+    job.film_width = job.width;
+    job.film_height = job.height;
+    if (d.film.crop_window || d.film.pixel_bounds) {
+        std::array<long long, 4> b{};  // x0, x1, y0, y1
+        SourceLoc loc;
+        if (d.film.crop_window) {
+            const auto& c = d.film.crop_window->value;
+            loc = d.film.crop_window->loc;
+            const auto edge = [](float f, int n) {
+                return static_cast<long long>(std::ceil(static_cast<double>(std::clamp(f, 0.0f, 1.0f)) * n));
+            };
+            b = {edge(std::min(c[0], c[1]), job.width), edge(std::max(c[0], c[1]), job.width),
+                 edge(std::min(c[2], c[3]), job.height), edge(std::max(c[2], c[3]), job.height)};
+        } else {
+            const auto& p = d.film.pixel_bounds->value;
+            loc = d.film.pixel_bounds->loc;
+            b = {std::clamp<long long>(p[0], 0, job.width), std::clamp<long long>(p[1], 0, job.width),
+                 std::clamp<long long>(p[2], 0, job.height), std::clamp<long long>(p[3], 0, job.height)};
+        }
+        if (b[1] <= b[0] || b[3] <= b[2]) {
+            diagnostics.error(loc, fmt::format("the crop holds no pixel of the {} x {} frame (pixels "
+                                               "[{}, {}) x [{}, {}))",
+                                               job.width, job.height, b[0], b[1], b[2], b[3]));
+        } else {
+            job.options.offset_x = static_cast<int>(b[0]);
+            job.options.offset_y = static_cast<int>(b[2]);
+            job.film_width = static_cast<int>(b[1] - b[0]);
+            job.film_height = static_cast<int>(b[3] - b[2]);
+        }
+    }
+    job.options.scale = d.film.scale;
     job.options.spp = pick(d.sampler.spp, overrides.spp, "spp", 1, kMaxSpp, diagnostics);
     job.options.seed = overrides.seed.value_or(d.sampler.seed);
     job.options.sampler = d.sampler.type;
@@ -398,7 +431,18 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         if (a->right_handed) job.camera.make_right_handed(job.width);
     } else {
         const auto& l = std::get<LookAtCameraDesc>(d.camera);
-        job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
+        if (l.orthographic) {
+            const Float aspect = static_cast<Float>(job.width) / static_cast<Float>(job.height);
+            job.camera = Camera(l.from, l.to - l.from, l.up, l.height * aspect, l.height, 1,
+                                job.width, job.height);
+            job.camera.make_orthographic();
+        } else {
+            job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
+        }
+        if (l.window) {
+            const auto& w = *l.window;
+            job.camera.set_window(w[0], w[1], w[2], w[3], job.width);
+        }
         job.camera.set_lens(l.aperture_radius, l.focus_distance.value_or(length(l.to - l.from)));
         if (l.right_handed) job.camera.make_right_handed(job.width);
     }

@@ -30,7 +30,9 @@ struct RenderJob {
     Camera camera;
     std::unique_ptr<Integrator> integrator;
     RenderOptions options;
-    int width = 0, height = 0;
+    int width = 0, height = 0;  ///< the camera's whole frame
+    /// The film written: the whole frame, or the crop (options.offset_x/y place it).
+    int film_width = 0, film_height = 0;
     DisplaySettings display;
     bool aovs = false;
     std::string filename;  ///< the scene's film.filename, or empty

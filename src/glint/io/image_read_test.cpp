@@ -86,7 +86,7 @@ TEST(ImageRead, TexturedQuadRendersTheImage) {
         "     material: {color: {type: image, filename: rb.exr, wrap: clamp}}}\n";
     auto sources = std::make_shared<SourceFiles>();
     const RenderJob job = build(load_scene_file((dir / "s.yaml").string(), sources), {}, sources);
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
     EXPECT_EQ(film.at(1, 8), (Color{1, 0, 0}));
     EXPECT_EQ(film.at(14, 8), (Color{0, 0, 1}));

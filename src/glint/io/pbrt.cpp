@@ -399,6 +399,8 @@ private:
     int material_count_ = 0;
     bool world_ = false;
     bool camera_seen_ = false;
+    double exposure_time_ = 1;  ///< the camera's shutter interval
+    double film_ratio_ = 1;     ///< the film's part of the imaging ratio
     // ObjectBegin .. ObjectEnd: the objects recorded (their transforms relative to the world)
     std::map<std::string, std::vector<ObjectDesc>> instances_;
     std::optional<std::pair<std::string, SourceLoc>> defining_;
@@ -882,7 +884,7 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             // The pbrt name where it is free (a redefinition gets a new one: pbrt's replaces it).
             std::string inner = *n;
             const auto taken = [&](const std::string& x) {
-                return std::any_of(d_.materials.begin(), d_.materials.end(), [&](const NamedMaterial& m) { return m.name == x; });
+                return std::any_of(d_.materials.begin(), d_.materials.end(), [&](const NamedMaterial& nm) { return nm.name == x; });
             };
             if (taken(inner) || inner.rfind("pbrt-", 0) == 0) inner = fmt::format("pbrt-named-{}-{}", *n, ++material_count_);
             d_.materials.push_back({inner, *m, t.loc()});
@@ -1005,16 +1007,22 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     cam.aperture_radius = float(get_float(pl, "lensradius").value_or(0));
     if (auto f = get_float(pl, "focaldistance")) cam.focus_distance = float(*f);
     else if (cam.aperture_radius > 0) cam.focus_distance = 1e6f;  // pbrt's default
-    if (get_floats(pl, "screenwindow", "float", 4))
-        warn(pl.find("screenwindow")->loc, "screenwindow not supported; using the full frame");
+    if (const auto* w = get_floats(pl, "screenwindow", "float", 4)) {
+        if (w->size() != 4 || !((*w)[1] > (*w)[0] && (*w)[3] > (*w)[2]))
+            diag_.error(pl.find("screenwindow")->loc, "screenwindow: expected [x0 x1 y0 y1] with x0 < x1 and y0 < y1");
+        else
+            cam.window = std::array<Float, 4>{Float((*w)[0]), Float((*w)[1]), Float((*w)[2]), Float((*w)[3])};
+    }
     if (get_float(pl, "frameaspectratio"))
         warn(pl.find("frameaspectratio")->loc, "frameaspectratio ignored; the film's resolution decides");
-    for (const char* ignored : {"shutteropen", "shutterclose"})
-        if (get_float(pl, ignored)) warn(pl.find(ignored)->loc, fmt::format("\"{}\" ignored (no motion blur)", ignored));
+    // The shutter interval is the exposure time of pbrt's imaging ratio (no motion blur).
+    const double open = get_float(pl, "shutteropen").value_or(0), close = get_float(pl, "shutterclose").value_or(1);
+    if (!(close >= open)) diag_.error(pl.find("shutterclose") ? pl.find("shutterclose")->loc : t.loc(),
+                                      "shutterclose must not be before shutteropen");
+    exposure_time_ = close - open;
     if (type == "orthographic") {
-        warn(t.loc(), "orthographic camera not supported; using a perspective camera of fov 30 from the same place");
-        cam.fov = 30;
-        pl.use_all();
+        cam.orthographic = true;
+        cam.height = Float(2 * std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]));  // shorter axis [-1, 1]
     } else if (type != "perspective") {
         warn(t.loc(), fmt::format("camera \"{}\" not supported; using perspective", type));
         pl.use_all();
@@ -1032,8 +1040,30 @@ void Parser::film(const Token& t, const std::string& type, ParamList pl) {
     if (auto x = get_int(pl, "xresolution")) d_.film.width = {*x, pl.find("xresolution")->loc};
     if (auto y = get_int(pl, "yresolution")) d_.film.height = {*y, pl.find("yresolution")->loc};
     if (auto f = get_string(pl, "filename")) d_.film.filename = {*f, pl.find("filename")->loc};
-    if (get_floats(pl, "cropwindow", "float", 4)) warn(pl.find("cropwindow")->loc, "cropwindow not supported; rendering the whole frame");
-    if (get_floats(pl, "pixelbounds", "integer", 4)) warn(pl.find("pixelbounds")->loc, "pixelbounds not supported; rendering the whole frame");
+    if (const auto* c = get_floats(pl, "cropwindow", "float", 4)) {
+        if (c->size() != 4) diag_.error(pl.find("cropwindow")->loc, "cropwindow: expected 4 values [x0 x1 y0 y1]");
+        else d_.film.crop_window = Located<std::array<float, 4>>{
+                 {float((*c)[0]), float((*c)[1]), float((*c)[2]), float((*c)[3])}, pl.find("cropwindow")->loc};
+    } else if (const auto* b = get_floats(pl, "pixelbounds", "integer", 4)) {
+        if (b->size() != 4) diag_.error(pl.find("pixelbounds")->loc, "pixelbounds: expected 4 values [x0 x1 y0 y1]");
+        else {
+            std::array<int, 4> v{};
+            for (std::size_t i = 0; i < 4; ++i) v[i] = int(std::clamp((*b)[i], -1e9, 1e9));
+            d_.film.pixel_bounds = Located<std::array<int, 4>>{v, pl.find("pixelbounds")->loc};
+        }
+    }
+    // pbrt-v4's imaging ratio relative to its pass-through defaults (iso 100, fnumber 1,
+    // c = 100 pi): exposure time x iso / 100 / fnumber^2 x 100 pi / c.
+    const double iso = get_float(pl, "iso").value_or(100), fnumber = get_float(pl, "fnumber").value_or(1),
+                 c = get_float(pl, "c").value_or(100 * std::numbers::pi);
+    if (!(iso > 0 && fnumber > 0 && c > 0))
+        diag_.error(t.loc(), "Film: iso, fnumber and c must be positive");
+    else
+        film_ratio_ = iso / 100 / (fnumber * fnumber) * (100 * std::numbers::pi / c);
+    if (auto sensor = get_string(pl, "sensor"); sensor && *sensor != "cie1931")
+        warn(pl.find("sensor")->loc, fmt::format("sensor \"{}\" not simulated; using cie1931 (plain RGB)", *sensor));
+    if (get_float(pl, "whitebalance").value_or(0) != 0)
+        warn(pl.find("whitebalance")->loc, "whitebalance not applied");
     ignore_rest(pl, "Film: parameter \"{}\" ignored (glint writes linear radiance)");
 }
 
@@ -1589,13 +1619,19 @@ void Parser::finish() {
     if (!transform_stack_.empty()) diag_.error(transform_stack_.back().second, "TransformBegin without TransformEnd");
     if (defining_) diag_.error(defining_->second, "ObjectBegin without ObjectEnd");
     // pbrt's fov spans the shorter image axis; glint's is vertical.
+    // So do its screen window's units and an orthographic camera's extent.
     if (auto* cam = std::get_if<LookAtCameraDesc>(&d_.camera)) {
         const double w = d_.film.width.value, h = d_.film.height.value;
         if (w < h && w > 0) {
             const double half = cam->fov * std::numbers::pi / 360;
             cam->fov = float(2 * std::atan(std::tan(half) * h / w) * 180 / std::numbers::pi);
+            cam->height = Float(cam->height * h / w);
+            if (cam->window)
+                for (Float& v : *cam->window) v = Float(v * w / h);
         }
     }
+    const double ratio = exposure_time_ * film_ratio_;
+    if (ratio != 1) d_.film.scale = float(ratio);
 }
 
 }  // namespace

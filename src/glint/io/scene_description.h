@@ -56,6 +56,13 @@ struct LookAtCameraDesc {
     Float aperture_radius = 0;
     std::optional<Float> focus_distance;  ///< default: |to - from|
     bool right_handed = false;
+    /// Orthographic: rays parallel to to - from; `height` is the visible height in world units
+    /// (fov unused).
+    bool orthographic = false;
+    Float height = 2;
+    /// The part of the view shown: [x0, x1, y0, y1] in units of half the view's height, (0, 0)
+    /// at its centre, y up (pbrt's screenwindow, rescaled to the vertical axis).
+    std::optional<std::array<Float, 4>> window;
 };
 
 struct EnvironmentDesc {
@@ -76,6 +83,13 @@ struct FilmDesc {
     FilterDesc filter;
     bool aovs = false;  ///< write albedo, normal and depth channels (EXR only)
     Located<std::string> filename;  ///< empty: the CLI chooses
+    /// Render only part of the frame: [x0, x1, y0, y1] as fractions of the width and height
+    /// (y down), pixel bounds rounded up as pbrt's cropwindow; or pixel bounds directly
+    /// [x0, x1, y0, y1), clamped to the frame. The image written is the crop.
+    std::optional<Located<std::array<float, 4>>> crop_window;
+    std::optional<Located<std::array<int, 4>>> pixel_bounds;
+    /// Multiplies the radiance of every pixel (pbrt's imaging ratio).
+    float scale = 1;
 };
 
 enum class IntegratorKind { kFlat, kNormals, kWhitted, kPath };

@@ -190,6 +190,10 @@ WrittenScene Writer::run() {
         if (c->aperture_radius > 0) y += ", aperture_radius: " + num(c->aperture_radius);
         if (c->focus_distance) y += ", focus_distance: " + num(*c->focus_distance);
         if (c->right_handed) y += ", handedness: right";
+        if (c->orthographic) y += ", projection: orthographic, height: " + num(c->height);
+        if (c->window)
+            y += fmt::format(", window: [{}, {}, {}, {}]", num((*c->window)[0]), num((*c->window)[1]),
+                             num((*c->window)[2]), num((*c->window)[3]));
         y += "}\n";
     } else {
         const auto& a = std::get<ArticleCameraDesc>(d_.camera);
@@ -207,6 +211,13 @@ WrittenScene Writer::run() {
     if (f.type == FilterType::kGaussian) filter += ", sigma: " + num(f.sigma);
     y += fmt::format("film: {{width: {}, height: {}, filter: {}}}", d_.film.width.value, d_.film.height.value, filter + "}");
     if (!d_.film.filename.value.empty()) y.insert(y.size() - 1, ", filename: " + yaml_quoted(d_.film.filename.value));
+    if (const auto& c = d_.film.crop_window)
+        y.insert(y.size() - 1, fmt::format(", crop: [{}, {}, {}, {}]", num(c->value[0]), num(c->value[1]),
+                                           num(c->value[2]), num(c->value[3])));
+    if (const auto& p = d_.film.pixel_bounds)
+        y.insert(y.size() - 1, fmt::format(", crop_pixels: [{}, {}, {}, {}]", p->value[0], p->value[1],
+                                           p->value[2], p->value[3]));
+    if (d_.film.scale != 1) y.insert(y.size() - 1, ", scale: " + num(d_.film.scale));
     y += "\n";
     const char* samplers[] = {"sobol", "stratified", "independent"};
     y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}}}\n", samplers[static_cast<int>(d_.sampler.type)],

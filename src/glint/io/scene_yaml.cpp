@@ -128,9 +128,22 @@ private:
             LookAtCameraDesc c;
             MapReader m(r_, node, "look_at camera",
                         {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance",
-                         "handedness"});
+                         "handedness", "projection", "height", "window"});
             lens(m, c.aperture_radius, c.focus_distance);
             handedness(m, c.right_handed);
+            if (auto n = m.get("projection")) {
+                if (auto o = choice<bool>(*n, "projection",
+                                          {{"perspective", false}, {"orthographic", true}}))
+                    c.orthographic = *o;
+            }
+            if (auto n = m.get("height")) {
+                if (!c.orthographic) r_.error(*n, "look_at camera: 'height' is for projection: orthographic (a perspective camera has 'fov')");
+                if (auto v = positive("height")(*n)) c.height = static_cast<Float>(*v);
+            }
+            if (auto n = m.get("window")) {
+                if (auto w = r_.bounds(*n, "window"))
+                    c.window = std::array<Float, 4>{Float((*w)[0]), Float((*w)[1]), Float((*w)[2]), Float((*w)[3])};
+            }
             assign(m.require("from"), c.from, point());
             assign(m.require("to"), c.to, point());
             assign(m.get("up"), c.up, direction("up"));
@@ -179,7 +192,7 @@ private:
     void film(const YAML::Node& node, FilmDesc& f) {
         MapReader m(r_, node, "film",
                     {"width", "height", "encoding", "tonemap", "exposure", "filter", "aovs",
-                     "filename"});
+                     "filename", "crop", "crop_pixels", "scale"});
         assign(m.get("aovs"), f.aovs, [this](const YAML::Node& v) { return r_.boolean(v); });
         if (auto n = m.get("filter")) f.filter = filter(*n);
         auto size = [this, &m](const char* key, Located<int>& out) {
@@ -206,6 +219,31 @@ private:
         }
         assign(m.get("exposure"), f.display.exposure, [this](const YAML::Node& v) {
             return r_.number_in(v, "exposure", -64, 64);
+        });
+        if (auto n = m.get("crop")) {
+            if (auto c = r_.bounds(*n, "crop")) {
+                if ((*c)[0] < 0 || (*c)[1] > 1 || (*c)[2] < 0 || (*c)[3] > 1)
+                    r_.error(*n, "crop: fractions of the frame, in [0, 1]");
+                else
+                    f.crop_window = Located<std::array<float, 4>>{
+                        {float((*c)[0]), float((*c)[1]), float((*c)[2]), float((*c)[3])}, r_.loc(*n)};
+            }
+        }
+        if (auto n = m.get("crop_pixels")) {
+            if (auto c = r_.bounds(*n, "crop_pixels")) {
+                const auto& b = *c;
+                if (b[0] < 0 || b[2] < 0 || b[1] > kMaxFilmSide || b[3] > kMaxFilmSide ||
+                    b[0] != std::floor(b[0]) || b[1] != std::floor(b[1]) || b[2] != std::floor(b[2]) ||
+                    b[3] != std::floor(b[3]))
+                    r_.error(*n, "crop_pixels: whole pixel numbers within the frame");
+                else
+                    f.pixel_bounds = Located<std::array<int, 4>>{
+                        {int(b[0]), int(b[1]), int(b[2]), int(b[3])}, r_.loc(*n)};
+            }
+        }
+        if (f.crop_window && f.pixel_bounds) r_.error(node, "film: give 'crop' or 'crop_pixels', not both");
+        assign(m.get("scale"), f.scale, [this](const YAML::Node& v) {
+            return r_.number_in(v, "scale", 0, 1e30, true);
         });
         if (auto n = m.get("filename")) {
             f.filename.loc = r_.loc(*n);

@@ -215,6 +215,36 @@ TEST(SceneYaml, ToneMappingKeys) {
               std::string::npos) << e;
 }
 
+TEST(SceneYaml, OrthographicCameraWindowAndCrop) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(
+        "camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], projection: orthographic,\n"
+        "         height: 3, window: [-1, 0, -0.5, 1]}\n"
+        "film: {width: 64, height: 32, crop_pixels: [8, 40, 0, 16], scale: 2}\n",
+        "scene.yaml", sources);
+    const auto& c = std::get<LookAtCameraDesc>(d.camera);
+    EXPECT_TRUE(c.orthographic);
+    EXPECT_EQ(c.height, 3);
+    ASSERT_TRUE(c.window);
+    EXPECT_EQ((*c.window)[2], -0.5f);
+    const RenderJob job = build(d, {}, sources);
+    EXPECT_EQ(job.film_width, 32);
+    EXPECT_EQ(job.film_height, 16);
+    EXPECT_EQ(job.options.offset_x, 8);
+    EXPECT_EQ(job.options.scale, 2);
+    EXPECT_NE(errors_of("camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], height: 3}\n")
+                  .find("scene.yaml:1:66: error: look_at camera: 'height' is for projection: orthographic"),
+              std::string::npos);
+    EXPECT_NE(errors_of("camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], window: [1, 0, 0, 1]}\n")
+                  .find("scene.yaml:1:66: error: window: needs x0 < x1 and y0 < y1"),
+              std::string::npos);
+    EXPECT_NE(errors_of("film: {crop: [0, 1.5, 0, 1]}\n").find("scene.yaml:1:14: error: crop: fractions"),
+              std::string::npos);
+    EXPECT_NE(errors_of("film: {width: 10, crop_pixels: [20, 30, 0, 5]}\n")
+                  .find("scene.yaml:1:32: error: the crop holds no pixel of the 10 x 360 frame"),
+              std::string::npos);
+}
+
 TEST(SceneYaml, JsonIsAccepted) {
     const std::string json = R"({
   "camera": {"type": "look_at", "from": [0, 1, -5], "to": [0, 0, 0], "fov": 40},

@@ -87,6 +87,28 @@ std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) 
     return out;
 }
 
+std::optional<std::array<double, 4>> YamlReader::bounds(const YAML::Node& node, const char* what) {
+    if (!node.IsSequence() || node.size() != 4) {
+        error(node, fmt::format("{}: expected a list of 4 numbers [x0, x1, y0, y1], got {}", what,
+                                node.IsSequence() ? fmt::format("a list of {}", node.size())
+                                                  : describe(node)));
+        return std::nullopt;
+    }
+    std::array<double, 4> out{};
+    bool ok = true;
+    for (std::size_t i = 0; i < 4; ++i) {
+        const auto v = number(node[i]);
+        if (v) out[i] = *v;
+        ok = ok && v.has_value();
+    }
+    if (!ok) return std::nullopt;
+    if (!(out[1] > out[0] && out[3] > out[2])) {
+        error(node, fmt::format("{}: needs x0 < x1 and y0 < y1", what));
+        return std::nullopt;
+    }
+    return out;
+}
+
 std::optional<Point3> YamlReader::point(const YAML::Node& node) {
     const auto t = triple(node);
     if (!t) return std::nullopt;

@@ -29,6 +29,8 @@ public:
     std::optional<bool> boolean(const YAML::Node& node);
     std::optional<std::string> string(const YAML::Node& node);
     std::optional<std::array<double, 3>> triple(const YAML::Node& node);
+    /// Four finite numbers [x0, x1, y0, y1] with x0 < x1 and y0 < y1 (windows, crops).
+    std::optional<std::array<double, 4>> bounds(const YAML::Node& node, const char* what);
 
     std::optional<Point3> point(const YAML::Node& node);
     /// A vector that must not be zero-length (directions, normals); `what` names it in errors.

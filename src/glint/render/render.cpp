@@ -23,16 +23,18 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     std::atomic<std::uint64_t> total_rays{0};
 
     // The single-sample ray: the pixel centre, through the lens centre.
-    const auto centre_ray = [&camera](int col, int row) {
-        return camera.generate_ray(static_cast<float>(col) + 0.5f, static_cast<float>(row) + 0.5f,
-                                   {0.5f, 0.5f});
+    // Film pixel (col, row) is pixel (col + ox, row + oy) of the camera's frame (a crop).
+    const int ox = options.offset_x, oy = options.offset_y;
+    const auto centre_ray = [&camera, ox, oy](int col, int row) {
+        return camera.generate_ray(static_cast<float>(col + ox) + 0.5f,
+                                   static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
     };
 
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
         RayCounter counter;
-        const auto seed_of = [&options](int col, int row) {
-            return pixel_seed(options.seed, static_cast<std::uint32_t>(col),
-                              static_cast<std::uint32_t>(row));
+        const auto seed_of = [&options, ox, oy](int col, int row) {
+            return pixel_seed(options.seed, static_cast<std::uint32_t>(col + ox),
+                              static_cast<std::uint32_t>(row + oy));
         };
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
@@ -40,6 +42,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                     const PixelSampler sampler(options.sampler, 1, seed_of(col, row));
                     SampleStream samples(sampler, 0);
                     film.at(col, row) = integrator.li(scene, centre_ray(col, row), samples, counter);
+                    if (options.scale != 1) film.at(col, row) = film.at(col, row) * options.scale;
                     continue;
                 }
                 Color sum{0};
@@ -70,9 +73,9 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                         const auto index = static_cast<std::uint32_t>(i);
                         const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
                         const Sample2 lens = sampler.get_2d(index, 1);
-                        const Ray ray = camera.generate_ray(static_cast<float>(col) + 0.5f + f.dx,
-                                                            static_cast<float>(row) + 0.5f + f.dy,
-                                                            lens);
+                        const Ray ray =
+                            camera.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
+                                                static_cast<float>(row + oy) + 0.5f + f.dy, lens);
                         SampleStream samples(sampler, index);
                         sum += integrator.li(scene, ray, samples, counter, want) * f.weight;
                         if (aovs) add_aovs(f.weight);
@@ -80,7 +83,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                     }
                     sum = weight_sum > 0 ? sum / weight_sum : Color{0};
                 }
-                film.at(col, row) = sum;
+                film.at(col, row) = options.scale != 1 ? sum * options.scale : sum;
                 if (aovs) {
                     const float inv = weight_sum > 0 ? 1 / weight_sum : 0;
                     film.albedo(col, row) = albedo * inv;

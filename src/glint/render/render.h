@@ -21,6 +21,11 @@ struct RenderOptions {
     SamplerType sampler = SamplerType::kSobol;
     std::uint64_t seed = 0;
     int tile_size = 16;
+    /// A crop: the film is the part of the camera's frame whose top-left pixel is
+    /// (offset_x, offset_y); each pixel gets exactly the rays and samples of the whole frame's.
+    int offset_x = 0, offset_y = 0;
+    /// Multiplies every pixel's radiance (pbrt's imaging ratio: exposure time x ISO / 100).
+    float scale = 1;
 };
 
 RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,

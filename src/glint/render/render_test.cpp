@@ -19,7 +19,7 @@ RenderJob load(const std::string& name, Overrides overrides = {}) {
 }
 
 Film render_with(const RenderJob& job, int threads, int tile, int spp) {
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     RenderOptions o = job.options;
     o.threads = threads;
     o.tile_size = tile;
@@ -45,6 +45,49 @@ TEST(Render, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
         const Film c = render_with(job, 2, 16, spp);
         ASSERT_EQ(0, std::memcmp(a.pixels().data(), c.pixels().data(),
                                  a.pixels().size() * sizeof(Color)));
+    }
+}
+
+// A crop renders exactly the whole frame's pixels: same rays, same samples.
+TEST(Render, ACropHoldsExactlyTheWholeFramesPixels) {
+    auto sources = std::make_shared<SourceFiles>();
+    SceneDescription d = load_scene_file(
+        std::string(GLINT_SOURCE_DIR) + "/scenes/seed/fig14-reflections.yaml", sources);
+    d.film.width.value = 61;
+    d.film.height.value = 40;
+    const RenderJob whole = build(d, {}, sources);
+    d.film.pixel_bounds = Located<std::array<int, 4>>{{10, 45, 7, 30}, {}};
+    const RenderJob crop = build(d, {}, sources);
+    ASSERT_EQ(crop.film_width, 35);
+    ASSERT_EQ(crop.film_height, 23);
+    // pbrt's crop window: pixel bounds ceil(61 * 0.25) = 16 to ceil(61 * 0.5) = 31.
+    d.film.pixel_bounds.reset();
+    d.film.crop_window = Located<std::array<float, 4>>{{0.25f, 0.5f, 0, 1}, {}};
+    const RenderJob fraction = build(d, {}, sources);
+    EXPECT_EQ(fraction.film_width, 15);
+    EXPECT_EQ(fraction.options.offset_x, 16);
+    EXPECT_EQ(fraction.film_height, 40);
+    for (int spp : {1, 3}) {
+        const Film a = render_with(whole, 2, 16, spp);
+        const Film b = render_with(crop, 2, 5, spp);
+        for (int row = 0; row < 23; ++row)
+            for (int col = 0; col < 35; ++col) {
+                const Color x = a.at(col + 10, row + 7), y = b.at(col, row);
+                ASSERT_TRUE(x.r == y.r && x.g == y.g && x.b == y.b) << col << "," << row << " spp " << spp;
+            }
+    }
+    d.film.crop_window = Located<std::array<float, 4>>{{0.5f, 0.5f, 0, 1}, {}};
+    EXPECT_THROW(build(d, {}, sources), SceneError);  // no pixel
+}
+
+TEST(Render, ScaleMultipliesEveryPixel) {
+    RenderJob job = load("fig14-reflections.yaml", Overrides{.width = 40, .height = 30});
+    const Film a = render_with(job, 2, 16, 2);
+    job.options.scale = 4;  // a power of two: exactly 4x in floating point
+    const Film b = render_with(job, 2, 16, 2);
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        ASSERT_EQ(a.pixels()[i].r * 4, b.pixels()[i].r);
+        ASSERT_EQ(a.pixels()[i].b * 4, b.pixels()[i].b);
     }
 }
 
@@ -169,7 +212,7 @@ TEST(Render, StatsCountEveryRay) {
     o.width = 16;
     o.height = 9;
     const RenderJob job = load("fig07-sphere.yaml", o);
-    Film film(job.width, job.height);
+    Film film(job.film_width, job.film_height);
     RenderOptions opts = job.options;
     opts.spp = 3;
     const RenderStats s = render(job.scene, job.camera, *job.integrator, opts, film);
