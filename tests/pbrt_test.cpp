@@ -441,6 +441,59 @@ TEST(Pbrt, EqualAreaEnvironmentMaps) {
     EXPECT_NEAR(env.eval(normalize(Vector3{0.3f, 1, 0.2f})).r, 1, 1e-6f);   // up: the map's +z half
     EXPECT_NEAR(env.eval(normalize(Vector3{-0.2f, -1, 0.5f})).r, 0, 1e-6f);  // down
     EXPECT_NEAR(r.to_world.apply(Vector3{0, 1, 0}).z, 1, 1e-6f);  // the rotation is the one meant
+
+    // A uniform sky of luminance 1 gives an illuminance of pi on a surface facing any way.
+    const Image white{256, 128, std::vector<Color>(256 * 128, Color{1})};
+    for (Vector3 up : {Vector3{0, 1, 0}, Vector3{0, 0, 1}, normalize(Vector3{1, -2, 0.5f})})
+        EXPECT_NEAR(illuminance(white, up), M_PI, 2e-3);
+}
+
+// pbrt-v4's "power" and "illuminance", against the closed forms of each light's emitted power.
+TEST(Pbrt, LightPowerAndIlluminance) {
+    const SceneDescription d = parse(R"(WorldBegin
+LightSource "point" "rgb I" [ 1 0.5 1 ] "float power" [ 25.132741228718345 ]
+LightSource "spot" "float coneangle" [ 60 ] "float conedelta" [ 0 ] "float power" [ 3.141592653589793 ]
+LightSource "distant" "float illuminance" [ 3 ]
+LightSource "infinite" "rgb L" [ 1 1 1 ] "float illuminance" [ 6.283185307179586 ]
+AttributeBegin
+  AreaLightSource "diffuse" "float power" [ 100 ]
+  Shape "sphere" "float radius" [ 2 ]
+AttributeEnd
+AttributeBegin
+  Scale 2 2 2
+  AreaLightSource "diffuse" "float power" [ 10 ] "bool twosided" true
+  Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  1 1 0  0 1 0 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeEnd
+AttributeBegin
+  AreaLightSource "diffuse" "float power" [ 10 ]
+  Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  1 1 0  0 3 0 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeEnd
+)");
+    ASSERT_EQ(d.lights.size(), 3u);
+    const Color point = std::get<PointLight>(d.lights[0]).intensity;  // 8 pi / (4 pi) = 2
+    EXPECT_NEAR(point.r, 2, 1e-5);
+    EXPECT_NEAR(point.g, 1, 1e-5);
+    // Spot of 60 degrees, no falloff: 2 pi (1 - cos 60) = pi sr, so I = 1.
+    EXPECT_NEAR(std::get<SpotLight>(d.lights[1]).intensity.g, 1, 1e-5);
+    EXPECT_NEAR(std::get<DirectionalLight>(d.lights[2]).intensity.b, 3, 1e-6);
+    EXPECT_NEAR(std::get<ConstantBackground>(d.background).color.r, 2, 1e-6);  // E = pi L
+    const auto radiance = [&](const std::string& name) {
+        for (const NamedMaterial& m : d.materials)
+            if (m.name == name) return m.material.emission.radiance.g;
+        return -1.0f;
+    };
+    std::vector<std::string> emitters;
+    for (const ObjectDesc& o : d.objects) emitters.push_back(std::get<std::string>(o.material.value));
+    ASSERT_EQ(emitters.size(), 5u);
+    // Sphere: 100 / (pi x 16 pi). Square of two triangles of world area 2 each, two-sided:
+    // every triangle emits 10, so L = 10 / (2 x pi x 2).
+    EXPECT_NEAR(radiance(emitters[0]), 100 / (16 * M_PI * M_PI), 1e-5);
+    EXPECT_NEAR(radiance(emitters[1]), 10 / (4 * M_PI), 1e-6);
+    EXPECT_EQ(emitters[1], emitters[2]);
+    // Triangles of areas 0.5 and 1.5: their mean, and a warning that pbrt's radiance differs.
+    EXPECT_NEAR(radiance(emitters[3]), 10 / M_PI, 1e-5);
+    EXPECT_TRUE(std::any_of(d.warnings.begin(), d.warnings.end(),
+                            [](const Diagnostic& w) { return w.message.find("different areas") != std::string::npos; }));
 }
 
 }  // namespace

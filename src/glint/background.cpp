@@ -91,4 +91,20 @@ Image equal_area_to_latlong(const Image& square, const Matrix34& world_to_light)
     return out;
 }
 
+double illuminance(const Image& latlong, Vector3 up) {
+    const int w = latlong.width, h = latlong.height;
+    const double d_phi = 2 * std::numbers::pi / w, d_theta = std::numbers::pi / h;
+    double e = 0;
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const Point2 uv{(float(i) + 0.5f) / float(w), (float(j) + 0.5f) / float(h)};
+            const Vector3 d = EnvironmentMap::uv_to_direction(uv);
+            const double c = dot(d, up);
+            if (c <= 0) continue;
+            const double sin_theta = std::sin((j + 0.5) * d_theta);
+            e += double(luminance(latlong.texel(i, j))) * c * sin_theta * d_phi * d_theta;
+        }
+    return e;
+}
+
 }  // namespace glint

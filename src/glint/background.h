@@ -39,6 +39,10 @@ Point2 equal_area_sphere_to_square(Vector3 d);
 /// direction world_to_light(d) (pbrt's light transform, inverted).
 Image equal_area_to_latlong(const Image& square, const Matrix34& world_to_light);
 
+/// The illuminance a surface facing `up` receives from a latitude-longitude radiance map:
+/// the integral of luminance x cos over the hemisphere around `up` (a midpoint sum over texels).
+double illuminance(const Image& latlong, Vector3 up);
+
 /// An HDR environment in the latitude-longitude layout: the image's top row is straight up
 /// (+y), its bottom row straight down, its centre column looks along +z (where the default
 /// camera looks) and its right half towards +x. Radiance = scale x the bilinearly filtered texel.

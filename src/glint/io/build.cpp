@@ -206,7 +206,13 @@ public:
                                                                e.filename.value, square.width, square.height));
                 return;
             }
-            scene_.background = EnvironmentMap::make(equal_area_to_latlong(square, e.world_to_light), e.scale);
+            Image latlong = equal_area_to_latlong(square, e.world_to_light);
+            float scale = e.scale;
+            if (e.illuminance) {
+                const double from_map = illuminance(latlong, e.up);
+                if (from_map > 0) scale *= float(*e.illuminance / from_map);
+            }
+            scene_.background = EnvironmentMap::make(std::move(latlong), scale);
             return;
         }
         scene_.background = EnvironmentMap::make(scene_.images[id], e.scale);

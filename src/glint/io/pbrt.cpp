@@ -313,6 +313,7 @@ struct GraphicsState {
     std::string material;  ///< the name of a SceneDescription material ("" before any)
     std::optional<Emission> area_light;
     SourceLoc area_light_loc;
+    std::optional<Located<double>> area_power;  ///< the area light's "power": per shape, as pbrt
     std::string inside, outside;  ///< named media; "" = none
 };
 
@@ -378,6 +379,8 @@ private:
     std::optional<MaterialDesc> material(const Token& t, const std::string& type, ParamList& pl);
     void light(const Token& t, const std::string& type, ParamList pl);
     void area_light(const Token& t, const std::string& type, ParamList pl);
+    void apply_area_power(const ObjectDesc& o, const std::vector<double>& areas);
+    double world_area(Point3 a, Point3 b, Point3 c) const;
     void texture(const Token& t, const std::string& name, const std::string& kind, const std::string& type, ParamList pl);
     void medium(const Token& t, const std::string& name, ParamList pl);
     void add_object(ObjectDesc o, const M4& m);
@@ -1117,6 +1120,34 @@ std::string Parser::material_for_shape() {
     return n;
 }
 
+double Parser::world_area(Point3 a, Point3 b, Point3 c) const {
+    const D3 pa = gs_.ctm.point(a.x, a.y, a.z), pb = gs_.ctm.point(b.x, b.y, b.z), pc = gs_.ctm.point(c.x, c.y, c.z);
+    return 0.5 * len3(cross3(sub(pb, pa), sub(pc, pa)));
+}
+
+// An area light's "power" as pbrt-v4 applies it: every shape pbrt makes (each triangle of a
+// mesh, each patch, a sphere, a disk) emits that power, L x scale x power / (sides x pi x area),
+// with the object-space area for spheres, disks and cylinders and the world-space area for
+// triangles and patches. glint's emission is per shape here, so a mesh whose triangles differ
+// in area gets their mean (the same total power; pbrt's radiance varies from triangle to
+// triangle) with a warning.
+void Parser::apply_area_power(const ObjectDesc& o, const std::vector<double>& areas) {
+    if (!gs_.area_light || !gs_.area_power || areas.empty()) return;
+    const auto* name = std::get_if<std::string>(&o.material.value);
+    if (!name) return;
+    const auto it = std::find_if(d_.materials.begin(), d_.materials.end(), [&](const NamedMaterial& m) { return m.name == *name; });
+    if (it == d_.materials.end()) return;
+    double lo = areas[0], hi = areas[0], sum = 0;
+    for (double a : areas) lo = std::min(lo, a), hi = std::max(hi, a), sum += a;
+    const double area = sum / double(areas.size());
+    if (hi > lo * (1 + 1e-3))
+        warn(o.loc, fmt::format("area light \"power\" on {} shapes of different areas: each given the mean area's radiance "
+                                "(pbrt gives each its own)", areas.size()));
+    if (!(area > 0)) return;
+    const double sides = gs_.area_light->two_sided ? 2 : 1;
+    it->material.emission.radiance = it->material.emission.radiance * float(gs_.area_power->value / (sides * std::numbers::pi * area));
+}
+
 void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
     ObjectDesc o;
     o.loc = t.loc();
@@ -1137,6 +1168,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             return;
         }
         if (gs_.reverse_orientation && gs_.area_light) warn(t.loc(), "ReverseOrientation on an emitting sphere: glint's sphere emits outwards");
+        apply_area_power(o, {4 * std::numbers::pi * r * r});
         o.shape = Sphere{{0, 0, 0}, Float(r)};
         check_unused(pl, what);
         add_object(std::move(o), gs_.ctm);
@@ -1148,6 +1180,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             diag_.error(t.loc(), "disk: radius must be positive");
             return;
         }
+        apply_area_power(o, {std::numbers::pi * r * r});
         o.shape = Disk{{0, 0, Float(h)}, Normal3{0, 0, gs_.reverse_orientation ? -1.0f : 1.0f}, Float(r)};
         check_unused(pl, what);
         add_object(std::move(o), gs_.ctm);
@@ -1196,6 +1229,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             const Vector3 diag = (p11 - p00) - (e1 + e2);
             if (length(diag) <= 1e-6f * (length(e1) + length(e2)) && length(cross(e1, e2)) > 0) {
                 // Under a mirroring transform both pbrt and glint's build keep the front side.
+                apply_area_power(o, {2 * world_area(p00, p10, p01)});
                 o.shape = gs_.reverse_orientation ? Quad::make(p00, e2, e1) : Quad::make(p00, e1, e2);
                 add_object(std::move(o), gs_.ctm);
                 return;
@@ -1232,6 +1266,19 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         const std::size_t dropped = validate_and_drop_degenerate(*mesh);
         if (dropped > 0) warn(t.loc(), fmt::format("{}: dropped {} degenerate triangle{}", type, dropped, dropped == 1 ? "" : "s"));
         if (mesh->indices.empty()) return;
+        if (gs_.area_power) {  // pbrt's shapes: triangles, or patches of two triangles
+            std::vector<double> areas;
+            const std::uint32_t step = bilinear ? 2 : 1;
+            for (std::uint32_t tri = 0; tri + step <= mesh->triangle_count(); tri += step) {
+                double a = 0;
+                for (std::uint32_t k = 0; k < step; ++k) {
+                    const auto v3 = mesh->vertices(tri + k);
+                    a += world_area(v3[0], v3[1], v3[2]);
+                }
+                areas.push_back(a);
+            }
+            apply_area_power(o, areas);
+        }
         // A few triangles without attributes become glint's triangle shapes, as the YAML reader's
         // polygons do; larger meshes are meshes (a BVH of their own, instanced).
         if (mesh->triangle_count() <= 8 && mesh->normals.empty() && mesh->uvs.empty() && !defining_) {
@@ -1284,6 +1331,14 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         }
         validate_and_drop_degenerate(*mesh);
         if (mesh->indices.empty()) return;
+        if (gs_.area_power) {
+            std::vector<double> areas;
+            for (std::uint32_t tri = 0; tri < mesh->triangle_count(); ++tri) {
+                const auto v3 = mesh->vertices(tri);
+                areas.push_back(world_area(v3[0], v3[1], v3[2]));
+            }
+            apply_area_power(o, areas);
+        }
         o.shape = InlineMeshDesc{mesh};
         add_object(std::move(o), gs_.ctm);
     } else if (type == "cylinder") {
@@ -1316,6 +1371,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             if (flip) std::swap(q[1], q[2]), std::swap(q[4], q[5]);
             mesh->indices.insert(mesh->indices.end(), q.begin(), q.end());
         }
+        apply_area_power(o, {std::abs(z1 - z0) * r * phimax * std::numbers::pi / 180});
         o.shape = InlineMeshDesc{mesh};
         add_object(std::move(o), gs_.ctm);
     } else if (type == "plymesh") {
@@ -1327,6 +1383,8 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             return;
         }
         if (gs_.reverse_orientation && gs_.area_light) warn(t.loc(), "ReverseOrientation on an emitting plymesh is not applied");
+        if (gs_.area_light && gs_.area_power)
+            warn(gs_.area_power->loc, "area light \"power\" on a plymesh not applied (the mesh is read later); using L x scale");
         MeshFileDesc f;
         f.file = {*file, pl.find("filename")->loc};
         o.shape = f;
@@ -1438,21 +1496,33 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
 }
 
 void Parser::light(const Token& t, const std::string& type, ParamList pl) {
-    const float s = float(get_float(pl, "scale").value_or(1));
-    ignore(pl, "power", "\"power\" not supported; using the given radiance or intensity times scale");
-    const auto pt = [&](const char* name, D3 fallback) {
+    float s = float(get_float(pl, "scale").value_or(1));
+    // pbrt-v4's "power" (point, spot) and "illuminance" (distant, infinite) scale the given
+    // colour so that the light emits that power or gives that illuminance (RGB colours keep
+    // their own magnitude: pbrt normalises only the illuminant's spectrum).
+    const auto target = [&](const char* name) -> std::optional<double> {
+        const auto v = get_float(pl, name);
+        if (v && !(*v > 0)) return std::nullopt;  // pbrt: non-positive means "not given"
+        return v;
+    };    const auto pt = [&](const char* name, D3 fallback) {
         const auto v = get_floats(pl, name, "point3", 3);
         return v && v->size() == 3 ? D3{(*v)[0], (*v)[1], (*v)[2]} : fallback;
     };
     const auto to_point = [](D3 p) { return Point3{Float(p[0]), Float(p[1]), Float(p[2])}; };
     if (type == "point") {
+        if (const auto p = target("power")) s *= float(*p / (4 * std::numbers::pi));
         const Color I = get_color(pl, "I", true).value_or(Color{1}) * s;
         const D3 f = pt("from", {0, 0, 0});
         d_.lights.push_back(PointLight{to_point(gs_.ctm.point(f[0], f[1], f[2])), I});
     } else if (type == "spot") {
-        const Color I = get_color(pl, "I", true).value_or(Color{1}) * s;
         const D3 f = pt("from", {0, 0, 0}), to = pt("to", {0, 0, 1});
         const double cone = get_float(pl, "coneangle").value_or(30), delta = get_float(pl, "conedelta").value_or(5);
+        if (const auto p = target("power")) {  // the cone's solid angle, the falloff counted half
+            const double to_rad = std::numbers::pi / 180, c_end = std::cos(cone * to_rad),
+                         c_start = std::cos((cone - delta) * to_rad);
+            s *= float(*p / (2 * std::numbers::pi * ((1 - c_start) + (c_start - c_end) / 2)));
+        }
+        const Color I = get_color(pl, "I", true).value_or(Color{1}) * s;
         const D3 wf = gs_.ctm.point(f[0], f[1], f[2]), wt = gs_.ctm.point(to[0], to[1], to[2]);
         const D3 dir = sub(wt, wf);
         if (!(len3(dir) > 0)) {
@@ -1465,6 +1535,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
                     Float(std::cos(std::max(0.0, cone - delta) * to_rad)), Float(std::cos(cone * to_rad))};
         d_.lights.push_back(l);
     } else if (type == "distant") {
+        if (const auto e = target("illuminance")) s *= float(*e);
         const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
         const D3 f = pt("from", {0, 0, 0}), to = pt("to", {0, 0, 1});
         const D3 dir = gs_.ctm.vector(to[0] - f[0], to[1] - f[1], to[2] - f[2]);
@@ -1485,12 +1556,17 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
             e.equal_area = true;
             const auto inv = gs_.ctm.inverse();
             if (inv) e.world_to_light = inv->to34();
+            if (const auto illuminance = target("illuminance")) {  // computed from the map by build
+                const D3 up = unit3(gs_.ctm.vector(0, 0, 1));
+                e.illuminance = float(*illuminance);
+                e.up = Vector3{Float(up[0]), Float(up[1]), Float(up[2])};
+            }
             d_.environment = e;
         } else {
+            if (const auto e = target("illuminance")) s *= float(*e / std::numbers::pi);  // E = pi L
             const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
             d_.background = ConstantBackground{L};
         }
-        ignore(pl, "illuminance", "\"illuminance\" not supported; ignored");
         ignore(pl, "portal", "\"portal\" ignored");
     } else {
         warn(t.loc(), fmt::format("light \"{}\" not supported; left out", type));
@@ -1508,7 +1584,8 @@ void Parser::area_light(const Token& t, const std::string& type, ParamList pl) {
     Emission e;
     e.radiance = get_color(pl, "L", true).value_or(Color{1}) * float(get_float(pl, "scale").value_or(1));
     e.two_sided = get_bool(pl, "twosided").value_or(false);
-    ignore(pl, "power", "\"power\" not supported; using L times scale");
+    gs_.area_power.reset();
+    if (const auto p = get_float(pl, "power"); p && *p > 0) gs_.area_power = Located<double>{*p, pl.find("power")->loc};
     ignore(pl, "filename", "image area lights not supported; using L");
     check_unused(pl, "AreaLightSource");
     gs_.area_light = e;

@@ -72,6 +72,10 @@ struct EnvironmentDesc {
     /// transform: resampled to latitude-longitude when loaded.
     bool equal_area = false;
     Matrix34 world_to_light;
+    /// pbrt's "illuminance": scale the map so that a surface facing `up` receives this much
+    /// from the hemisphere above it (computed from the image by build).
+    std::optional<float> illuminance;
+    Vector3 up{0, 0, 1};
 };
 
 using CameraDesc = std::variant<ArticleCameraDesc, LookAtCameraDesc>;
