@@ -448,6 +448,39 @@ TEST(Pbrt, EqualAreaEnvironmentMaps) {
         EXPECT_NEAR(illuminance(white, up), M_PI, 2e-3);
 }
 
+TEST(Pbrt, MixAndDiffuseTransmissionMaterials) {
+    const SceneDescription d = parse(R"(WorldBegin
+MakeNamedMaterial "red" "string type" "diffuse" "rgb reflectance" [ 0.8 0.1 0.1 ]
+MakeNamedMaterial "gold" "string type" "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"
+Material "mix" "string materials" [ "red" "gold" ] "float amount" [ 0.3 ]
+Shape "sphere"
+Material "diffusetransmission" "rgb transmittance" [ 0.5 0.25 1 ] "float scale" [ 0.5 ]
+Shape "sphere"
+)");
+    ASSERT_EQ(d.objects.size(), 2u);
+    const auto material_of = [&](const ObjectDesc& o) {
+        const std::string& name = std::get<std::string>(o.material.value);
+        return std::find_if(d.materials.begin(), d.materials.end(), [&](const NamedMaterial& m) { return m.name == name; })->material;
+    };
+    const MaterialDesc mix = material_of(d.objects[0]);
+    ASSERT_EQ(mix.kind, MaterialDesc::Kind::kMix);
+    ASSERT_EQ(mix.mix.size(), 2u);
+    EXPECT_EQ(mix.mix[0].value, "red");
+    EXPECT_EQ(mix.mix[1].value, "gold");
+    ASSERT_TRUE(mix.amount);
+    EXPECT_FLOAT_EQ(mix.amount->value.g, 0.3f);
+    const MaterialDesc dt = material_of(d.objects[1]);
+    ASSERT_EQ(dt.kind, MaterialDesc::Kind::kDiffuseTransmission);
+    EXPECT_FLOAT_EQ(dt.color.value.r, 0.125f);  // the default reflectance 0.25, scaled
+    ASSERT_TRUE(dt.transmittance);
+    EXPECT_FLOAT_EQ(dt.transmittance->value.b, 0.5f);
+    EXPECT_TRUE(d.warnings.empty());
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(d, {}, sources);  // resolves the mix
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"mix\" \"string materials\" [ \"a\" \"b\" ]\n"),
+              "test.pbrt:2:16: mix: unknown material \"a\"");
+}
+
 // pbrt-v4's "power" and "illuminance", against the closed forms of each light's emitted power.
 TEST(Pbrt, LightPowerAndIlluminance) {
     const SceneDescription d = parse(R"(WorldBegin

@@ -1,5 +1,7 @@
 #include "glint/scene.h"
 
+#include <bit>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -388,6 +390,28 @@ std::size_t Scene::accel_memory_bytes() const {
     std::size_t bytes = top_.memory_bytes() + top_refs_.size() * sizeof(std::uint32_t);
     for (const MeshBvh& b : mesh_bvhs_) bytes += b.memory_bytes();
     return bytes;
+}
+
+MaterialId Scene::surface_material(const SurfaceInteraction& si) const {
+    MaterialId m = si.material;
+    for (int depth = 0; depth < 16 && m < materials.size(); ++depth) {
+        const auto* mix = std::get_if<MixMaterial>(&materials[m]);
+        if (!mix) break;
+        const Color a = texture(mix->amount, si);
+        const float amount = (a.r + a.g + a.b) / 3;
+        // A uniform number from the point's bits and the mix (so nested mixes decide apart).
+        std::uint64_t h = 0x9e3779b97f4a7c15ull * (m + 1);
+        for (const float c : {si.p.x, si.p.y, si.p.z}) {
+            h ^= std::bit_cast<std::uint32_t>(c) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+            h *= 0xff51afd7ed558ccdull;
+            h ^= h >> 33;
+        }
+        h *= 0xc4ceb9fe1a85ec53ull;
+        h ^= h >> 33;
+        const float u = static_cast<float>(h >> 40) * 0x1p-24f;
+        m = mix->materials[u < amount ? 1 : 0];
+    }
+    return m;
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {

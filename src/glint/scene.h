@@ -125,6 +125,9 @@ struct Scene {
     const MediumInterface* medium_interface(MaterialId m) const {
         return m < medium_interfaces.size() && medium_interfaces[m] ? &*medium_interfaces[m] : nullptr;
     }
+    /// The material that scatters at si: si.material, or for a mix the material it picks there
+    /// (mixes may nest; build refuses cycles).
+    MaterialId surface_material(const SurfaceInteraction& si) const;
     /// The material of a hit without the full interaction.
     MaterialId material_of(const Hit& hit) const;
     /// The nearest hit that is not an interface surface, and whether one lies in the way: for

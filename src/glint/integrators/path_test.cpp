@@ -68,6 +68,63 @@ TEST(Path, FurnaceWithHalfAlbedoReflectsHalfOnce) {
     EXPECT_NEAR(film.at(12, 12).g, 0.5, 0.01);
 }
 
+TEST(Path, WhiteFurnaceDiffuseTransmissionIsOne) {
+    // Half reflected, half transmitted into the sphere and out again: nothing absorbed.
+    const RenderJob job = job_from(furnace("{type: diffuse_transmission, reflectance: 0.5, transmittance: 0.5}"));
+    const Film film = render_job(job, 256);  // paths wander inside: more samples than expect_furnace's
+    double sum = 0, worst = 0;
+    for (const Color& c : film.pixels()) sum += c.g, worst = std::max(worst, std::abs(c.g - 1.0));
+    EXPECT_NEAR(sum / static_cast<double>(film.pixels().size()), 1, 0.003);
+    EXPECT_LT(worst, 0.1);
+}
+
+// A mix picks its second material with probability `amount` at each point: a sphere of
+// mix(white, black, 0.25) scatters each path once with probability 0.75, so its pixels average
+// 0.75 (64 spp per pixel at different points, ~200 pixels).
+TEST(Path, MixChoosesItsSecondMaterialWithProbabilityAmount) {
+    const RenderJob job = job_from(R"(
+camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 45}
+film: {width: 24, height: 24}
+integrator: {type: path, max_depth: 64}
+background: {type: constant, color: [1, 1, 1]}
+materials:
+  white: {type: diffuse, albedo: 1}
+  black: {type: diffuse, albedo: 0}
+  speckled: {type: mix, materials: [white, black], amount: 0.25}
+objects:
+  - {type: sphere, center: [0, 0, 0], radius: 1, material: speckled}
+)");
+    const Film film = render_job(job, 64);
+    double sum = 0;
+    int n = 0;
+    for (int row = 0; row < 24; ++row)
+        for (int col = 0; col < 24; ++col)
+            if (std::hypot(col + 0.5 - 12, row + 0.5 - 12) < 8) sum += film.at(col, row).g, ++n;
+    EXPECT_NEAR(sum / n, 0.75, 0.02) << n << " pixels";
+    // Deterministic: the same image on a second run.
+    const Film again = render_job(job, 64);
+    for (std::size_t i = 0; i < film.pixels().size(); ++i) ASSERT_EQ(film.pixels()[i].g, again.pixels()[i].g);
+}
+
+TEST(Path, MixMistakesAreLocatedErrors) {
+    const auto error_of = [](const std::string& materials) {
+        try {
+            job_from("materials:\n" + materials + "objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: a}\n");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(error_of("  a: {type: mix, materials: [b, whit]}\n  b: {type: diffuse}\n")
+                  .find("scene.yaml:2:33: error: mix: unknown material 'whit'"),
+              std::string::npos);
+    EXPECT_EQ(error_of("  a: {type: mix, materials: [b, whit]}\n  b: {type: diffuse}\n").find("contains itself"),
+              std::string::npos);  // an unknown name is not also a cycle
+    EXPECT_NE(error_of("  a: {type: mix, materials: [b, b]}\n  b: {type: mix, materials: [a, a]}\n")
+                  .find("mix: the mix contains itself"),
+              std::string::npos);
+}
+
 // A small scene every strategy can render (area lights only; no deltas): a diffuse floor, a
 // rough metal sphere and a plastic sphere, lit by a quad light, a sphere light and the sky. In
 // units of centimetres, like the Cornell box: surface offsets then matter (a shadow ray that

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <map>
 #include <cmath>
 #include <cstdlib>
@@ -147,6 +148,20 @@ public:
                     PlasticMaterial{add_texture(d.color), make_plastic(Color{0}, d.ior, alpha)});
                 break;
             case K::kInterface: scene_.materials.push_back(InterfaceMaterial{}); break;
+            case K::kDiffuseTransmission: {
+                TextureDesc t;
+                t.value = Color{0.25f};
+                scene_.materials.push_back(DiffuseTransmissionMaterial{
+                    add_texture(d.color), add_texture(d.transmittance.value_or(t))});
+                break;
+            }
+            case K::kMix: {
+                TextureDesc half;
+                half.value = Color{0.5f};
+                scene_.materials.push_back(MixMaterial{{0, 0}, add_texture(d.amount.value_or(half))});
+                pending_mixes_.push_back({static_cast<MaterialId>(scene_.materials.size() - 1), d.mix, false});
+                break;
+            }
             case K::kPbr: {
                 PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
                               diffuse_fresnel_inside(d.ior), std::nullopt};
@@ -170,6 +185,58 @@ public:
                 MediumInterface{static_cast<MediumId>(scene_.media.size() - 1), scene_.camera_medium};
         }
         return static_cast<MaterialId>(scene_.materials.size() - 1);
+    }
+
+    /// Points the mixes added so far at their materials, by name (`names`: the named materials,
+    /// whose ids are their indices). Unknown names, interface materials in a mix and mixes that
+    /// contain themselves are errors.
+    void resolve_mixes(const std::vector<std::string>& names) {
+        for (PendingMix& p : pending_mixes_) {
+            if (p.names.size() != 2) {
+                diagnostics_.error(p.names.empty() ? SourceLoc{} : p.names[0].loc, "a mix material names two materials");
+                continue;
+            }
+            auto& mix = std::get<MixMaterial>(scene_.materials[p.slot]);
+            int found = 0;
+            for (std::size_t i = 0; i < 2; ++i) {
+                const auto it = std::find(names.begin(), names.end(), p.names[i].value);
+                if (it == names.end()) {
+                    const std::string guess = closest_match(p.names[i].value, names);
+                    diagnostics_.error(p.names[i].loc, fmt::format("mix: unknown material '{}'{}", p.names[i].value,
+                                                                   guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess)));
+                    continue;
+                }
+                const auto id = static_cast<MaterialId>(it - names.begin());
+                if (std::holds_alternative<InterfaceMaterial>(scene_.materials[id]))
+                    diagnostics_.error(p.names[i].loc, "mix: an interface material cannot be mixed (it is no surface)");
+                mix.materials[i] = id;
+                ++found;
+            }
+            p.resolved = found == 2;
+        }
+        // Cycles and depth: the longest chain of mixes below each one (Scene::surface_material
+        // follows at most 16).
+        std::map<MaterialId, int> depth;  // -1: being visited
+        std::function<int(MaterialId)> chain = [&](MaterialId m) -> int {
+            const auto* mix = std::get_if<MixMaterial>(&scene_.materials[m]);
+            if (!mix) return 0;
+            if (const auto it = depth.find(m); it != depth.end()) return it->second;
+            depth[m] = -1;
+            int deepest = 0;
+            for (const MaterialId c : mix->materials) {
+                const int d = chain(c);
+                if (d < 0) return depth[m] = -1;
+                deepest = std::max(deepest, d);
+            }
+            return depth[m] = deepest + 1;
+        };
+        for (const PendingMix& p : pending_mixes_) {
+            if (!p.resolved) continue;
+            const int d = chain(p.slot);
+            if (d < 0) diagnostics_.error(p.names[0].loc, "mix: the mix contains itself");
+            else if (d > 16) diagnostics_.error(p.names[0].loc, "mix: mixes nest more than 16 deep");
+        }
+        pending_mixes_.clear();
     }
 
     /// A slot of its own for material `m` with the media `mi` on its sides (the medium interface
@@ -271,6 +338,12 @@ private:
         return id;
     }
 
+    struct PendingMix {
+        MaterialId slot;
+        std::vector<Located<std::string>> names;
+        bool resolved = false;
+    };
+    std::vector<PendingMix> pending_mixes_;
     Scene& scene_;
     Diagnostics& diagnostics_;
     std::filesystem::path dir_;
@@ -508,6 +581,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         names.push_back(m.name);
         materials.add_material(m.material);
     }
+    materials.resolve_mixes(names);
     // Mesh files, each imported once however many objects include it (their instances then share
     // its meshes and its BVH).
     struct LoadedFile {
@@ -540,6 +614,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             id = static_cast<MaterialId>(it - names.begin());
         } else {
             id = materials.add_material(std::get<MaterialDesc>(o.material.value));
+            materials.resolve_mixes(names);
         }
         if (o.interior || o.exterior) {
             const auto in = o.interior ? medium_id(*o.interior) : std::optional<MediumId>(kNoMedium);

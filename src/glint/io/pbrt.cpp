@@ -1463,28 +1463,42 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
     } else if (type == "interface") {
         m.kind = K::kInterface;
     } else if (type == "diffusetransmission") {
-        warn(t.loc(), "diffusetransmission approximated by diffuse reflection (its \"reflectance\")");
-        m.kind = K::kDiffuse;
-        m.color = get_texture(pl, "reflectance", false, 0.25f).value_or(TextureDesc{});
-        if (!pl.find("reflectance")) m.color.value = Color{0.25f};
-        ignore(pl, {"transmittance", "scale"}, "ignored");
-    } else if (type == "mix") {
-        warn(t.loc(), "mix material approximated by the first of its two materials");
-        Param* mats = pl.find("materials");
-        if (mats) mats->used = true;
-        ignore(pl, {"amount"}, "ignored");
-        if (mats && mats->strings.size() == 2) {
-            const auto it = named_materials_.find(mats->strings[0]);
-            if (it != named_materials_.end()) {
-                const auto m2 = std::find_if(d_.materials.begin(), d_.materials.end(),
-                                             [&](const NamedMaterial& n) { return n.name == it->second; });
-                if (m2 != d_.materials.end()) return m2->material;
+        m.kind = K::kDiffuseTransmission;
+        const double scale = get_float(pl, "scale").value_or(1);
+        const auto scaled = [&](const char* name) {
+            TextureDesc d = get_texture(pl, name, false, 0.25f).value_or(TextureDesc{});
+            if (!pl.find(name)) d.value = Color{0.25f};
+            if (scale == 1) return d;
+            if (d.kind == TextureDesc::Kind::kConstant) {
+                d.value = d.value * float(scale);
+                return d;
             }
-            diag_.error(mats->loc, fmt::format("mix: unknown material \"{}\"", mats->strings[0]));
+            TextureDesc f, product;
+            f.value = Color{float(scale)};
+            product.kind = TextureDesc::Kind::kScale;
+            product.children = {d, f};
+            return product;
+        };
+        m.color = scaled("reflectance");
+        m.transmittance = scaled("transmittance");
+    } else if (type == "mix") {
+        m.kind = K::kMix;
+        Param* mats = pl.find("materials");
+        if (!mats || mats->type != "string" || mats->strings.size() != 2) {
+            diag_.error(mats ? mats->loc : t.loc(), "mix: needs \"string materials\" [ \"a\" \"b\" ]");
+            if (mats) mats->used = true;
             return std::nullopt;
         }
-        diag_.error(t.loc(), "mix: needs \"string materials\" [ \"a\" \"b\" ]");
-        return std::nullopt;
+        mats->used = true;
+        for (const std::string& name : mats->strings) {
+            const auto it = named_materials_.find(name);
+            if (it == named_materials_.end()) {
+                diag_.error(mats->loc, fmt::format("mix: unknown material \"{}\"", name));
+                return std::nullopt;
+            }
+            m.mix.push_back({it->second, mats->loc});
+        }
+        if (pl.find("amount")) m.amount = get_texture(pl, "amount", true, 0.5f);
     } else {
         warn(t.loc(), fmt::format("material \"{}\" not supported; using diffuse 0.5", type));
         pl.use_all();

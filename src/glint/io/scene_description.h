@@ -150,7 +150,8 @@ struct MediumDesc {
 };
 
 struct MaterialDesc {
-    enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr, kInterface };
+    enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr, kInterface,
+                      kDiffuseTransmission, kMix };
     Kind kind = Kind::kArticle;
     TextureDesc color;  ///< article colour, diffuse/plastic albedo, pbr base colour
     float shininess = 0;
@@ -172,6 +173,11 @@ struct MaterialDesc {
     std::optional<TextureDesc> normal_map;
     float normal_scale = 1;
     std::optional<TextureDesc> emission_map;
+    /// diffuse_transmission: `color` is the reflectance, this the transmittance.
+    std::optional<TextureDesc> transmittance;
+    /// mix: the two named materials and the probability of the second (a texture's channel mean).
+    std::vector<Located<std::string>> mix;
+    std::optional<TextureDesc> amount;
     /// Set by importers (glTF's KHR_materials_volume): an absorbing interior medium for every
     /// surface of this material.
     std::optional<MediumDesc> interior;

@@ -115,6 +115,14 @@ std::string Writer::material(const MaterialDesc& m) const {
                             texture(m.color), num(m.metallic), num(m.roughness), num(m.transmission), num(m.ior));
             break;
         case K::kInterface: s = "type: interface"; break;
+        case K::kDiffuseTransmission:
+            s = fmt::format("type: diffuse_transmission, reflectance: {}, transmittance: {}", texture(m.color),
+                            texture(m.transmittance.value_or(TextureDesc{})));
+            break;
+        case K::kMix:
+            s = fmt::format("type: mix, materials: [{}, {}]", yaml_quoted(m.mix.at(0).value), yaml_quoted(m.mix.at(1).value));
+            if (m.amount) s += ", amount: " + texture(*m.amount);
+            break;
     }
     if (m.emission.emits()) {
         s += ", emission: " + vec(m.emission.radiance);

@@ -491,7 +491,7 @@ private:
         }
         const auto type = type_of(node, "material",
                                   {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr",
-                                   "interface"},
+                                   "interface", "diffuse_transmission", "mix"},
                                   "article");
         if (!type) return d;
         if (*type == "interface") {
@@ -509,6 +509,8 @@ private:
         if (*type == "conductor") d.kind = K::kConductor, add({"metal", "eta", "k", "reflectance", "roughness"});
         if (*type == "dielectric") d.kind = K::kDielectric, add({"ior", "roughness", "thin", "tint"});
         if (*type == "plastic") d.kind = K::kPlastic, add({"albedo", "ior", "roughness"});
+        if (*type == "diffuse_transmission") d.kind = K::kDiffuseTransmission, add({"reflectance", "transmittance"});
+        if (*type == "mix") d.kind = K::kMix, add({"materials", "amount"});
         if (*type == "pbr") {
             d.kind = K::kPbr;
             d.roughness = 0.5f;
@@ -526,6 +528,27 @@ private:
         tex("color");
         tex("albedo");
         tex("base_color");
+        if (d.kind == K::kDiffuseTransmission) {
+            d.color.value = Color{0.25f};
+            d.transmittance = TextureDesc{};
+            d.transmittance->value = Color{0.25f};
+            if (auto n = m.get("reflectance"))
+                if (auto t = texture(*n)) d.color = *t;
+            if (auto n = m.get("transmittance"))
+                if (auto t = texture(*n)) d.transmittance = *t;
+        }
+        if (d.kind == K::kMix) {
+            if (auto n = m.require("materials")) {
+                if (!n->IsSequence() || n->size() != 2) {
+                    r_.error(*n, fmt::format("{}: 'materials' is a list of two material names", context));
+                } else {
+                    for (std::size_t i = 0; i < 2; ++i)
+                        if (auto name = r_.string((*n)[i])) d.mix.push_back({*name, r_.loc((*n)[i])});
+                }
+            }
+            if (auto n = m.get("amount"))
+                if (auto t = texture(*n)) d.amount = *t;
+        }
         assign(m.get("shininess"), d.shininess, unit("shininess"));
         assign(m.get("roughness"), d.roughness, unit("roughness"));
         assign(m.get("metallic"), d.metallic, unit("metallic"));

@@ -345,7 +345,7 @@ TEST(SceneYaml, PathTracerMistakesAreReported) {
                   "      b: {type: conductor, metal: gold, reflectance: 1}\n" +
                   caret(6, 46) +
                   "scene.yaml:7:13: error: unknown material type 'glass' "
-                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface)\n"
+                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface, diffuse_transmission, mix)\n"
                   "      c: {type: glass}\n" +
                   caret(13, 5));
 }

@@ -46,6 +46,23 @@ std::optional<BsdfSample> DiffuseLobe::sample(Vector3 wo, float, Sample2 u) cons
     return BsdfSample{albedo * kInvPi, wi, pdf};
 }
 
+Color DiffuseTransmissionLobe::eval(Vector3 wo, Vector3 wi) const {
+    return same_side(wo, wi) || wo.z == 0 || wi.z == 0 ? Color{0} : transmittance * kInvPi;
+}
+
+float DiffuseTransmissionLobe::pdf(Vector3 wo, Vector3 wi) const {
+    return same_side(wo, wi) || wo.z == 0 ? 0 : std::abs(wi.z) * kInvPi;
+}
+
+std::optional<BsdfSample> DiffuseTransmissionLobe::sample(Vector3 wo, float, Sample2 u) const {
+    if (wo.z == 0) return std::nullopt;
+    Vector3 wi = sample_cosine_hemisphere(u);
+    if (wo.z > 0) wi = flip_z(wi);
+    const float pdf = std::abs(wi.z) * kInvPi;
+    if (pdf <= 0) return std::nullopt;
+    return BsdfSample{transmittance * kInvPi, wi, pdf};
+}
+
 // -------------------------------------------------------------------------------- conductor
 
 namespace {

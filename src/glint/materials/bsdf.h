@@ -37,6 +37,15 @@ struct DiffuseLobe {
     std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const;
 };
 
+/// Lambertian transmission: f = transmittance / pi on the side opposite wo (pbrt's
+/// diffusetransmission pairs it with a DiffuseLobe for its reflectance).
+struct DiffuseTransmissionLobe {
+    Color transmittance;
+    Color eval(Vector3 wo, Vector3 wi) const;
+    float pdf(Vector3 wo, Vector3 wi) const;
+    std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const;
+};
+
 /// A metal: GGX microfacet reflection (a mirror when smooth), two-sided. Fresnel: the complex
 /// index (eta, k), Schlick with f0, or a constant reflectance (the article's mirror). Rough
 /// metals add Kulla and Conty's multiple-scattering term so that energy lost between microfacets
@@ -86,7 +95,7 @@ private:
     float coat_probability(float cos_o) const;
 };
 
-using Lobe = std::variant<DiffuseLobe, ConductorLobe, DielectricLobe, PlasticLobe>;
+using Lobe = std::variant<DiffuseLobe, ConductorLobe, DielectricLobe, PlasticLobe, DiffuseTransmissionLobe>;
 
 ConductorLobe make_conductor(ConductorLobe::FresnelKind kind, Color eta, Color k, float alpha);
 PlasticLobe make_plastic(Color albedo, float eta, float alpha);

@@ -63,6 +63,10 @@ std::vector<Case> cases() {
         {"smooth plastic", Bsdf(n, {{plastic_smooth, 1.0f}})},
         {"article mix", Bsdf(n, {{DiffuseLobe{Color{0.5f}}, 0.6f}, {mirror, 0.4f}})},
         {"pbr mix", Bsdf(n, {{pbr_metal, 0.3f}, {plastic_rough, 0.5f}, {glass_rough, 0.2f}})},
+        // make_bsdf's diffusetransmission: R = (0.2, 0.4, 0.1), T = (0.5, 0.3, 0.3), each lobe
+        // normalised by its largest channel, which becomes its weight.
+        {"diffuse transmission", Bsdf(n, {{DiffuseLobe{Color{0.5f, 1, 0.25f}}, 0.4f},
+                                          {DiffuseTransmissionLobe{Color{1, 0.6f, 0.6f}}, 0.5f}})},
     };
 }
 
@@ -150,7 +154,8 @@ TEST(Bsdf, Reciprocity) {
         for (std::uint32_t i = 0; i < 2000; ++i) {
             const Vector3 a = sample_uniform_sphere(rnd2(1, i));
             const Vector3 b = sample_uniform_sphere(rnd2(2, i));
-            const float eta_a = a.z < 0 ? 1.5f : 1, eta_b = b.z < 0 ? 1.5f : 1;
+            const float inside = c.name == "diffuse transmission" ? 1.0f : 1.5f;  // no index there
+            const float eta_a = a.z < 0 ? inside : 1, eta_b = b.z < 0 ? inside : 1;
             const Color ab = c.bsdf.eval(a, b) * (eta_b * eta_b);
             const Color ba = c.bsdf.eval(b, a) * (eta_a * eta_a);
             for (int k = 0; k < 3; ++k) {
@@ -184,6 +189,10 @@ TEST(Bsdf, EnergyIsConserved) {
                 EXPECT_LE(mean, 1 + 4 * se + 1e-4) << c.name << " theta " << theta;
                 if (c.name == "white conductor alpha 0.5" && theta < 90) {
                     EXPECT_NEAR(mean, 1, 0.01) << "white rough metal at " << theta;
+                }
+                if (c.name == "diffuse transmission") {  // all of R + T, from either side
+                    const double expected[3] = {0.2 + 0.5, 0.4 + 0.3, 0.1 + 0.3};
+                    EXPECT_NEAR(mean, expected[k], 4 * se + 1e-4) << "channel " << k << " theta " << theta;
                 }
             }
         }

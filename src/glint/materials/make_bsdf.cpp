@@ -38,8 +38,14 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 PlasticLobe lobe = m.coat;
                 lobe.albedo = scene.texture(m.albedo, si);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
-            } else if constexpr (std::is_same_v<T, InterfaceMaterial>) {
+            } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return Bsdf();  // no lobes: nothing scatters (the integrators pass through)
+            } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {
+                // Each lobe chosen in proportion to its largest channel.
+                const Color r = scene.texture(m.reflectance, si), t = scene.texture(m.transmittance, si);
+                const float wr = r.max_component(), wt = t.max_component();
+                return Bsdf(si.ns, {{DiffuseLobe{wr > 0 ? r / wr : Color{0}}, wr},
+                                   {DiffuseTransmissionLobe{wt > 0 ? t / wt : Color{0}}, wt}});
             } else {
                 static_assert(std::is_same_v<T, PbrMaterial>);
                 const Color base = scene.texture(m.base_color, si);
@@ -70,7 +76,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                                    {glass, dielectric * m.transmission}});
             }
         },
-        scene.materials[si.material]);
+        scene.materials[scene.surface_material(si)]);
 }
 
 ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
@@ -89,13 +95,15 @@ ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
                 return {m.lobe.tint, f0_dielectric(m.lobe.eta)};
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 return {scene.texture(m.albedo, si), f0_dielectric(m.coat.eta)};
-            } else if constexpr (std::is_same_v<T, InterfaceMaterial>) {
+            } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return {Color{0}, 0};
+            } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {
+                return {scene.texture(m.reflectance, si), 0};
             } else {
                 return {scene.texture(m.base_color, si), m.metallic};
             }
         },
-        scene.materials[si.material]);
+        scene.materials[scene.surface_material(si)]);
 }
 
 }  // namespace glint

@@ -3,6 +3,7 @@
 // the scene's texture array); scalar parameters are constants. Each material turns into a Bsdf
 // at a hit (make_bsdf in materials/make_bsdf.h). Emission is not a material kind: any material
 // may emit (Scene::emission, parallel to the materials).
+#include <array>
 #include <optional>
 #include <variant>
 
@@ -58,13 +59,29 @@ struct PbrMaterial {
     std::optional<TextureId> metallic_roughness;
 };
 
+/// pbrt's diffusetransmission: Lambertian reflection of `reflectance` on the side light comes
+/// from and Lambertian transmission of `transmittance` to the other (leaves, paper, lampshades).
+struct DiffuseTransmissionMaterial {
+    TextureId reflectance, transmittance;
+};
+
+/// pbrt's mix: at each surface point one of two materials, the second with probability
+/// `amount` (the texture's channel mean), chosen by a hash of the point, so the choice is the
+/// same for every sample that lands there and on every thread. Resolved by
+/// Scene::surface_material before anything else looks at the material.
+struct MixMaterial {
+    std::array<MaterialId, 2> materials{};
+    TextureId amount = 0;
+};
+
 /// No surface at all: a boundary that only changes the medium a ray is in (a smoke box that
 /// does not refract). The path tracer passes through it without a scattering event; Whitted and
 /// the debug views do not see it.
 struct InterfaceMaterial {};
 
 using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMaterial,
-                              DielectricMaterial, PlasticMaterial, PbrMaterial, InterfaceMaterial>;
+                              DielectricMaterial, PlasticMaterial, PbrMaterial, InterfaceMaterial,
+                              DiffuseTransmissionMaterial, MixMaterial>;
 
 /// Light a surface emits, in radiance, on the side its normal faces (both when two_sided).
 struct Emission {
