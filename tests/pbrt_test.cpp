@@ -481,6 +481,38 @@ Shape "sphere"
               "test.pbrt:2:16: mix: unknown material \"a\"");
 }
 
+// pbrt's "alpha": a constant 0.25 on a black square filling an orthographic view of a white sky
+// lets 3/4 of the rays through (a hash per ray decides), so the image averages 0.75; alpha 0
+// removes a shape, alpha on a sphere is a warning.
+TEST(Pbrt, AlphaCutsOutStochastically) {
+    const SceneDescription d = parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
+Camera "orthographic"
+Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
+Sampler "independent" "integer pixelsamples" [ 16 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+Shape "trianglemesh" "point3 P" [ -2 -2 0  2 -2 0  2 2 0  -2 2 0 ] "integer indices" [ 0 1 2  0 2 3 ]
+  "point2 uv" [ 0 0  1 0  1 1  0 1 ] "float alpha" [ 0.25 ]
+Shape "sphere" "float radius" [ 0.5 ] "float alpha" [ 0 ]
+Translate 50 0 0
+Shape "sphere" "float radius" [ 0.5 ] "float alpha" [ 0.5 ]
+)");
+    ASSERT_EQ(d.objects.size(), 2u);  // the alpha-0 sphere is gone
+    ASSERT_TRUE(d.objects[0].alpha);
+    EXPECT_TRUE(d.objects[0].alpha->stochastic);
+    ASSERT_EQ(d.warnings.size(), 1u);
+    EXPECT_NE(d.warnings[0].message.find("\"alpha\" on a sphere"), std::string::npos);
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(d, {}, sources);
+    Film film(job.film_width, job.film_height);
+    render(job.scene, job.camera, *job.integrator, job.options, film);
+    double sum = 0;
+    for (const Color& c : film.pixels()) sum += c.g;
+    // 6400 rays: the mean's standard deviation is sqrt(0.75 x 0.25 / 6400) = 0.0054.
+    EXPECT_NEAR(sum / 400, 0.75, 0.03);
+}
+
 // pbrt-v4's "power" and "illuminance", against the closed forms of each light's emitted power.
 TEST(Pbrt, LightPowerAndIlluminance) {
     const SceneDescription d = parse(R"(WorldBegin

@@ -186,13 +186,67 @@ void Scene::commit() {
     }
 }
 
+namespace {
+
+struct AlphaContext {
+    const Scene* scene;
+    std::uint32_t instance;
+    const Ray* ray;
+};
+
+bool alpha_filter(const void* context, std::uint32_t prim, float b1, float b2) {
+    const auto* c = static_cast<const AlphaContext*>(context);
+    return c->scene->alpha_keeps(c->instance, prim, b1, b2, *c->ray);
+}
+
+}  // namespace
+
+bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, float b2, const Ray& ray) const {
+    const Instance& inst = instances[instance];
+    if (inst.alpha < 0) return true;
+    const AlphaMask& mask = alpha_masks[static_cast<std::size_t>(inst.alpha)];
+    const TriangleMesh& mesh = meshes[inst.mesh];
+    const auto [p0, p1, p2] = mesh.vertices(prim);
+    SurfaceInteraction si;
+    si.p = inst.transform.point(p0 + ((p1 - p0) * b1 + (p2 - p0) * b2));
+    si.shape = ShapeKind::kMesh;
+    si.shape_index = instance;
+    si.prim = prim;
+    si.bary = {b1, b2};
+    si.material = inst.material.value_or(mesh.material_of(prim));
+    const Color c = texture(mask.texture, si);
+    const float a = (c.r + c.g + c.b) / 3;
+    if (!mask.stochastic) return a >= mask.cutoff;
+    if (a >= 1) return true;
+    if (!(a > 0)) return false;
+    std::uint64_t h = 0x9e3779b97f4a7c15ull ^ prim;
+    for (const float v : {ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y, ray.direction.z}) {
+        h ^= std::bit_cast<std::uint32_t>(v);
+        h *= 0xff51afd7ed558ccdull;
+        h ^= h >> 33;
+    }
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return static_cast<float>(h >> 40) * 0x1p-24f < a;
+}
+
 std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
+    if (inst.alpha >= 0) {
+        const AlphaContext context{this, i, &ray};
+        const HitFilter filter{alpha_filter, &context};
+        return mesh_bvhs_[inst.mesh].closest(inst.transform.object_ray(ray), &filter);
+    }
     return mesh_bvhs_[inst.mesh].closest(inst.transform.object_ray(ray));
 }
 
 bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
+    if (inst.alpha >= 0) {
+        const AlphaContext context{this, i, &ray};
+        const HitFilter filter{alpha_filter, &context};
+        return mesh_bvhs_[inst.mesh].any(inst.transform.object_ray(ray), &filter);
+    }
     return mesh_bvhs_[inst.mesh].any(inst.transform.object_ray(ray));
 }
 
@@ -261,7 +315,7 @@ bool Scene::occluded(const Ray& ray) const {
     assert(committed_count_ == bounded_count() && "Scene::commit() not called");
     if (any_hit(planes, ray)) return true;
 #if GLINT_EMBREE
-    if (embree_) return embree_->occluded(ray);
+    if (embree_) return embree_->occluded(*this, ray);
 #endif
     if (top_.empty()) return false;
     const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
@@ -286,7 +340,7 @@ std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
         WatertightRay wr(inst.transform.object_ray(ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
-            if (const auto h = intersect_triangle(p0, p1, p2, wr)) {
+            if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray_in)) {
                 wr.t_max = ray.t_max = h->t;
                 best = Hit{h->t, ShapeKind::kMesh, i, t, h->b1, h->b2};
             }
@@ -299,12 +353,14 @@ bool Scene::occluded_brute_force(const Ray& ray) const {
     if (any_hit(planes, ray) || any_hit(spheres, ray) || any_hit(quads, ray) || any_hit(disks, ray) ||
         any_hit_triangles(triangles, ray))
         return true;
-    for (const Instance& inst : instances) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+        const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
         const WatertightRay wr(inst.transform.object_ray(ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
-            if (intersect_triangle(p0, p1, p2, wr)) return true;
+            if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray))
+                return true;
         }
     }
     return false;

@@ -39,6 +39,17 @@ const char* accel_name(AccelKind kind);  ///< "bvh", "sbvh", "embree"
 
 class EmbreeAccel;
 
+/// A cut-out on a mesh instance (pbrt's "alpha", glTF's alphaMode): a = the texture's channel
+/// mean at the hit. A mask keeps the surface where a >= cutoff; a stochastic one keeps it for
+/// a fraction a of the rays (a hash of the ray and the triangle decides), so on average the
+/// surface lets 1 - a through. Every ray (camera, bounce, shadow) sees the same surface, in
+/// both BVH backends (an any-hit filter).
+struct AlphaMask {
+    TextureId texture = 0;
+    float cutoff = 0.5f;
+    bool stochastic = false;
+};
+
 struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
@@ -47,6 +58,7 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<TriangleMesh> meshes;
     std::vector<Instance> instances;
+    std::vector<AlphaMask> alpha_masks;
     std::vector<Material> materials;
     std::vector<Emission> emission;  ///< per material; missing entries emit nothing
     std::vector<std::optional<NormalMap>> normal_maps;  ///< per material; missing: none
@@ -128,6 +140,9 @@ struct Scene {
     /// The material that scatters at si: si.material, or for a mix the material it picks there
     /// (mixes may nest; build refuses cycles).
     MaterialId surface_material(const SurfaceInteraction& si) const;
+    /// Whether instance i's surface is there at triangle `prim`, barycentrics (b1, b2), for `ray`
+    /// (world space): its alpha mask's verdict (true without one).
+    bool alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, float b2, const Ray& ray) const;
     /// The material of a hit without the full interaction.
     MaterialId material_of(const Hit& hit) const;
     /// The nearest hit that is not an interface surface, and whether one lies in the way: for

@@ -63,7 +63,9 @@ TriangleMesh large_among_small(std::mt19937& g, int small, int large) {
 
 // Every kind of bounded shape, and five instances of two meshes under rotations, non-uniform
 // scales and a mirror.
-Scene mixed_scene(AccelKind accel, std::optional<SimdIsa> isa = std::nullopt) {
+// With `alpha`: three instances cut out, by a 3D checker mask (half of each surface gone) and
+// by a stochastic mask of 0.5 (half the rays pass).
+Scene mixed_scene(AccelKind accel, std::optional<SimdIsa> isa = std::nullopt, bool alpha = false) {
     auto g = rng(7);
     Scene s;
     s.materials.push_back(DiffuseMaterial{0});
@@ -89,6 +91,14 @@ Scene mixed_scene(AccelKind accel, std::optional<SimdIsa> isa = std::nullopt) {
     s.instances.push_back({1, Transform::translate({-3, -2, 2}) * Transform::scale({-1, 1, 1}), std::nullopt});
     s.instances.push_back({1, Transform::rotate(-75, {0, 1, 0}) * Transform::translate({2, 2, 2}), std::nullopt});
     s.instances.push_back({0, Transform::translate({-2, 3, -3}) * Transform::scale({2, 2, 2}), std::nullopt});
+    if (alpha) {
+        s.textures.push_back(CheckerTexture{0.3f, Color{1}, Color{0}});
+        s.textures.push_back(ConstantTexture{Color{0.5f}});
+        s.alpha_masks = {{1, 0.5f, false}, {2, 0, true}};
+        s.instances[1].alpha = 0;
+        s.instances[2].alpha = 1;
+        s.instances[4].alpha = 0;
+    }
     s.accel = accel;
     s.mesh_isa = isa;
     s.commit();
@@ -152,6 +162,38 @@ TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
     for (ShapeKind k : {ShapeKind::kSphere, ShapeKind::kQuad, ShapeKind::kDisk, ShapeKind::kTriangle,
                         ShapeKind::kMesh})
         EXPECT_GT(kinds[static_cast<int>(k)], 20) << "kind " << static_cast<int>(k);
+}
+
+// Alpha cut-outs are an any-hit filter inside the traversal: every kernel must agree with brute
+// force (which applies the same mask to each triangle), and the masks must remove hits.
+TEST_P(BvhBackends, AlphaMasksAgreeWithBruteForce) {
+    const Scene opaque = mixed_scene(GetParam().accel, GetParam().isa);
+    const Scene s = mixed_scene(GetParam().accel, GetParam().isa, true);
+    int hits = 0, opaque_hits = 0, masked_mesh_hits = 0, passed = 0;
+    for (const Ray& r : random_rays(10000)) {
+        const auto a = s.intersect(r), b = s.intersect_brute_force(r);
+        ASSERT_EQ(a.has_value(), b.has_value());
+        ASSERT_EQ(s.occluded(r), b.has_value());
+        ASSERT_EQ(s.occluded_brute_force(r), b.has_value());
+        const auto o = opaque.intersect(r);
+        opaque_hits += o.has_value();
+        ASSERT_FALSE(a && !o);  // a mask only removes surface
+        if (o && o->kind == ShapeKind::kMesh && s.instances[o->index].alpha >= 0 &&
+            !(a && a->kind == o->kind && a->index == o->index && a->prim == o->prim))
+            ++passed;  // went through the cut-out (to something behind, or nothing)
+        if (!a) continue;
+        ++hits;
+        EXPECT_EQ(a->t, b->t);
+        EXPECT_EQ(a->index, b->index);
+        EXPECT_EQ(a->prim, b->prim);
+        if (a->kind == ShapeKind::kMesh && s.instances[a->index].alpha >= 0) {
+            ++masked_mesh_hits;
+            EXPECT_TRUE(s.alpha_keeps(a->index, a->prim, a->b1, a->b2, r));
+        }
+    }
+    EXPECT_LT(hits, opaque_hits);
+    EXPECT_GT(passed, 50);            // the cut-outs let rays through (139 of these rays)
+    EXPECT_GT(masked_mesh_hits, 200);  // and keep the rest
 }
 
 TEST(Sbvh, SplitsLargeTrianglesAndLowersTheSahCost) {
@@ -446,7 +488,8 @@ TEST(Transform, InverseRotationAndLookAt) {
 
 #if GLINT_EMBREE
 TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
-    const Scene s = mixed_scene(AccelKind::kEmbree);
+  for (const bool alpha : {false, true}) {
+    const Scene s = mixed_scene(AccelKind::kEmbree, std::nullopt, alpha);
     int compared = 0, differ = 0;
     for (const Ray& r : random_rays(10000)) {
         const auto a = s.intersect(r), b = s.intersect_brute_force(r);
@@ -470,8 +513,9 @@ TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
         }
     }
     EXPECT_GT(compared, 1000);
-    EXPECT_LE(differ, 5);
+    EXPECT_LE(differ, alpha ? 10 : 5) << "alpha " << alpha;  // a checker edge may fall either side too
     EXPECT_GT(s.accel_memory_bytes(), 0u);
+  }
 }
 #endif
 

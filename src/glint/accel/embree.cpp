@@ -115,6 +115,25 @@ struct EmbreeAccel::Impl {
 
 namespace {
 
+// The intersect context glint passes: Embree's, then what the alpha filter needs.
+struct AlphaIntersectContext {
+    RTCIntersectContext context;  // first: Embree hands the filter a pointer to it
+    const Scene* scene;
+    Ray ray;  // world space, as the hash of a stochastic mask wants it
+};
+
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* c = reinterpret_cast<const AlphaIntersectContext*>(args->context);
+    for (unsigned k = 0; k < args->N; ++k) {
+        if (!args->valid[k]) continue;
+        const unsigned inst = RTCHitN_instID(args->hit, args->N, k, 0);
+        if (inst == RTC_INVALID_GEOMETRY_ID) continue;
+        if (!c->scene->alpha_keeps(inst - kFirstInstanceId, RTCHitN_primID(args->hit, args->N, k),
+                                   RTCHitN_u(args->hit, args->N, k), RTCHitN_v(args->hit, args->N, k), c->ray))
+            args->valid[k] = 0;
+    }
+}
+
 bool count_memory(void* user, ssize_t bytes, bool) {
     static_cast<std::atomic<long long>*>(user)->fetch_add(bytes);
     return true;
@@ -161,7 +180,11 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
         m.device = rtcNewDevice(nullptr);
         if (!m.device) throw std::runtime_error("Embree: could not create a device");
         rtcSetDeviceMemoryMonitorFunction(m.device, count_memory, &m.bytes);
-        for (const TriangleMesh& mesh : scene.meshes) {
+        std::vector<bool> masked(scene.meshes.size(), false);
+        for (const Instance& inst : scene.instances)
+            if (inst.alpha >= 0) masked[inst.mesh] = true;
+        for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+            const TriangleMesh& mesh = scene.meshes[k];
             RTCScene s = rtcNewScene(m.device);
             m.mesh_scenes.push_back(s);
             rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
@@ -170,6 +193,11 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
                 continue;
             }
             RTCGeometry g = triangle_geometry(m.device, mesh.positions, mesh.indices);
+            if (masked[k]) {  // the filter asks the instance, which may have no mask: then it keeps
+                rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+                rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+                rtcCommitGeometry(g);
+            }
             rtcAttachGeometryByID(s, g, 0);
             rtcReleaseGeometry(g);
             rtcCommitScene(s);
@@ -221,8 +249,9 @@ std::size_t EmbreeAccel::memory_bytes() const {
     return b > 0 ? static_cast<std::size_t>(b) : 0;
 }
 
-void EmbreeAccel::closest(const Scene&, Ray& ray, std::optional<Hit>& best) const {
-    RTCIntersectContext context;
+void EmbreeAccel::closest(const Scene& scene, Ray& ray, std::optional<Hit>& best) const {
+    AlphaIntersectContext alpha{{}, &scene, ray};
+    RTCIntersectContext& context = alpha.context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
     rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
@@ -251,8 +280,9 @@ void EmbreeAccel::closest(const Scene&, Ray& ray, std::optional<Hit>& best) cons
     }
 }
 
-bool EmbreeAccel::occluded(const Ray& ray) const {
-    RTCIntersectContext context;
+bool EmbreeAccel::occluded(const Scene& scene, const Ray& ray) const {
+    AlphaIntersectContext alpha{{}, &scene, ray};
+    RTCIntersectContext& context = alpha.context;
     rtcInitIntersectContext(&context);
     RTCRay r{};
     r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;

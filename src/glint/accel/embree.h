@@ -6,6 +6,10 @@
 // call glint's own intersection routines. Hits come back as glint Hits (same kinds, indices and
 // barycentrics), so everything after traversal is shared.
 //
+// Alpha cut-outs: the meshes some instance masks get Embree filter functions that ask
+// Scene::alpha_keeps; the scene and the world ray reach them through an extended intersect
+// context.
+//
 // Embree's triangle test is not watertight (glint's is); images agree within float noise.
 #include <cstddef>
 #include <optional>
@@ -28,7 +32,7 @@ public:
 
     /// Lowers ray.t_max and sets best for a hit nearer than ray.t_max.
     void closest(const Scene& scene, Ray& ray, std::optional<Hit>& best) const;
-    bool occluded(const Ray& ray) const;
+    bool occluded(const Scene& scene, const Ray& ray) const;
     /// Bytes Embree allocated for this scene (its memory monitor's count).
     std::size_t memory_bytes() const;
 

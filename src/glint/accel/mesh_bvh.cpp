@@ -161,8 +161,9 @@ MeshTraversal MeshBvh::view() const {
     return {bvh4_.nodes().data(), bvh4_.root(), packets_.data()};
 }
 
-std::optional<MeshHit> MeshBvh::closest(const Ray& ray) const {
-    const MeshTraversal v = view();
+std::optional<MeshHit> MeshBvh::closest(const Ray& ray, const HitFilter* filter) const {
+    MeshTraversal v = view();
+    v.filter = filter;
     MeshHit h;
     bool found = false;
     switch (isa_) {
@@ -173,8 +174,9 @@ std::optional<MeshHit> MeshBvh::closest(const Ray& ray) const {
     return found ? std::optional<MeshHit>(h) : std::nullopt;
 }
 
-bool MeshBvh::any(const Ray& ray) const {
-    const MeshTraversal v = view();
+bool MeshBvh::any(const Ray& ray, const HitFilter* filter) const {
+    MeshTraversal v = view();
+    v.filter = filter;
     switch (isa_) {
         case SimdIsa::kSse4: return mesh_any_sse4(v, ray);
         case SimdIsa::kAvx2: return mesh_any_avx2(v, ray);

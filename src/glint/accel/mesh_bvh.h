@@ -38,12 +38,21 @@ const char* simd_isa_name(SimdIsa isa);
 SimdIsa default_simd_isa();
 bool cpu_supports(SimdIsa isa);
 
+/// An any-hit filter (alpha cut-outs): called for every candidate hit in [kRayTMin, t_max)
+/// with its triangle and barycentrics; a hit it refuses is not there. Without one (nullptr)
+/// the kernels run as they always did.
+struct HitFilter {
+    bool (*keep)(const void* context, std::uint32_t prim, float b1, float b2);
+    const void* context;
+};
+
 /// What a traversal kernel reads: the nodes (Bvh4Node for SSE, Bvh8Node otherwise), the root
 /// reference and the packets; leaf references count packets.
 struct MeshTraversal {
     const void* nodes;
     std::uint32_t root;
     const TrianglePacket* packets;
+    const HitFilter* filter = nullptr;
 };
 
 class MeshBvh {
@@ -53,8 +62,8 @@ public:
 
     /// Nearest triangle in [kRayTMin, ray.t_max) along an object-space ray (any direction
     /// length; t is in the ray's own parametrisation).
-    std::optional<MeshHit> closest(const Ray& ray) const;
-    bool any(const Ray& ray) const;
+    std::optional<MeshHit> closest(const Ray& ray, const HitFilter* filter = nullptr) const;
+    bool any(const Ray& ray, const HitFilter* filter = nullptr) const;
 
     Bounds3 bounds() const { return width_ == 8 ? bvh8_.bounds() : bvh4_.bounds(); }
     int depth() const { return width_ == 8 ? bvh8_.depth() : bvh4_.depth(); }

@@ -209,7 +209,8 @@ inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const Tri
             for (int lane = 0; lane < 4; ++lane) {
                 wr.t_max = t_max;
                 TriangleHit h;
-                if (intersect_packet_lane(p, lane, wr, h)) {
+                if (intersect_packet_lane(p, lane, wr, h) &&
+                    (!m.filter || m.filter->keep(m.filter->context, p.prim[lane], h.b1, h.b2))) {
                     t_max = h.t;
                     out.hit = h;
                     out.prim = p.prim[lane];
@@ -224,7 +225,14 @@ inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const Tri
         _mm_store_ps(t, res.t);
         _mm_store_ps(b1, res.b1);
         _mm_store_ps(b2, res.b2);
-        int best = __builtin_ctz(res.hit);
+        unsigned hit = res.hit;
+        if (m.filter) {  // refused lanes drop out
+            for (int lane = 0; lane < 4; ++lane)
+                if ((hit >> lane & 1u) && !m.filter->keep(m.filter->context, p.prim[lane], b1[lane], b2[lane]))
+                    hit &= ~(1u << lane), t[lane] = kInf;
+            if (!hit) continue;
+        }
+        int best = __builtin_ctz(hit);
         for (int lane = best + 1; lane < 4; ++lane)
             if (t[lane] < t[best]) best = lane;
         t_max = t[best];
@@ -239,12 +247,23 @@ inline bool any_in_leaf(const MeshTraversal& m, std::uint32_t ref, const TriRay&
     const std::uint32_t first = leaf_first(ref), count = leaf_count(ref);
     for (std::uint32_t k = first; k < first + count; ++k) {
         const TrianglePacket& p = m.packets[k];
-        const PacketResult res = test_packet(p, r, t_max, false);
+        const PacketResult res = test_packet(p, r, t_max, m.filter != nullptr);
         if (res.exact) {
             const WatertightRay wr(*r.ray);
             TriangleHit h;
             for (int lane = 0; lane < 4; ++lane)
-                if (intersect_packet_lane(p, lane, wr, h)) return true;
+                if (intersect_packet_lane(p, lane, wr, h) &&
+                    (!m.filter || m.filter->keep(m.filter->context, p.prim[lane], h.b1, h.b2)))
+                    return true;
+            continue;
+        }
+        if (res.hit && m.filter) {
+            alignas(16) float b1[4], b2[4];
+            _mm_store_ps(b1, res.b1);
+            _mm_store_ps(b2, res.b2);
+            for (int lane = 0; lane < 4; ++lane)
+                if ((res.hit >> lane & 1u) && m.filter->keep(m.filter->context, p.prim[lane], b1[lane], b2[lane]))
+                    return true;
             continue;
         }
         if (res.hit) return true;

@@ -285,6 +285,12 @@ public:
         scene_.background = EnvironmentMap::make(scene_.images[id], e.scale);
     }
 
+    /// An alpha mask for instances, its texture added.
+    std::int32_t add_alpha(const AlphaDesc& a) {
+        scene_.alpha_masks.push_back(AlphaMask{add_texture(a.texture), a.cutoff, a.stochastic});
+        return static_cast<std::int32_t>(scene_.alpha_masks.size() - 1);
+    }
+
 private:
     // Children first, so a texture's ids always point at earlier entries (a tree, no cycles).
     TextureId add_texture(const TextureDesc& d) {
@@ -686,8 +692,9 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 c.up = normalize(place.vector(c.up));
                 job.file_camera = c;
             }
+            const std::int32_t alpha = o.alpha ? materials.add_alpha(*o.alpha) : -1;
             for (const ImportedNode& n : it->second.nodes) {
-                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt};
+                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, alpha};
                 if (id != kNoImportedMaterial) inst.material = id;
                 scene.instances.push_back(inst);
             }
@@ -702,9 +709,11 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 it = inline_meshes.emplace(inline_mesh->mesh.get(), static_cast<std::uint32_t>(scene.meshes.size())).first;
                 scene.meshes.push_back(std::move(m));
             }
-            scene.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id});
+            scene.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id,
+                                               o.alpha ? materials.add_alpha(*o.alpha) : -1});
             continue;
         }
+        if (o.alpha) diagnostics.error(o.alpha->loc, "alpha (a cut-out) applies to meshes only");
         std::visit(
             [&](auto shape) {
                 using S = decltype(shape);

@@ -1156,7 +1156,25 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         o.interior = Located<std::string>{gs_.inside.empty() ? "none" : gs_.inside, t.loc()};
         o.exterior = Located<std::string>{gs_.outside.empty() ? "none" : gs_.outside, t.loc()};
     }
-    ignore(pl, "alpha", "\"alpha\" (cut-outs) not supported yet; the shape is opaque");
+    // "alpha": pbrt's stochastic cut-out (a surface point is there for a fraction alpha of
+    // the rays). Constant 1 is opaque, constant 0 no shape at all; meshes take the rest.
+    std::optional<AlphaDesc> alpha;
+    if (const Param* ap = pl.find("alpha")) {
+        const SourceLoc aloc = ap->loc;
+        if (auto tex = get_texture(pl, "alpha", true, 1)) {
+            if (tex->kind == TextureDesc::Kind::kConstant && tex->value.g >= 1) {
+                // opaque
+            } else if (tex->kind == TextureDesc::Kind::kConstant && !(tex->value.g > 0)) {
+                pl.use_all();
+                return;  // never there
+            } else {
+                alpha = AlphaDesc{*tex, 0.5f, true, aloc};
+            }
+        }
+    }
+    const auto no_alpha_here = [&] {
+        if (alpha) warn(alpha->loc, fmt::format("\"alpha\" on a {}: glint cuts out meshes only; the shape is opaque", type));
+    };
     ignore(pl, "emissionfilename", "\"emissionfilename\" not supported; the area light's L is used");
     const std::string what = "Shape \"" + type + "\"";
     if (type == "sphere") {
@@ -1169,6 +1187,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         }
         if (gs_.reverse_orientation && gs_.area_light) warn(t.loc(), "ReverseOrientation on an emitting sphere: glint's sphere emits outwards");
         apply_area_power(o, {4 * std::numbers::pi * r * r});
+        no_alpha_here();
         o.shape = Sphere{{0, 0, 0}, Float(r)};
         check_unused(pl, what);
         add_object(std::move(o), gs_.ctm);
@@ -1181,6 +1200,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             return;
         }
         apply_area_power(o, {std::numbers::pi * r * r});
+        no_alpha_here();
         o.shape = Disk{{0, 0, Float(h)}, Normal3{0, 0, gs_.reverse_orientation ? -1.0f : 1.0f}, Float(r)};
         check_unused(pl, what);
         add_object(std::move(o), gs_.ctm);
@@ -1222,7 +1242,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         }
         const auto point = [&](std::size_t i) { return Point3{Float((*P)[3 * i]), Float((*P)[3 * i + 1]), Float((*P)[3 * i + 2])}; };
         // A bilinear patch that is a flat parallelogram is glint's quad exactly.
-        if (bilinear && indices->size() == 4 && !N && !uv) {
+        if (bilinear && indices->size() == 4 && !N && !uv && !alpha) {
             const Point3 p00 = point(std::size_t((*indices)[0])), p10 = point(std::size_t((*indices)[1])),
                          p01 = point(std::size_t((*indices)[2])), p11 = point(std::size_t((*indices)[3]));
             const Vector3 e1 = p10 - p00, e2 = p01 - p00;
@@ -1281,7 +1301,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         }
         // A few triangles without attributes become glint's triangle shapes, as the YAML reader's
         // polygons do; larger meshes are meshes (a BVH of their own, instanced).
-        if (mesh->triangle_count() <= 8 && mesh->normals.empty() && mesh->uvs.empty() && !defining_) {
+        if (mesh->triangle_count() <= 8 && mesh->normals.empty() && mesh->uvs.empty() && !defining_ && !alpha) {
             for (std::uint32_t tri = 0; tri < mesh->triangle_count(); ++tri) {
                 const auto v3 = mesh->vertices(tri);
                 ObjectDesc one = o;
@@ -1291,6 +1311,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             return;
         }
         o.shape = InlineMeshDesc{mesh};
+        o.alpha = alpha;
         add_object(std::move(o), gs_.ctm);
     } else if (type == "loopsubdiv") {
         const auto P = get_floats(pl, "P", "point3", 3);
@@ -1340,6 +1361,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
             apply_area_power(o, areas);
         }
         o.shape = InlineMeshDesc{mesh};
+        o.alpha = alpha;
         add_object(std::move(o), gs_.ctm);
     } else if (type == "cylinder") {
         // Tessellated: 256 quads around, each two triangles, with the exact radial normals.
@@ -1373,6 +1395,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         }
         apply_area_power(o, {std::abs(z1 - z0) * r * phimax * std::numbers::pi / 180});
         o.shape = InlineMeshDesc{mesh};
+        o.alpha = alpha;
         add_object(std::move(o), gs_.ctm);
     } else if (type == "plymesh") {
         const auto file = get_string(pl, "filename");
@@ -1389,6 +1412,7 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
         f.file = {*file, pl.find("filename")->loc};
         o.shape = f;
         o.material_given = true;
+        o.alpha = alpha;
         add_object(std::move(o), gs_.ctm);
     } else {
         warn(t.loc(), fmt::format("shape \"{}\" not supported; left out", type));

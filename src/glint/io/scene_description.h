@@ -207,6 +207,14 @@ struct InlineMeshDesc {
     std::shared_ptr<const TriangleMesh> mesh;
 };
 
+/// A cut-out on a mesh (scene/alpha.h's AlphaMask before its texture is added).
+struct AlphaDesc {
+    TextureDesc texture;
+    float cutoff = 0.5f;
+    bool stochastic = false;  ///< pbrt's alpha, glTF's BLEND; else a mask at `cutoff`
+    SourceLoc loc;
+};
+
 struct ObjectDesc {
     /// Material ids are set by build. A `box` in the file arrives here as six quads.
     std::variant<Sphere, Plane, Quad, Disk, Triangle, MeshFileDesc, InlineMeshDesc> shape = Sphere{{0, 0, 0}, 1};
@@ -220,6 +228,7 @@ struct ObjectDesc {
     /// vacuum). With either given the surface bounds a medium; an unset exterior is the scene's
     /// medium.
     std::optional<Located<std::string>> interior, exterior;
+    std::optional<AlphaDesc> alpha;  ///< meshes only
 };
 
 struct NamedMaterial {

@@ -828,13 +828,27 @@ private:
                 }
                 mat = m.get("material");
             } else if (*type == "mesh") {
-                MapReader m(r_, item, "mesh", {"type", "file", "material", "transform", "interior", "exterior"});
+                MapReader m(r_, item, "mesh", {"type", "file", "material", "transform", "interior", "exterior",
+                                               "alpha", "alpha_mode", "alpha_cutoff"});
                 MeshFileDesc f;
                 if (const auto n = m.require("file")) {
                     f.file.loc = r_.loc(*n);
                     assign(n, f.file.value, [this](const YAML::Node& v) { return r_.string(v); });
                 }
                 out.push_back(object_of(f));
+                if (const auto n = m.get("alpha")) {
+                    AlphaDesc a;
+                    a.loc = r_.loc(*n);
+                    if (auto t = texture(*n)) a.texture = *t;
+                    if (const auto mode = m.get("alpha_mode"))
+                        if (auto b = choice<bool>(*mode, "alpha_mode", {{"mask", false}, {"blend", true}})) a.stochastic = *b;
+                    assign(m.get("alpha_cutoff"), a.cutoff, [this](const YAML::Node& v) {
+                        return r_.number_in(v, "alpha_cutoff", 0, 1);
+                    });
+                    out.back().alpha = a;
+                } else if (m.has("alpha_mode") || m.has("alpha_cutoff")) {
+                    r_.error(item, "mesh: alpha_mode and alpha_cutoff need an 'alpha' texture");
+                }
                 mat = m.get("material");
             } else {
                 Point3 lo{0, 0, 0}, hi{1, 1, 1};

@@ -93,6 +93,7 @@ struct Instance {
     std::uint32_t mesh = 0;
     Transform transform;
     std::optional<MaterialId> material;  ///< replaces every material of the mesh
+    std::int32_t alpha = -1;             ///< a cut-out: an index into Scene::alpha_masks
 };
 
 }  // namespace glint
