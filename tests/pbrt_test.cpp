@@ -513,6 +513,31 @@ Shape "sphere" "float radius" [ 0.5 ] "float alpha" [ 0.5 ]
     EXPECT_NEAR(sum / 400, 0.75, 0.03);
 }
 
+// pbrt-v4's uniformgrid medium: samples x fastest, sample (i, j, k) at p0 + (p1 - p0)(i + 1/2)/n
+// in the medium's space (here translated by (10, 0, 0)).
+TEST(Pbrt, UniformGridMediumBecomesAVoxelGrid) {
+    const SceneDescription d = parse(R"(WorldBegin
+AttributeBegin
+  Translate 10 0 0
+  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 3 "integer nz" 1
+    "float density" [ 0 1 2 3 4 5 ] "point3 p0" [ 0 0 0 ] "point3 p1" [ 2 3 0.5 ] "rgb sigma_s" [ 0.5 0.5 0.5 ]
+AttributeEnd
+)");
+    ASSERT_EQ(d.media.size(), 1u);
+    const MediumDesc& m = d.media[0].medium;
+    ASSERT_EQ(m.kind, MediumDesc::Kind::kGrid);
+    ASSERT_TRUE(m.inline_density && m.transform);
+    EXPECT_EQ(m.inline_density->voxel(1, 0, 0), 1);
+    EXPECT_EQ(m.inline_density->voxel(0, 2, 0), 4);
+    EXPECT_EQ(m.inline_density->voxel(1, 2, 0), 5);
+    expect_point(m.transform->point({0, 0, 0}), {10.5f, 0.5f, 0.25f});
+    expect_point(m.transform->point({1, 2, 0}), {11.5f, 2.5f, 0.25f});
+    EXPECT_EQ(m.sigma_s.g, 0.5f);
+    EXPECT_EQ(m.sigma_a.g, 1);  // pbrt's grid default
+    EXPECT_EQ(first_error("MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" [ 1 ]\n"),
+              "test.pbrt:1:64: uniformgrid: 1 density values for nx x ny x nz = 2");
+}
+
 // pbrt-v4's "power" and "illuminance", against the closed forms of each light's emitted power.
 TEST(Pbrt, LightPowerAndIlluminance) {
     const SceneDescription d = parse(R"(WorldBegin

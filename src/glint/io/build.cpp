@@ -378,6 +378,12 @@ Medium make_medium(const MediumDesc& d, Diagnostics& diagnostics, const std::fil
     g.sigma_a = d.sigma_a;
     g.sigma_s = d.sigma_s;
     g.phase = HgPhase{d.g};
+    if (d.inline_density) {  // pbrt's uniformgrid: the voxels came with the scene
+        g.transform = d.transform.value_or(Transform{});
+        g.density = *d.inline_density;
+        g.majorant = MajorantGrid(g.density);
+        return g;
+    }
     std::filesystem::path path = d.file.value;
     if (path.is_relative()) path = scene_dir / path;
     // A grid of the file, its name and type checked first so that those errors point at the key

@@ -1,5 +1,7 @@
 #include "glint/io/pbrt.h"
 
+#include "glint/io/limits.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -1711,6 +1713,60 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
         return;
     }
     media_.insert(name);
+    if (*type == "uniformgrid") {
+        // pbrt-v4's grid medium: nx x ny x nz density samples (x fastest) over the box [p0, p1]
+        // of the medium's space, sample (i, j, k) at p0 + (p1 - p0) (i + 0.5, j + 0.5, k + 0.5) / n,
+        // trilinear between samples: glint's voxel grid with that index-to-world transform.
+        MediumDesc m;
+        m.kind = MediumDesc::Kind::kGrid;
+        const float sc = float(get_float(pl, "scale").value_or(1));
+        m.sigma_a = get_color(pl, "sigma_a", false).value_or(Color{1}) * sc;
+        m.sigma_s = get_color(pl, "sigma_s", false).value_or(Color{1}) * sc;
+        m.g = float(get_float(pl, "g").value_or(0));
+        if (!(std::abs(m.g) < 1)) diag_.error(pl.find("g")->loc, "g must be in (-1, 1)");
+        const long long nx = get_int(pl, "nx").value_or(1), ny = get_int(pl, "ny").value_or(1),
+                        nz = get_int(pl, "nz").value_or(1);
+        const auto* density = get_floats(pl, "density", "float", 1);
+        const auto pt = [&](const char* n, D3 fallback) {
+            const auto v = get_floats(pl, n, "point3", 3);
+            return v && v->size() == 3 ? D3{(*v)[0], (*v)[1], (*v)[2]} : fallback;
+        };
+        const D3 p0 = pt("p0", {0, 0, 0}), p1 = pt("p1", {1, 1, 1});
+        for (const char* n : {"Le", "Lescale", "temperature", "temperaturecutoff", "temperaturescale"})
+            ignore(pl, n, fmt::format("uniformgrid \"{}\": grid emission from pbrt files not supported; ignored", n));
+        check_unused(pl, "MakeNamedMedium \"" + name + "\"");
+        const SourceLoc at = pl.find("density") ? pl.find("density")->loc : t.loc();
+        if (!density) {
+            diag_.error(t.loc(), "uniformgrid: needs \"float density\"");
+        } else if (nx < 1 || ny < 1 || nz < 1 || nx * ny * nz > kMaxGridVoxels) {
+            diag_.error(at, fmt::format("uniformgrid: nx, ny, nz must be at least 1 with at most {} voxels", kMaxGridVoxels));
+        } else if (static_cast<long long>(density->size()) != nx * ny * nz) {
+            diag_.error(at, fmt::format("uniformgrid: {} density values for nx x ny x nz = {}", density->size(), nx * ny * nz));
+        } else if (!(p1[0] > p0[0] && p1[1] > p0[1] && p1[2] > p0[2])) {
+            diag_.error(pl.find("p1") ? pl.find("p1")->loc : t.loc(), "uniformgrid: p1 must exceed p0 on every axis");
+        } else if (std::any_of(density->begin(), density->end(), [](double v) { return !(v >= 0) || !std::isfinite(v); })) {
+            diag_.error(at, "uniformgrid: density values must be finite and non-negative");
+        } else {
+            const int ix = int(nx), iy = int(ny), iz = int(nz);
+            m.inline_density = std::make_shared<const VoxelGrid>(VoxelGrid::from_function(
+                {0, 0, 0}, {ix, iy, iz}, [&](int i, int j, int k) {
+                    return float((*density)[(std::size_t(k) * std::size_t(iy) + std::size_t(j)) * std::size_t(ix) + std::size_t(i)]);
+                }));
+            // medium space -> world, then the box, then the half-voxel offset.
+            M4 box;
+            const double n3[3] = {double(nx), double(ny), double(nz)};
+            for (int a = 0; a < 3; ++a) {
+                const double step = (p1[a] - p0[a]) / n3[a];
+                box.m[a][a] = step;
+                box.m[a][3] = p0[a] + 0.5 * step;
+            }
+            const M4 to_world = gs_.ctm * box;
+            if (const auto tr = to_world.affine() ? Transform::from(to_world.to34()) : std::nullopt) m.transform = *tr;
+            else diag_.error(t.loc(), "uniformgrid: the medium's transform is singular or projective");
+        }
+        d_.media.push_back({name, m, t.loc()});
+        return;
+    }
     if (*type != "homogeneous") {
         warn(t.loc(), fmt::format("medium \"{}\" of type \"{}\" not supported; treated as empty", name, *type));
         pl.use_all();

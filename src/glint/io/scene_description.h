@@ -18,6 +18,7 @@
 #include "glint/integrators/integrator.h"
 #include "glint/lights/light.h"
 #include "glint/math/transform.h"
+#include "glint/media/grid.h"
 #include "glint/materials/material.h"
 #include "glint/samplers/sampler.h"
 #include "glint/shapes/disk.h"
@@ -147,6 +148,9 @@ struct MediumDesc {
     float emission_scale = 1;
     float temperature_scale = 1;
     std::optional<Transform> transform;  ///< after the file's own voxel-to-world transform
+    /// A density grid given in the scene file itself (pbrt's uniformgrid) instead of `file`; its
+    /// index-to-world transform is `transform`.
+    std::shared_ptr<const VoxelGrid> inline_density;
 };
 
 struct MaterialDesc {
