@@ -54,3 +54,9 @@ oiiotool "$gallery_tmp/ab.png" "$gallery_tmp/materials.png" --resize 512x256 --m
   -o docs/images/pbrt-scenes.png
 rm -rf "$gallery_tmp"
 echo docs/images/pbrt-scenes.png
+# What pbrt files bring: alpha, diffusetransmission, mix, a uniformgrid medium, power.
+features_tmp=$(mktemp -d)
+"$glint" render scenes/pbrt/features.pbrt -q -o "$features_tmp/features.png"
+oiiotool "$features_tmp/features.png" --resize 560x280 -o docs/images/pbrt-features.png
+rm -rf "$features_tmp"
+echo docs/images/pbrt-features.png
