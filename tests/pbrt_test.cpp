@@ -27,6 +27,15 @@ SceneDescription parse(const std::string& text, bool strict = false) {
     return parse_pbrt(text, "test.pbrt", std::make_shared<SourceFiles>(), PbrtOptions{strict});
 }
 
+// Builds and renders a parsed scene with its own film and sampler.
+Film render_description(const SceneDescription& d) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(d, {}, sources);
+    Film film(job.film_width, job.film_height);
+    render(job.scene, job.camera, *job.integrator, job.options, film);
+    return film;
+}
+
 // The first error's "file:line:col: message" line.
 std::string first_error(const std::string& text, bool strict = false) {
     try {
@@ -183,8 +192,7 @@ WorldBegin
 // 20 x 20 film: pixel centres within 0.9 of the axis see the sphere (0), the others the sky (1).
 // A perspective camera from the same place would show a much smaller disk.
 TEST(Pbrt, OrthographicViewOfASphereIsItsSilhouette) {
-    auto sources = std::make_shared<SourceFiles>();
-    const RenderJob job = build(parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
+    const Film film = render_description(parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
 Camera "orthographic"
 Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
 Sampler "independent" "integer pixelsamples" [ 1 ]
@@ -192,9 +200,7 @@ WorldBegin
 LightSource "infinite" "rgb L" [ 1 1 1 ]
 Material "diffuse" "rgb reflectance" [ 0 0 0 ]
 Shape "sphere" "float radius" [ 0.9 ]
-)"), {}, sources);
-    Film film(job.film_width, job.film_height);
-    render(job.scene, job.camera, *job.integrator, job.options, film);
+)"));
     int checked = 0;
     for (int row = 0; row < 20; ++row)
         for (int col = 0; col < 20; ++col) {
@@ -503,10 +509,7 @@ Shape "sphere" "float radius" [ 0.5 ] "float alpha" [ 0.5 ]
     EXPECT_TRUE(d.objects[0].alpha->stochastic);
     ASSERT_EQ(d.warnings.size(), 1u);
     EXPECT_NE(d.warnings[0].message.find("\"alpha\" on a sphere"), std::string::npos);
-    auto sources = std::make_shared<SourceFiles>();
-    const RenderJob job = build(d, {}, sources);
-    Film film(job.film_width, job.film_height);
-    render(job.scene, job.camera, *job.integrator, job.options, film);
+    const Film film = render_description(d);
     double sum = 0;
     for (const Color& c : film.pixels()) sum += c.g;
     // 6400 rays: the mean's standard deviation is sqrt(0.75 x 0.25 / 6400) = 0.0054.

@@ -69,17 +69,21 @@ std::optional<std::string> YamlReader::string(const YAML::Node& node) {
     return node.Scalar();
 }
 
-std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) {
-    if (!node.IsSequence() || node.size() != 3) {
-        error(node, fmt::format("expected a list of 3 numbers [x, y, z], got {}",
-                                node.IsSequence() ? fmt::format("a list of {}", node.size())
-                                                  : describe(node)));
+namespace {
+
+// A list of exactly N numbers; `form` shows the expected shape in the message ("[x, y, z]").
+template <std::size_t N>
+std::optional<std::array<double, N>> fixed_list(YamlReader& r, const YAML::Node& node, const std::string& prefix,
+                                                const char* form) {
+    if (!node.IsSequence() || node.size() != N) {
+        r.error(node, fmt::format("{}expected a list of {} numbers {}, got {}", prefix, N, form,
+                                  node.IsSequence() ? fmt::format("a list of {}", node.size()) : describe(node)));
         return std::nullopt;
     }
-    std::array<double, 3> out{};
+    std::array<double, N> out{};
     bool ok = true;
-    for (std::size_t i = 0; i < 3; ++i) {
-        const auto v = number(node[i]);
+    for (std::size_t i = 0; i < N; ++i) {
+        const auto v = r.number(node[i]);
         if (v) out[i] = *v;
         ok = ok && v.has_value();
     }
@@ -87,21 +91,16 @@ std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) 
     return out;
 }
 
+}  // namespace
+
+std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) {
+    return fixed_list<3>(*this, node, "", "[x, y, z]");
+}
+
 std::optional<std::array<double, 4>> YamlReader::bounds(const YAML::Node& node, const char* what) {
-    if (!node.IsSequence() || node.size() != 4) {
-        error(node, fmt::format("{}: expected a list of 4 numbers [x0, x1, y0, y1], got {}", what,
-                                node.IsSequence() ? fmt::format("a list of {}", node.size())
-                                                  : describe(node)));
-        return std::nullopt;
-    }
-    std::array<double, 4> out{};
-    bool ok = true;
-    for (std::size_t i = 0; i < 4; ++i) {
-        const auto v = number(node[i]);
-        if (v) out[i] = *v;
-        ok = ok && v.has_value();
-    }
-    if (!ok) return std::nullopt;
+    const auto b = fixed_list<4>(*this, node, fmt::format("{}: ", what), "[x0, x1, y0, y1]");
+    if (!b) return std::nullopt;
+    const auto& out = *b;
     if (!(out[1] > out[0] && out[3] > out[2])) {
         error(node, fmt::format("{}: needs x0 < x1 and y0 < y1", what));
         return std::nullopt;
