@@ -58,5 +58,13 @@ echo docs/images/pbrt-scenes.png
 features_tmp=$(mktemp -d)
 "$glint" render scenes/pbrt/features.pbrt -q -o "$features_tmp/features.png"
 oiiotool "$features_tmp/features.png" --resize 560x280 -o docs/images/pbrt-features.png
-rm -rf "$features_tmp"
 echo docs/images/pbrt-features.png
+# The killeroos of the pbrt-v4 scene collection, when ../shared/models holds them (not in this
+# repository; see docs/scene-format.md).
+killeroos=../shared/models/pbrt-v4-scenes/killeroos/killeroo-simple.pbrt
+if [[ -f $killeroos ]]; then
+  "$glint" render "$killeroos" -q -o "$features_tmp/killeroos.png"
+  oiiotool "$features_tmp/killeroos.png" --resize 350x350 -o docs/images/pbrt-killeroos.png
+  echo docs/images/pbrt-killeroos.png
+fi
+rm -rf "$features_tmp"

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "glint/background.h"
@@ -539,6 +541,56 @@ AttributeEnd
     EXPECT_EQ(m.sigma_a.g, 1);  // pbrt's grid default
     EXPECT_EQ(first_error("MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" [ 1 ]\n"),
               "test.pbrt:1:64: uniformgrid: 1 density values for nx x ny x nz = 2");
+}
+
+// A real scene of the pbrt-v4 collection: the killeroos (killeroos/killeroo-simple.pbrt and its
+// geometry/killeroo.pbrt, a loopsubdiv control mesh, kept in ../shared/models when present). It
+// reads without a warning; each killeroo is Loop-subdivided once, so it has 4F triangles and V + E
+// vertices, F, V and E counted here from the file's own arrays.
+TEST(Pbrt, KillerooSceneFromThePbrtV4Collection) {
+    const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_MODEL_DIR) / "pbrt-v4-scenes" / "killeroos";
+    if (!std::filesystem::exists(dir / "killeroo-simple.pbrt")) GTEST_SKIP() << "no " << dir.string();
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = load_pbrt_file((dir / "killeroo-simple.pbrt").string(), sources, PbrtOptions{true});
+    EXPECT_TRUE(d.warnings.empty());
+    // The control mesh's counts, from its text.
+    const std::string geometry = testing::read_file(dir / "geometry" / "killeroo.pbrt");
+    const auto array = [&](const std::string& name) {
+        const std::size_t open = geometry.find('[', geometry.find(name)), close = geometry.find(']', open);
+        std::istringstream in(geometry.substr(open + 1, close - open - 1));
+        std::vector<double> v;
+        for (double x; in >> x;) v.push_back(x);
+        return v;
+    };
+    const std::vector<double> P = array("\"point3 P\""), indices = array("\"integer indices\"");
+    const std::size_t V = P.size() / 3, F = indices.size() / 3;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (std::size_t f = 0; f < F; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto a = std::uint32_t(indices[3 * f + std::size_t(k)]), b = std::uint32_t(indices[3 * f + std::size_t((k + 1) % 3)]);
+            edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    int killeroos = 0;
+    for (const ObjectDesc& o : d.objects)
+        if (const auto* m = std::get_if<InlineMeshDesc>(&o.shape); m && m->mesh->triangle_count() > 100) {
+            ++killeroos;
+            EXPECT_EQ(m->mesh->triangle_count(), 4 * F);
+            EXPECT_EQ(m->mesh->positions.size(), V + edges.size());
+        }
+    EXPECT_EQ(killeroos, 2);
+    Overrides o;
+    o.width = 40;
+    o.height = 40;
+    o.spp = 2;
+    const RenderJob job = build(d, o, sources);
+    Film film(job.film_width, job.film_height);
+    render(job.scene, job.camera, *job.integrator, job.options, film);
+    double sum = 0;
+    for (const Color& c : film.pixels()) {
+        ASSERT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b));
+        sum += c.g;
+    }
+    EXPECT_GT(sum, 0);
 }
 
 // pbrt-v4's "power" and "illuminance", against the closed forms of each light's emitted power.

@@ -81,7 +81,10 @@ TEST(Render, ACropHoldsExactlyTheWholeFramesPixels) {
 }
 
 TEST(Render, ScaleMultipliesEveryPixel) {
-    RenderJob job = load("fig14-reflections.yaml", Overrides{.width = 40, .height = 30});
+    Overrides o;
+    o.width = 40;
+    o.height = 30;
+    RenderJob job = load("fig14-reflections.yaml", o);
     const Film a = render_with(job, 2, 16, 2);
     job.options.scale = 4;  // a power of two: exactly 4x in floating point
     const Film b = render_with(job, 2, 16, 2);
