@@ -151,7 +151,7 @@ int run_convert(const RenderArgs& args, const std::string& out) {
         if (!f) throw glint::IoError(fmt::format("{}: cannot write", tmp.string()));
     }
     std::filesystem::rename(tmp, target);
-    fmt::print("wrote {}{}\n", out, w.meshes.empty() ? "" : fmt::format(" and {} mesh file{}", w.meshes.size(), w.meshes.size() == 1 ? "" : "s"));
+    fmt::print("wrote {}{}\n", out, w.meshes.empty() ? "" : fmt::format(" and {} mesh or grid file{}", w.meshes.size(), w.meshes.size() == 1 ? "" : "s"));
     return 0;
 }
 

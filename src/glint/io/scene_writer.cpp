@@ -1,5 +1,7 @@
 #include "glint/io/scene_writer.h"
 
+#include "glint/io/vdb.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -56,13 +58,14 @@ private:
     }
     std::string texture(const TextureDesc& t) const;
     std::string material(const MaterialDesc& m) const;
-    std::string medium(const MediumDesc& m) const;
+    std::string medium(const MediumDesc& m);
     std::string object(const ObjectDesc& o);
 
     const SceneDescription& d_;
     std::filesystem::path out_, source_dir_, out_dir_;
     WrittenScene result_;
     std::map<const TriangleMesh*, std::string> mesh_files_;
+    int vdb_count_ = 0;
 };
 
 std::string Writer::texture(const TextureDesc& t) const {
@@ -131,13 +134,28 @@ std::string Writer::material(const MaterialDesc& m) const {
     return "{" + s + "}";
 }
 
-std::string Writer::medium(const MediumDesc& m) const {
+std::string transform_yaml(const Transform& t);
+
+std::string Writer::medium(const MediumDesc& m) {
+    std::string s = fmt::format("type: {}, sigma_a: {}, sigma_s: {}, g: {}",
+                                m.kind == MediumDesc::Kind::kHomogeneous ? "homogeneous" : "grid", vec(m.sigma_a),
+                                vec(m.sigma_s), num(m.g));
     if (m.kind == MediumDesc::Kind::kHomogeneous) {
-        std::string s = fmt::format("{{type: homogeneous, sigma_a: {}, sigma_s: {}, g: {}", vec(m.sigma_a), vec(m.sigma_s), num(m.g));
         if (m.emission.max_component() > 0) s += ", emission: " + vec(m.emission);
-        return s + "}";
+        return "{" + s + "}";
     }
-    throw IoError("convert: grid media are not written yet");
+    if (m.emission_kind != MediumDesc::Emission::kNone)
+        throw IoError("convert: grid media with emission are not written yet");
+    if (m.inline_density) {  // a pbrt uniformgrid: its voxels into a .vdb beside the YAML file
+        const std::string name = fmt::format("{}-medium-{}.vdb", out_.stem().string(), ++vdb_count_);
+        write_vdb(out_dir_ / name, {{"density", m.inline_density.get()}}, 1.0f);  // index space = the file's space
+        result_.meshes.push_back(out_dir_ / name);
+        s += ", file: " + yaml_quoted(name);
+    } else {
+        s += fmt::format(", file: {}, grid: {}", yaml_quoted(file(m.file.value)), yaml_quoted(m.density_grid.value));
+    }
+    if (m.transform) s += ", transform: " + transform_yaml(*m.transform);
+    return "{" + s + "}";
 }
 
 std::string transform_yaml(const Transform& t) {
@@ -183,6 +201,10 @@ std::string Writer::object(const ObjectDesc& o) {
             s += ", material: " + yaml_quoted(*name);
         else
             s += ", material: " + material(std::get<MaterialDesc>(o.material.value));
+    }
+    if (o.alpha) {
+        s += fmt::format(", alpha: {}, alpha_mode: {}", texture(o.alpha->texture), o.alpha->stochastic ? "blend" : "mask");
+        if (!o.alpha->stochastic) s += ", alpha_cutoff: " + num(o.alpha->cutoff);
     }
     if (o.transform) s += ", transform: " + transform_yaml(*o.transform);
     if (o.interior) s += ", interior: " + yaml_quoted(o.interior->value);

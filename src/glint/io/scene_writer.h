@@ -14,7 +14,7 @@ namespace glint {
 
 struct WrittenScene {
     std::string yaml;
-    std::vector<std::filesystem::path> meshes;  ///< the PLY files written
+    std::vector<std::filesystem::path> meshes;  ///< the files written beside it: PLY meshes, VDB grids
 };
 
 /// Writes the YAML text for `d` (to be saved as `out`) and the PLY files of its inline meshes,
