@@ -8,6 +8,8 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdio>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -34,7 +36,82 @@ float srgb_decode(float v) {
     return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
+namespace {
+
+// Portable float maps (pbrt's PFM textures; OpenImageIO here has no reader for them): "PF"
+// (RGB) or "Pf" (grey), "width height", a scale whose sign gives the byte order (negative:
+// little endian) and whose magnitude multiplies the values, then the rows bottom to top.
+struct RawImage {
+    int width = 0, height = 0, channels = 0;
+    bool is_float = false;
+    std::vector<float> data;  ///< top row first
+};
+
+RawImage read_pfm(const fs::path& path, long long max_pixels) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), std::strerror(errno)));
+    std::string bytes;
+    char buf[65536];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
+    std::fclose(f);
+    std::size_t pos = 0;
+    const auto token = [&]() {
+        while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+        const std::size_t start = pos;
+        while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+        return bytes.substr(start, pos - start);
+    };
+    const auto bad = [&](const std::string& why) {
+        return IoError(fmt::format("cannot read image '{}': byte {}: {}", path.string(), pos, why));
+    };
+    const std::string magic = token();
+    if (magic != "PF" && magic != "Pf") throw bad("not a PFM file (expected 'PF' or 'Pf')");
+    RawImage raw;
+    raw.channels = magic == "PF" ? 3 : 1;
+    raw.is_float = true;
+    long long w = 0, h = 0;
+    double scale = 0;
+    try {
+        std::size_t used = 0;
+        std::string t = token();
+        w = std::stoll(t, &used);
+        if (used != t.size()) throw std::invalid_argument(t);
+        t = token();
+        h = std::stoll(t, &used);
+        if (used != t.size()) throw std::invalid_argument(t);
+        t = token();
+        scale = std::stod(t, &used);
+        if (used != t.size()) throw std::invalid_argument(t);
+    } catch (const std::exception&) {
+        throw bad("the header needs a width, a height and a scale");
+    }
+    if (w <= 0 || h <= 0 || w * h > max_pixels)
+        throw bad(fmt::format("{} x {} pixels; the limit is {} pixels", w, h, max_pixels));
+    if (!(scale != 0) || !std::isfinite(scale)) throw bad("the scale must be a finite non-zero number");
+    ++pos;  // the single whitespace byte that ends the header
+    const std::size_t count = static_cast<std::size_t>(w * h) * static_cast<std::size_t>(raw.channels);
+    if (bytes.size() < pos || bytes.size() - pos < count * 4)
+        throw bad(fmt::format("{} bytes of data for {} floats", bytes.size() < pos ? 0 : bytes.size() - pos, count));
+    raw.width = static_cast<int>(w);
+    raw.height = static_cast<int>(h);
+    raw.data.resize(count);
+    const bool little = scale < 0;
+    const float factor = static_cast<float>(std::abs(scale));
+    const std::size_t row = static_cast<std::size_t>(w) * static_cast<std::size_t>(raw.channels);
+    for (std::size_t i = 0; i < count; ++i) {
+        unsigned char b[4];
+        std::memcpy(b, bytes.data() + pos + 4 * i, 4);
+        if (!little) std::swap(b[0], b[3]), std::swap(b[1], b[2]);  // the file is big endian
+        std::uint32_t u = 0;
+        for (int k = 3; k >= 0; --k) u = (u << 8) | b[k];
+        const float v = std::bit_cast<float>(u) * factor;
+        const std::size_t y = i / row, x = i % row;  // rows bottom to top
+        raw.data[(static_cast<std::size_t>(h) - 1 - y) * row + x] = v;
+    }
+    return raw;
+}
+
+RawImage read_oiio(const fs::path& path, long long max_pixels) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         std::string why = OIIO::geterror();
@@ -47,19 +124,36 @@ Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pix
         throw IoError(fmt::format("image '{}' is {} x {} pixels; the limit is {} pixels",
                                   path.string(), spec.width, spec.height, max_pixels));
     }
-    const int channels = spec.nchannels;
-    std::vector<float> data(static_cast<std::size_t>(pixels) * static_cast<std::size_t>(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    RawImage raw;
+    raw.width = spec.width;
+    raw.height = spec.height;
+    raw.channels = spec.nchannels;
+    raw.data.resize(static_cast<std::size_t>(pixels) * static_cast<std::size_t>(raw.channels));
+    if (!in->read_image(0, 0, 0, raw.channels, OIIO::TypeDesc::FLOAT, raw.data.data())) {
         throw IoError(fmt::format("cannot read image '{}': {}", path.string(), in->geterror()));
     }
-    const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
-                          spec.format.basetype == OIIO::TypeDesc::HALF ||
-                          spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+    raw.is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
+                   spec.format.basetype == OIIO::TypeDesc::HALF ||
+                   spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+    return raw;
+}
+
+}  // namespace
+
+Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const RawImage raw = ext == ".pfm" ? read_pfm(path, max_pixels) : read_oiio(path, max_pixels);
+    const long long pixels = static_cast<long long>(raw.width) * raw.height;
+    const int channels = raw.channels;
+    const std::vector<float>& data = raw.data;
+    const bool is_float = raw.is_float;
     const bool decode = encoding == ImageEncoding::kSrgb ||
                         (encoding == ImageEncoding::kAuto && !is_float);
     Image image;
-    image.width = spec.width;
-    image.height = spec.height;
+    image.width = raw.width;
+    image.height = raw.height;
     image.texels.resize(static_cast<std::size_t>(pixels));
     for (std::size_t i = 0; i < image.texels.size(); ++i) {
         const float* px = &data[i * static_cast<std::size_t>(channels)];

@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <bit>
 
 #include "glint/io/build.h"
 #include "glint/io/image_io.h"
+#include "glint/io/limits.h"
 #include "glint/io/scene_yaml.h"
 #include "glint/render/render.h"
 #include "testing.h"
@@ -40,6 +44,47 @@ TEST(ImageRead, EightBitIsSrgbAndFloatIsLinearByDefault) {
     const Image exr = read_image(dir / "a.exr", ImageEncoding::kAuto);
     EXPECT_EQ(exr.texel(0, 0).r, 0.5f);
     EXPECT_EQ(exr.texel(0, 0).g, 2.5f);  // linear, unclamped
+}
+
+// PFM (pbrt's float textures), written here byte by byte: both byte orders, the scale's
+// magnitude multiplying, rows stored bottom to top, and a grey "Pf" map.
+TEST(ImageRead, PortableFloatMaps) {
+    const testing::TempDir dir;
+    const auto write = [&](const std::string& name, const std::string& header, const std::vector<float>& values, bool little) {
+        std::string bytes = header;
+        for (float v : values) {
+            const auto u = std::bit_cast<std::uint32_t>(v);
+            for (int k = 0; k < 4; ++k) {
+                const int shift = little ? 8 * k : 8 * (3 - k);
+                bytes.push_back(static_cast<char>((u >> shift) & 0xff));
+            }
+        }
+        std::ofstream(dir.path() / name, std::ios::binary) << bytes;
+        return dir.path() / name;
+    };
+    // 2 x 2, bottom row first in the file: (1,2,3) (4,5,6) / top row (7,8,9) (10,11,12).
+    const std::vector<float> rgb{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    const Image big = read_image(write("big.pfm", "PF\n2 2\n1.0\n", rgb, false), ImageEncoding::kAuto, kMaxTexturePixels);
+    const Image little = read_image(write("little.pfm", "PF\n2 2\n-2.0\n", rgb, true), ImageEncoding::kAuto, kMaxTexturePixels);
+    ASSERT_EQ(big.width, 2);
+    EXPECT_EQ(big.texel(0, 0).r, 7);  // the top-left texel is the last row's first
+    EXPECT_EQ(big.texel(1, 1).b, 6);
+    EXPECT_EQ(little.texel(1, 0).g, 22);  // 11 x |scale|
+    const Image grey = read_image(write("grey.pfm", "Pf\n3 1\n-1\n", {0.25f, 0.5f, 0.75f}, true), ImageEncoding::kAuto, kMaxTexturePixels);
+    EXPECT_EQ(grey.texel(2, 0).g, 0.75f);
+    EXPECT_EQ(grey.texel(1, 0).r, 0.5f);
+    const auto message = [&](const std::filesystem::path& p) {
+        try {
+            read_image(p, ImageEncoding::kAuto, kMaxTexturePixels);
+        } catch (const IoError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message(write("short.pfm", "PF\n2 2\n1\n", {1, 2, 3}, false)).find("byte 9: 12 bytes of data for 12 floats"),
+              std::string::npos);
+    EXPECT_NE(message(write("magic.pfm", "P6\n2 2\n1\n", {}, false)).find("not a PFM file"), std::string::npos);
+    EXPECT_NE(message(write("huge.pfm", "PF\n100000 100000\n1\n", {}, false)).find("the limit is"), std::string::npos);
 }
 
 TEST(ImageRead, TooLargeIsRefusedFromTheHeader) {
