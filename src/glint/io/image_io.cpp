@@ -50,6 +50,14 @@ struct RawImage {
 RawImage read_pfm(const fs::path& path, long long max_pixels) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), std::strerror(errno)));
+    // Nothing is read beyond what the largest allowed map needs (the header is checked below).
+    std::error_code size_error;
+    const auto file_size = fs::file_size(path, size_error);
+    if (!size_error && static_cast<double>(file_size) > static_cast<double>(max_pixels) * 12 + 4096) {
+        std::fclose(f);
+        throw IoError(fmt::format("cannot read image '{}': {} bytes is more than a map of the limit of {} pixels "
+                                  "can hold", path.string(), file_size, max_pixels));
+    }
     std::string bytes;
     char buf[65536];
     for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);

@@ -1738,7 +1738,7 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
         const SourceLoc at = pl.find("density") ? pl.find("density")->loc : t.loc();
         if (!density) {
             diag_.error(t.loc(), "uniformgrid: needs \"float density\"");
-        } else if (nx < 1 || ny < 1 || nz < 1 || nx * ny * nz > kMaxGridVoxels) {
+        } else if (nx < 1 || ny < 1 || nz < 1 || double(nx) * double(ny) * double(nz) > double(kMaxGridVoxels)) {
             diag_.error(at, fmt::format("uniformgrid: nx, ny, nz must be at least 1 with at most {} voxels", kMaxGridVoxels));
         } else if (static_cast<long long>(density->size()) != nx * ny * nz) {
             diag_.error(at, fmt::format("uniformgrid: {} density values for nx x ny x nz = {}", density->size(), nx * ny * nz));
