@@ -69,16 +69,12 @@ glint::SceneDescription mesh_file_scene(const std::string& path, const std::stri
     return d;
 }
 
+// The automatic camera for a model without one: from the front (-z side), a little above and to
+// the right, 40 degrees vertical, every corner of the model's bounds inside 90 % of the frame.
 void frame_bounds(glint::RenderJob& job) {
     const glint::Bounds3 b = job.scene.bounds();
     if (b.empty()) return;
-    const glint::Point3 c = b.lo + (b.hi - b.lo) * 0.5f;
-    const glint::Vector3 e = b.hi - b.lo;
-    const float r = 0.5f * std::max({e.x, e.y, e.z});
-    const float fov = 40;
-    const float dist = r / std::sin(fov * 0.5f * std::numbers::pi_v<float> / 180) * 1.1f;
-    const glint::Vector3 dir = glint::normalize(glint::Vector3{0.35f, 0.35f, -1});
-    job.camera = glint::Camera::look_at(c + dir * dist, c, {0, 1, 0}, fov, job.width, job.height);
+    job.camera = glint::frame_box(b, {0.35f, 0.35f, -1}, {0, 1, 0}, 40, job.width, job.height);
 }
 
 glint::RenderJob load_job(const RenderArgs& args) {

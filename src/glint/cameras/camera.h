@@ -25,6 +25,7 @@
 // direction: origin = P + A - zV, direction V; the viewport's size is then the visible extent in
 // world units. A window (pbrt's `screenwindow`) shows part of the viewport: [x0, x1] x [y0, y1]
 // in units of half the viewport's height, (0, 0) at its centre, y up.
+#include "glint/math/bounds.h"
 #include "glint/ray.h"
 #include "glint/samplers/warp.h"
 
@@ -109,5 +110,13 @@ private:
     Float aperture_radius_ = 0;
     Float focus_distance_ = 1;
 };
+
+/// A perspective camera that shows every corner of box `b` with a margin: it looks at the box's
+/// centre from direction `towards_camera` (from the centre to the camera), with vertical field of
+/// view `vfov_degrees`, and stands just far enough away that each corner's image lies within
+/// `margin` (in (0, 1]) of the frame's half-width and half-height. Exact for any size, position
+/// and aspect ratio (the distance is solved corner by corner, not from a bounding sphere).
+Camera frame_box(const Bounds3& b, Vector3 towards_camera, Vector3 up, Float vfov_degrees, int film_width,
+                 int film_height, Float margin = Float(0.9));
 
 }  // namespace glint

@@ -97,6 +97,46 @@ TEST(Camera, AWindowShowsPartOfTheView) {
     expect_vec(c.generate_ray(50, 50).direction, normalize(Vector3{0.5f, 0.5f, 1}), 1e-6f);
 }
 
+// The automatic framing: boxes of every size (1e-3 to 1e4), up to 1000 sizes from the origin, flat or
+// elongated, on wide and tall films: every corner lies inside the frame (checked from the camera's
+// own position and basis, not the framing formula), and one touches the margin (no waste).
+TEST(Camera, FrameBoxShowsEveryCornerTightly) {
+    std::uint32_t state = 12345;
+    const auto rnd = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / 16777216.0f;
+    };
+    const Vector3 towards{0.35f, 0.35f, -1};
+    for (int trial = 0; trial < 200; ++trial) {
+        const float scale = std::pow(10.0f, -3 + 7 * rnd());
+        const Vector3 size{scale * (0.01f + rnd()), scale * (0.01f + rnd()), scale * (trial % 7 == 0 ? 0 : 0.01f + rnd())};
+        // Up to 1000 times its own size from the origin (float coordinates: farther, the box's
+        // corners themselves would round).
+        const float far = scale * (trial % 3 == 0 ? 1000.0f : 10.0f);
+        const Point3 lo{(rnd() - 0.5f) * 2 * far, (rnd() - 0.5f) * 2 * far, (rnd() - 0.5f) * 2 * far};
+        Bounds3 b;
+        b.extend(lo);
+        b.extend(lo + size);
+        const int w = trial % 2 ? 800 : 300, h = trial % 2 ? 450 : 700;
+        const Camera c = frame_box(b, towards, {0, 1, 0}, 40, w, h);
+        const Point3 eye = c.generate_ray(w / 2.0f, h / 2.0f).origin;
+        const Vector3 v = c.view_direction(), hh = c.basis().h, uu = c.basis().u;
+        const double tan_v = std::tan(20 * M_PI / 180), tan_h = tan_v * w / h;
+        double widest = 0;
+        for (int i = 0; i < 8; ++i) {
+            const Point3 p{(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z};
+            const Vector3 q = p - eye;
+            const double depth = dot(q, v);
+            ASSERT_GT(depth, 0) << "trial " << trial << " corner " << i;
+            const double fx = std::abs(dot(q, hh)) / depth / tan_h, fy = std::abs(dot(q, uu)) / depth / tan_v;
+            EXPECT_LE(fx, 0.9 + 1e-3) << "trial " << trial;
+            EXPECT_LE(fy, 0.9 + 1e-3) << "trial " << trial;
+            widest = std::max({widest, fx, fy});
+        }
+        EXPECT_NEAR(widest, 0.9, 2e-3) << "trial " << trial << ": the box should touch the margin";
+    }
+}
+
 Sample2 lens_sample(std::uint32_t i) {
     return {static_cast<float>((i * 7919u) % 1000u) / 1000.0f,
             static_cast<float>((i * 104729u) % 997u) / 997.0f};
