@@ -98,8 +98,14 @@ glint::RenderJob load_job(const RenderArgs& args) {
     if (mesh) {
         if (job.file_camera) {  // the file's own camera
             const glint::GltfCamera& c = *job.file_camera;
-            job.camera = glint::Camera::look_at(c.position, c.position + c.direction, c.up, c.yfov_degrees,
-                                                job.width, job.height);
+            if (c.orthographic) {
+                const float h = 2 * c.ymag, w = h * float(job.width) / float(job.height);
+                job.camera = glint::Camera(c.position, c.direction, c.up, w, h, 1, job.width, job.height);
+                job.camera.make_orthographic();
+            } else {
+                job.camera = glint::Camera::look_at(c.position, c.position + c.direction, c.up, c.yfov_degrees,
+                                                    job.width, job.height);
+            }
         } else {
             frame_bounds(job);
         }
@@ -159,6 +165,16 @@ int run_info(const RenderArgs& args) {
     fmt::print("meshes       {} ({} vertices), {} instances\n", i.meshes, i.vertices, i.instances);
     fmt::print("other shapes {}\n", i.analytic_shapes);
     fmt::print("lights       {} (area lights included)\n", job.scene.light_sampler().count());
+    for (std::size_t k = 0; k < job.file_cameras.size(); ++k) {
+        const glint::GltfCamera& c = job.file_cameras[k];
+        const std::string kind = c.orthographic ? fmt::format("orthographic, {:.4g} high", 2 * c.ymag)
+                                                : fmt::format("perspective, {:.3g} degrees", c.yfov_degrees);
+        const bool used = job.file_camera && job.file_camera->name == c.name && job.file_camera->position == c.position;
+        fmt::print("{}{} ({}) at [{:.4g}, {:.4g}, {:.4g}] looking [{:.3g}, {:.3g}, {:.3g}]{}\n",
+                   k == 0 ? "cameras      " : "             ", c.name.empty() ? "(unnamed)" : c.name, kind,
+                   c.position.x, c.position.y, c.position.z, c.direction.x, c.direction.y, c.direction.z,
+                   used ? " (used)" : "");
+    }
     if (!job.scene.media.empty()) {
         std::size_t grids = 0, voxel_bytes = 0, bricks = 0;
         for (const glint::Medium& m : job.scene.media) {

@@ -601,6 +601,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::vector<ImportedNode> nodes;
         std::vector<Light> lights;
         std::optional<GltfCamera> camera;
+        std::vector<GltfCamera> cameras;
     };
     std::map<std::string, LoadedFile> loaded;
     std::map<const TriangleMesh*, std::uint32_t> inline_meshes;
@@ -668,7 +669,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                     if (!fallback) fallback = materials.add_material(MaterialDesc{});
                     return *fallback;
                 };
-                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera};
+                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera, f.cameras};
                 for (TriangleMesh& m : f.meshes) {
                     m.material = map_id(m.material);
                     for (MaterialId& fm : m.face_materials) fm = map_id(fm);
@@ -691,13 +692,14 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                     l);
                 scene.lights.push_back(l);
             }
-            if (it->second.camera && !job.file_camera) {
-                GltfCamera c = *it->second.camera;
+            const auto placed = [&](GltfCamera c) {
                 c.position = place.point(c.position);
                 c.direction = normalize(place.vector(c.direction));
                 c.up = normalize(place.vector(c.up));
-                job.file_camera = c;
-            }
+                return c;
+            };
+            if (it->second.camera && !job.file_camera) job.file_camera = placed(*it->second.camera);
+            for (const GltfCamera& c : it->second.cameras) job.file_cameras.push_back(placed(c));
             const std::int32_t alpha = o.alpha ? materials.add_alpha(*o.alpha) : -1;
             for (const ImportedNode& n : it->second.nodes) {
                 Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, alpha};

@@ -39,6 +39,8 @@ struct RenderJob {
     std::vector<std::string> notes;  ///< for the user: dropped triangles, importer warnings
     /// The first camera found in an included glTF file (used when rendering that file directly).
     std::optional<GltfCamera> file_camera;
+    /// Every camera of the included glTF files, placed (listed by `glint info`).
+    std::vector<GltfCamera> file_cameras;
 };
 
 RenderJob build(const SceneDescription& description, const Overrides& overrides,

@@ -2,7 +2,7 @@
 // transforms, meshes (triangle primitives; strips and fans converted), metallic-roughness
 // materials with their textures and samplers, KHR_materials_emissive_strength,
 // KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume, KHR_texture_transform,
-// KHR_lights_punctual and perspective cameras.
+// KHR_lights_punctual and cameras (perspective and orthographic).
 //
 // Frames: glTF is right-handed with +y up and cameras looking along -z; glint is left-handed. A
 // glTF file is imported with z negated (a mirror applied to every node), so a model looks as it
@@ -521,14 +521,22 @@ struct Importer {
         if (n.camera >= 0 && n.camera < static_cast<int>(model.cameras.size())) {
             const tinygltf::Camera& c = model.cameras[n.camera];
             const bool wanted = camera_name.empty() ? !camera.has_value() : c.name == camera_name;
-            if (c.type == "perspective" && wanted) {
+            if (c.type == "perspective" || c.type == "orthographic") {
                 GltfCamera cam;
                 cam.name = c.name;
                 cam.position = g.apply(Point3{0, 0, 0});
                 cam.direction = normalize(place({0, 0, 1}));  // glTF's -z, mirrored
                 cam.up = normalize(place({0, 1, 0}));
-                cam.yfov_degrees = float(c.perspective.yfov * 180 / std::numbers::pi);
-                camera = cam;
+                if (c.type == "perspective") {
+                    cam.yfov_degrees = float(c.perspective.yfov * 180 / std::numbers::pi);
+                } else {
+                    cam.orthographic = true;
+                    cam.ymag = float(c.orthographic.ymag);
+                    if (!(cam.ymag > 0) || !std::isfinite(cam.ymag))
+                        fail_at(fmt::format("/cameras/{}/orthographic/ymag", n.camera), "ymag must be positive");
+                }
+                out.cameras.push_back(cam);
+                if (wanted) camera = cam;
             }
         }
         if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end() && it->second.Has("light")) {
@@ -593,7 +601,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         for (int n : model.scenes[scene].nodes) im.visit(n, Matrix34{}, 0);
     }
     if (!camera_name.empty() && !im.camera)
-        throw IoError(fmt::format("{}: no perspective camera named '{}'", file, camera_name));
+        throw IoError(fmt::format("{}: no camera named '{}'", file, camera_name));
     im.out.camera = im.camera;
     if (im.out.meshes.empty()) throw IoError(fmt::format("{}: no triangle meshes in the scene", file));
     return std::move(im.out);

@@ -167,7 +167,7 @@ TEST_F(Gltf, BadFilesAreErrorsNamingTheFile) {
                       return std::string(e.what());
                   }
                   return std::string();
-              }()).find("no perspective camera named 'side'"),
+              }()).find("no camera named 'side'"),
               std::string::npos);
 }
 
@@ -275,6 +275,31 @@ TEST_F(Gltf, ErrorsPointAtTheLineAndColumnOfTheValue) {
     lines[4] = "  \"nodes\": [{\"mesh\": 5}],";
     write("x.glb", as_glb(joined(lines)));
     EXPECT_EQ(error_of("x.glb"), (dir_ / "x.glb").string() + ": node 0 uses mesh 5 that does not exist");
+}
+
+// Every camera of the file is listed, orthographic ones too (ymag is half the visible height);
+// the first is the one used unless one is named.
+TEST_F(Gltf, EveryCameraPerspectiveAndOrthographic) {
+    auto lines = triangle_lines();
+    lines[3] = "  \"scenes\": [{\"nodes\": [0, 1, 2]}],";
+    lines[4] = "  \"nodes\": [{\"mesh\": 0}, {\"camera\": 0, \"translation\": [0, 0, 5]}, "
+               "{\"camera\": 1, \"translation\": [1, 2, 3]}],";
+    lines[5] += "\n  \"cameras\": [{\"name\": \"persp\", \"type\": \"perspective\", \"perspective\": {\"yfov\": 0.5, \"znear\": 0.1}},"
+                " {\"name\": \"ortho\", \"type\": \"orthographic\", \"orthographic\": {\"xmag\": 3, \"ymag\": 1.5, \"znear\": 0.1, \"zfar\": 100}}],";
+    write("cameras.gltf", joined(lines));
+    const ImportedFile f = import_gltf(dir_ / "cameras.gltf");
+    ASSERT_EQ(f.cameras.size(), 2u);
+    EXPECT_FALSE(f.cameras[0].orthographic);
+    EXPECT_NEAR(f.cameras[0].yfov_degrees, 0.5 * 180 / kPi, 1e-4);
+    EXPECT_TRUE(f.cameras[1].orthographic);
+    EXPECT_EQ(f.cameras[1].ymag, 1.5f);
+    EXPECT_NEAR(f.cameras[1].position.z, -3, 1e-6);  // glTF's +z is glint's -z
+    EXPECT_NEAR(f.cameras[1].direction.z, 1, 1e-6);  // looking along glTF's -z
+    ASSERT_TRUE(f.camera);
+    EXPECT_EQ(f.camera->name, "persp");
+    const ImportedFile g = import_gltf(dir_ / "cameras.gltf", "ortho");
+    ASSERT_TRUE(g.camera);
+    EXPECT_TRUE(g.camera->orthographic);
 }
 
 TEST_F(Gltf, SparseAccessorsReplaceTheirElements) {

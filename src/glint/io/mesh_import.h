@@ -32,7 +32,9 @@ struct GltfCamera {
     std::string name;
     Point3 position;
     Vector3 direction, up;
-    float yfov_degrees = 40;
+    float yfov_degrees = 40;  ///< perspective
+    bool orthographic = false;
+    float ymag = 1;  ///< orthographic: half the visible height (the width follows the film)
 };
 
 struct ImportedFile {
@@ -43,7 +45,8 @@ struct ImportedFile {
     std::size_t dropped_triangles = 0;  ///< degenerate or non-finite, left out
     std::vector<std::string> notes;     ///< things a user should hear about (missing textures, ...)
     std::vector<Light> lights;          ///< glTF KHR_lights_punctual, placed by their nodes
-    std::optional<GltfCamera> camera;   ///< glTF: the first perspective camera, or the one named
+    std::optional<GltfCamera> camera;   ///< glTF: the first camera, or the one named
+    std::vector<GltfCamera> cameras;    ///< glTF: every camera of the scene, in node order
 };
 
 inline constexpr MaterialId kNoImportedMaterial = 0xffffffffu;
