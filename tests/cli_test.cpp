@@ -224,6 +224,9 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("triangles    4450 rendered, 4450 stored"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("meshes       5 (2502 vertices), 5 instances"), std::string::npos) << r.out;
+    // The generator's camera: yfov 0.7 rad, at (0, 2.2, -6) in glTF, so z = 6 in glint's frame.
+    EXPECT_NE(r.out.find("cameras      main (perspective, 40.1 degrees) at [0, 2.2, 6]"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(used)"), std::string::npos) << r.out;
     // bench: one line per backend built in, with the same hit counts.
     r = run("bench textured.glb --width 32 --height 24 --runs 1 --threads 1");
     EXPECT_EQ(r.status, 0) << r.err;
