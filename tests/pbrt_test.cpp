@@ -29,6 +29,19 @@ SceneDescription parse(const std::string& text, bool strict = false) {
     return parse_pbrt(text, "test.pbrt", std::make_shared<SourceFiles>(), PbrtOptions{strict});
 }
 
+// An orthographic view 2 units across (20 x 20 pixels, `spp` independent samples) of whatever
+// follows, in black diffuse, before a white sky of radiance 1.
+std::string ortho_black_in_white_sky(int spp) {
+    return R"(LookAt 0 0 -5  0 0 0  0 1 0
+Camera "orthographic"
+Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
+Sampler "independent" "integer pixelsamples" [ )" + std::to_string(spp) + R"( ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+)";
+}
+
 // Builds and renders a parsed scene with its own film and sampler.
 Film render_description(const SceneDescription& d) {
     auto sources = std::make_shared<SourceFiles>();
@@ -194,14 +207,7 @@ WorldBegin
 // 20 x 20 film: pixel centres within 0.9 of the axis see the sphere (0), the others the sky (1).
 // A perspective camera from the same place would show a much smaller disk.
 TEST(Pbrt, OrthographicViewOfASphereIsItsSilhouette) {
-    const Film film = render_description(parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
-Camera "orthographic"
-Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
-Sampler "independent" "integer pixelsamples" [ 1 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-Shape "sphere" "float radius" [ 0.9 ]
+    const Film film = render_description(parse(ortho_black_in_white_sky(1) + R"(Shape "sphere" "float radius" [ 0.9 ]
 )"));
     int checked = 0;
     for (int row = 0; row < 20; ++row)
@@ -504,14 +510,7 @@ Shape "sphere"
 // lets 3/4 of the rays through (a hash per ray decides), so the image averages 0.75; alpha 0
 // removes a shape, alpha on a sphere is a warning.
 TEST(Pbrt, AlphaCutsOutStochastically) {
-    const SceneDescription d = parse(R"(LookAt 0 0 -5  0 0 0  0 1 0
-Camera "orthographic"
-Film "rgb" "integer xresolution" [ 20 ] "integer yresolution" [ 20 ]
-Sampler "independent" "integer pixelsamples" [ 16 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-Shape "trianglemesh" "point3 P" [ -2 -2 0  2 -2 0  2 2 0  -2 2 0 ] "integer indices" [ 0 1 2  0 2 3 ]
+    const SceneDescription d = parse(ortho_black_in_white_sky(16) + R"(Shape "trianglemesh" "point3 P" [ -2 -2 0  2 -2 0  2 2 0  -2 2 0 ] "integer indices" [ 0 1 2  0 2 3 ]
   "point2 uv" [ 0 0  1 0  1 1  0 1 ] "float alpha" [ 0.25 ]
 Shape "sphere" "float radius" [ 0.5 ] "float alpha" [ 0 ]
 Translate 50 0 0

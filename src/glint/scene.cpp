@@ -10,6 +10,7 @@
 
 #include "glint/accel/embree.h"
 #include "glint/math/snap.h"
+#include "glint/samplers/hash.h"
 
 namespace glint {
 
@@ -214,20 +215,14 @@ bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, fl
     si.prim = prim;
     si.bary = {b1, b2};
     si.material = inst.material.value_or(mesh.material_of(prim));
-    const Color c = texture(mask.texture, si);
-    const float a = (c.r + c.g + c.b) / 3;
+    const float a = average(texture(mask.texture, si));
     if (!mask.stochastic) return a >= mask.cutoff;
     if (a >= 1) return true;
     if (!(a > 0)) return false;
-    std::uint64_t h = 0x9e3779b97f4a7c15ull ^ prim;
-    for (const float v : {ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y, ray.direction.z}) {
-        h ^= std::bit_cast<std::uint32_t>(v);
-        h *= 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-    }
-    h *= 0xc4ceb9fe1a85ec53ull;
-    h ^= h >> 33;
-    return static_cast<float>(h >> 40) * 0x1p-24f < a;
+    std::uint32_t h = prim;
+    for (const float v : {ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y, ray.direction.z})
+        h = hash_combine(h, std::bit_cast<std::uint32_t>(v));
+    return to_unit_float(h) < a;
 }
 
 std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) const {
@@ -453,19 +448,11 @@ MaterialId Scene::surface_material(const SurfaceInteraction& si) const {
     for (int depth = 0; depth < 16 && m < materials.size(); ++depth) {
         const auto* mix = std::get_if<MixMaterial>(&materials[m]);
         if (!mix) break;
-        const Color a = texture(mix->amount, si);
-        const float amount = (a.r + a.g + a.b) / 3;
+        const float amount = average(texture(mix->amount, si));
         // A uniform number from the point's bits and the mix (so nested mixes decide apart).
-        std::uint64_t h = 0x9e3779b97f4a7c15ull * (m + 1);
-        for (const float c : {si.p.x, si.p.y, si.p.z}) {
-            h ^= std::bit_cast<std::uint32_t>(c) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-            h *= 0xff51afd7ed558ccdull;
-            h ^= h >> 33;
-        }
-        h *= 0xc4ceb9fe1a85ec53ull;
-        h ^= h >> 33;
-        const float u = static_cast<float>(h >> 40) * 0x1p-24f;
-        m = mix->materials[u < amount ? 1 : 0];
+        std::uint32_t h = m;
+        for (const float c : {si.p.x, si.p.y, si.p.z}) h = hash_combine(h, std::bit_cast<std::uint32_t>(c));
+        m = mix->materials[to_unit_float(h) < amount ? 1 : 0];
     }
     return m;
 }

@@ -24,7 +24,6 @@ Color clamp_radiance(Color c, float max) {
     return {std::min(c.r, max), std::min(c.g, max), std::min(c.b, max)};
 }
 
-float average(Color c) { return (c.r + c.g + c.b) / 3; }
 
 // The shadow ray from a point inside a medium (no surface to step off) to a light sample.
 Ray medium_shadow_ray(Point3 p, const LightLiSample& ls) {

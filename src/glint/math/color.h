@@ -30,4 +30,7 @@ inline bool is_finite(Color c) {
     return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
 }
 
+/// The mean of the three channels (hero-channel MIS weights, a texture read as a number).
+constexpr float average(Color c) { return (c.r + c.g + c.b) / 3; }
+
 }  // namespace glint

@@ -4,9 +4,6 @@
 
 namespace glint {
 
-namespace {
-float average(Color c) { return (c.r + c.g + c.b) / 3; }
-}  // namespace
 
 Color ratio_tracking(const Medium& medium, const Ray& ray, float t_end, HashRng& rng, int hero,
                      Color& r, float majorant_scale) {
