@@ -175,7 +175,8 @@ void Scene::commit() {
         texture_reads_[i] = std::visit(
             [&](const auto& t) -> std::uint8_t {
                 using T = std::decay_t<decltype(t)>;
-                if constexpr (std::is_same_v<T, ImageTexture>) return kReadsUv;
+                if constexpr (std::is_same_v<T, ImageTexture>)
+                    return t.uv_set == 0 ? kReadsUv : std::uint8_t(kReadsUv | kReadsMoreUvs);
                 if constexpr (std::is_same_v<T, VertexColorTexture>) return kReadsVertexColor;
                 if constexpr (std::is_same_v<T, ScaleTexture>)
                     return texture_reads_[t.texture] | texture_reads_[t.factor];
@@ -568,6 +569,23 @@ Color Scene::vertex_color(const SurfaceInteraction& si) const {
     const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
     if (m.colors.empty()) return Color{1};
     return m.interpolate(m.colors, si.prim, si.bary.x, si.bary.y);
+}
+
+Float Scene::vertex_alpha(const SurfaceInteraction& si) const {
+    if (si.shape != ShapeKind::kMesh) return 1;
+    const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+    if (m.alphas.empty()) return 1;
+    return m.interpolate(m.alphas, si.prim, si.bary.x, si.bary.y);
+}
+
+Point2 Scene::uv(const SurfaceInteraction& si, int set) const {
+    if (set > 0 && si.shape == ShapeKind::kMesh) {
+        const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+        const auto k = static_cast<std::size_t>(set - 1);
+        if (k < m.more_uvs.size() && !m.more_uvs[k].empty())
+            return m.interpolate(m.more_uvs[k], si.prim, si.bary.x, si.bary.y);
+    }
+    return uv(si);
 }
 
 Point2 Scene::uv(const SurfaceInteraction& si) const {

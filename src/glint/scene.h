@@ -109,9 +109,17 @@ struct Scene {
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
         if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
         const std::uint8_t reads = texture_reads_[id];
-        return evaluate(textures, images, id,
-                        {si.p, reads & kReadsUv ? uv(si) : Point2{},
-                         reads & kReadsVertexColor ? vertex_color(si) : Color{1}});
+        TextureContext ctx{si.p, reads & kReadsUv ? uv(si) : Point2{}};
+        if (reads & kReadsVertexColor) {
+            ctx.vertex_color = vertex_color(si);
+            ctx.vertex_alpha = vertex_alpha(si);
+        }
+        const UvSetArg arg{this, &si};
+        if (reads & kReadsMoreUvs) {
+            ctx.uv_set = &Scene::uv_set_of;
+            ctx.uv_set_arg = &arg;
+        }
+        return evaluate(textures, images, id, ctx);
     }
     const Emission& emission_of(MaterialId m) const {
         static const Emission kNone;
@@ -155,6 +163,10 @@ struct Scene {
 
     /// The interpolated vertex colour of a mesh that has them; 1 elsewhere.
     Color vertex_color(const SurfaceInteraction& si) const;
+    /// The mesh's interpolated per-vertex alpha; 1 where it has none.
+    Float vertex_alpha(const SurfaceInteraction& si) const;
+    /// Texture coordinate set `set` (0: uv(si)); set 0's where the mesh has no such set.
+    Point2 uv(const SurfaceInteraction& si, int set) const;
     /// Texture coordinates of a surface point, by the hit shape's convention (shapes/*.h).
     Point2 uv(const SurfaceInteraction& si) const;
 
@@ -183,7 +195,15 @@ private:
     std::vector<std::uint32_t> top_refs_;  ///< leaf order
     std::vector<MeshBvh> mesh_bvhs_;
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
-    static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2;
+    static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2, kReadsMoreUvs = 4;
+    struct UvSetArg {
+        const Scene* scene;
+        const SurfaceInteraction* si;
+    };
+    static Point2 uv_set_of(const void* arg, int set) {
+        const auto* a = static_cast<const UvSetArg*>(arg);
+        return a->scene->uv(*a->si, set);
+    }
     std::vector<std::uint8_t> texture_reads_;  ///< per texture, set by commit()
     std::size_t committed_count_ = 0;
     bool has_media_ = false;

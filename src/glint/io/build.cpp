@@ -298,10 +298,10 @@ private:
         switch (d.kind) {
             case TextureDesc::Kind::kConstant: break;
             case TextureDesc::Kind::kChecker: t = d.checker; break;
-            case TextureDesc::Kind::kVertexColor: t = VertexColorTexture{}; break;
+            case TextureDesc::Kind::kVertexColor: t = VertexColorTexture{d.alpha_channel}; break;
             case TextureDesc::Kind::kImage: {
                 const ImageId image = d.pixels ? add_pixels(d.pixels) : add_image(d.filename, d.encoding);
-                t = ImageTexture{image, d.wrap, d.size, d.wrap_v.value_or(d.wrap), d.uv_transform};
+                t = ImageTexture{image, d.wrap, d.size, d.wrap_v.value_or(d.wrap), d.uv_transform, d.uv_set, d.alpha_channel};
                 break;
             }
             case TextureDesc::Kind::kScale:
@@ -602,6 +602,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::vector<Light> lights;
         std::optional<GltfCamera> camera;
         std::vector<GltfCamera> cameras;
+        std::vector<std::int32_t> mesh_alpha;  ///< per mesh: its material's cut-out, or -1
     };
     std::map<std::string, LoadedFile> loaded;
     std::map<const TriangleMesh*, std::uint32_t> inline_meshes;
@@ -662,7 +663,11 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 // The file's materials become scene materials; faces without one get the
                 // object's default material.
                 std::vector<MaterialId> ids;
-                for (const ImportedMaterial& m : f.materials) ids.push_back(materials.add_material(m.desc));
+                std::vector<std::int32_t> alphas;  // per file material: its cut-out (glTF alphaMode)
+                for (const ImportedMaterial& m : f.materials) {
+                    ids.push_back(materials.add_material(m.desc));
+                    alphas.push_back(m.alpha ? materials.add_alpha(*m.alpha) : -1);
+                }
                 std::optional<MaterialId> fallback;  // added only if some face needs it
                 const auto map_id = [&](MaterialId local) {
                     if (local != kNoImportedMaterial) return ids.at(local);
@@ -671,6 +676,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 };
                 LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera, f.cameras};
                 for (TriangleMesh& m : f.meshes) {
+                    lf.mesh_alpha.push_back(m.material != kNoImportedMaterial ? alphas.at(m.material) : -1);
                     m.material = map_id(m.material);
                     for (MaterialId& fm : m.face_materials) fm = map_id(fm);
                     scene.meshes.push_back(std::move(m));
@@ -700,9 +706,12 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             };
             if (it->second.camera && !job.file_camera) job.file_camera = placed(*it->second.camera);
             for (const GltfCamera& c : it->second.cameras) job.file_cameras.push_back(placed(c));
+            // The object's cut-out, else (unless the object replaces the file's materials, and
+            // with them their alpha) the file material's.
             const std::int32_t alpha = o.alpha ? materials.add_alpha(*o.alpha) : -1;
             for (const ImportedNode& n : it->second.nodes) {
-                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, alpha};
+                const std::int32_t a = o.alpha || id != kNoImportedMaterial ? alpha : it->second.mesh_alpha.at(n.mesh);
+                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, a};
                 if (id != kNoImportedMaterial) inst.material = id;
                 scene.instances.push_back(inst);
             }

@@ -23,6 +23,7 @@
 #include <map>
 #include <numbers>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "glint/io/json_locate.h"
@@ -35,6 +36,8 @@ namespace {
 
 // 2^28 values (2 GB as doubles) per accessor: 89M vertices.
 constexpr std::size_t kMaxAccessorValues = std::size_t{1} << 28;
+// TEXCOORD_0 to TEXCOORD_7: more than any exporter writes.
+constexpr int kMaxUvSets = 8;
 
 struct Importer {
     const tinygltf::Model& model;
@@ -192,15 +195,26 @@ struct Importer {
         img->height = im.height;
         img->texels.resize(static_cast<std::size_t>(im.width) * im.height);
         const auto decode = [srgb](float x) { return srgb ? srgb_decode(x) : x; };
+        // Alpha (grey + alpha, or RGBA) is linear in every colour space; kept only when some
+        // texel is not opaque.
+        const bool has_alpha = comps == 2 || comps == 4;
+        if (has_alpha) img->alpha.resize(img->texels.size());
+        bool translucent = false;
         for (std::size_t i = 0; i < img->texels.size(); ++i) {
             float c[4] = {0, 0, 0, 1};
             for (int k = 0; k < comps; ++k) {
                 const std::size_t o = (i * comps + k) * bytes;
                 c[k] = bytes == 2 ? (im.image[o] | im.image[o + 1] << 8) / 65535.0f : im.image[o] / 255.0f;
             }
+            if (comps == 2) c[3] = c[1];
             if (comps < 3) c[1] = c[2] = c[0];
             img->texels[i] = Color{decode(c[0]), decode(c[1]), decode(c[2])};
+            if (has_alpha) {
+                img->alpha[i] = c[3];
+                translucent |= c[3] < 1;
+            }
         }
+        if (!translucent) img->alpha.clear();
         images.emplace(key, img);
         return img;
     }
@@ -223,7 +237,6 @@ struct Importer {
                         const std::string& ref) {
         if (index < 0 || index >= static_cast<int>(model.textures.size()))
             fail_at(ref + "/index", fmt::format("{}: texture {} does not exist", what, index));
-        if (tex_coord != 0) out.notes.push_back(fmt::format("{}: {} uses TEXCOORD_{}; glint reads TEXCOORD_0", file, what, tex_coord));
         const tinygltf::Texture& t = model.textures[index];
         TextureDesc d;
         d.kind = TextureDesc::Kind::kImage;
@@ -250,8 +263,12 @@ struct Importer {
             const double cc = -s * sc[0], dd = c * sc[1], f = off[1];
             // F T F: u' = a u + b (1 - v) + e ; v' = 1 - (cc u + dd (1 - v) + f).
             d.uv_transform = {Float(a), Float(-b), Float(b + e), Float(-cc), Float(dd), Float(1 - dd - f)};
-            if (v.Has("texCoord")) out.notes.push_back(fmt::format("{}: {}: KHR_texture_transform texCoord ignored", file, what));
+            if (v.Has("texCoord")) tex_coord = static_cast<int>(number(v, "texCoord", tex_coord));  // overrides
         }
+        if (tex_coord < 0 || tex_coord >= kMaxUvSets)
+            fail_at(ref + "/texCoord", fmt::format("{}: texCoord {} (glint reads TEXCOORD_0 to TEXCOORD_{})", what,
+                                                   tex_coord, kMaxUvSets - 1));
+        d.uv_set = static_cast<std::uint8_t>(tex_coord);
         return d;
     }
 
@@ -268,6 +285,19 @@ struct Importer {
         return d;
     }
 
+    static TextureDesc product(TextureDesc a, TextureDesc b) {
+        TextureDesc d;
+        d.kind = TextureDesc::Kind::kScale;
+        d.children = {std::move(a), std::move(b)};
+        return d;
+    }
+    static TextureDesc vertex_color(bool alpha) {
+        TextureDesc d;
+        d.kind = TextureDesc::Kind::kVertexColor;
+        d.alpha_channel = alpha;
+        return d;
+    }
+
     MaterialDesc material(int index) {
         const tinygltf::Material& m = model.materials[index];
         const std::string at = fmt::format("/materials/{}", index);
@@ -281,6 +311,7 @@ struct Importer {
                                        at + "/pbrMetallicRoughness/baseColorTexture"),
                                base)
                       : constant(base);
+        if (vertex_colored[static_cast<std::size_t>(index)]) d.color = product(std::move(d.color), vertex_color(false));
         d.metallic = float(pbr.metallicFactor);
         d.roughness = float(pbr.roughnessFactor);
         if (pbr.metallicRoughnessTexture.index >= 0)
@@ -310,6 +341,47 @@ struct Importer {
                                          m.emissiveTexture.extensions, true, "emissiveTexture", at + "/emissiveTexture");
         }
         return d;
+    }
+
+    /// alphaMode MASK (cut at alphaCutoff) or BLEND (stochastic): the base colour's alpha, factor
+    /// x texture x vertex colour, as a cut-out; none when OPAQUE or nothing is ever translucent.
+    std::optional<AlphaDesc> alpha(int index) {
+        const tinygltf::Material& m = model.materials[index];
+        const std::string at = fmt::format("/materials/{}", index);
+        if (m.alphaMode.empty() || m.alphaMode == "OPAQUE") return std::nullopt;
+        if (m.alphaMode != "MASK" && m.alphaMode != "BLEND")
+            fail_at(at + "/alphaMode", fmt::format("alphaMode '{}': must be OPAQUE, MASK or BLEND", m.alphaMode));
+        AlphaDesc a;
+        a.stochastic = m.alphaMode == "BLEND";
+        a.cutoff = float(m.alphaCutoff);
+        if (!a.stochastic && !(a.cutoff >= 0 && std::isfinite(a.cutoff)))
+            fail_at(at + "/alphaCutoff", fmt::format("alphaCutoff {}: must be a number >= 0", m.alphaCutoff));
+        const auto& pbr = m.pbrMetallicRoughness;
+        const float factor = float(pbr.baseColorFactor[3]);
+        std::optional<TextureDesc> t;
+        if (pbr.baseColorTexture.index >= 0) {
+            TextureDesc tex = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                      pbr.baseColorTexture.extensions, true, "baseColorTexture",
+                                      at + "/pbrMetallicRoughness/baseColorTexture");
+            if (!tex.pixels->alpha.empty()) {  // an opaque image leaves the factor alone
+                tex.alpha_channel = true;
+                t = std::move(tex);
+            }
+        }
+        if (vertex_colored[static_cast<std::size_t>(index)])
+            t = t ? product(std::move(*t), vertex_color(true)) : vertex_color(true);
+        if (!t) {  // a constant alpha: decided once, here
+            const bool opaque = a.stochastic ? factor >= 1 : factor >= a.cutoff;
+            if (opaque) return std::nullopt;
+            if (!a.stochastic) {
+                out.notes.push_back(fmt::format("{}: material '{}' is cut away whole (alpha {} < alphaCutoff {})",
+                                                file, m.name, factor, a.cutoff));
+            }
+            a.texture = constant(Color{factor});
+        } else {
+            a.texture = factor == 1 ? std::move(*t) : scaled(std::move(*t), Color{factor});
+        }
+        return a;
     }
 
     // KHR_materials_volume: a thick (thicknessFactor > 0) transmissive material whose inside
@@ -371,10 +443,18 @@ struct Importer {
                 if (n.size() == pos.size())
                     for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
             }
-            if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
-                const auto t = read(it->second, 2, what, attribute("TEXCOORD_0"));
-                if (t.size() == 2 * nv)
-                    for (std::size_t i = 0; i < nv; ++i) m.uvs.push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
+            for (int set = 0; set < kMaxUvSets; ++set) {
+                const std::string name = fmt::format("TEXCOORD_{}", set);
+                const auto it = prim.attributes.find(name);
+                if (it == prim.attributes.end()) continue;
+                const auto t = read(it->second, 2, what, attribute(name));
+                if (t.size() != 2 * nv) continue;
+                std::vector<Point2>* dst = &m.uvs;
+                if (set > 0) {  // sets come in increasing order; missing ones stay empty
+                    m.more_uvs.resize(static_cast<std::size_t>(set));
+                    dst = &m.more_uvs.back();
+                }
+                for (std::size_t i = 0; i < nv; ++i) dst->push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
             }
             if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
                 const auto t = read(it->second, 4, what, attribute("TANGENT"));
@@ -389,8 +469,11 @@ struct Importer {
                 const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
                 const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
                 const auto c = read(it->second, n, what, attribute("COLOR_0"));
-                for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i)
+                for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i) {
                     m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
+                    if (n == 4) m.alphas.push_back(float(c[n * i + 3]));
+                }
+                if (std::all_of(m.alphas.begin(), m.alphas.end(), [](Float a) { return a >= 1; })) m.alphas.clear();
             }
             std::vector<std::uint32_t> idx;
             if (prim.indices >= 0) {
@@ -454,6 +537,27 @@ struct Importer {
 
     std::optional<GltfCamera> camera;
     std::string camera_name;
+    /// Per material: whether some primitive drawn with it has COLOR_0 (which multiplies its
+    /// base colour, and its alpha the base alpha).
+    std::vector<bool> vertex_colored;
+
+    /// A file that requires an extension glint lacks cannot be shown as its author meant: an
+    /// error. One that only uses such an extension renders without it, with a note naming it.
+    void check_extensions() {
+        static const std::set<std::string> supported = {
+            "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+            "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
+            "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
+            "KHR_texture_transform"};
+        for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i) {
+            const std::string& e = model.extensionsRequired[i];
+            if (!supported.count(e))
+                fail_at(fmt::format("/extensionsRequired/{}", i),
+                        fmt::format("the file requires the extension {}, which glint does not support", e));
+        }
+        for (const std::string& e : model.extensionsUsed)
+            if (!supported.count(e)) out.notes.push_back(fmt::format("{}: uses the extension {}, which glint ignores", file, e));
+    }
 
     /// The nodes must form trees (the spec): a node listed as the child of two parents, or twice,
     /// would be visited once per path, exponentially many times in a chain of such nodes.
@@ -589,8 +693,14 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     }
     Importer im{model, file, mesh_format(path) == MeshFormat::kGlb, {}, {}, {}, {}, std::nullopt, camera_name};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
+    im.check_extensions();
+    im.vertex_colored.assign(model.materials.size(), false);
+    for (const tinygltf::Mesh& mesh : model.meshes)
+        for (const tinygltf::Primitive& p : mesh.primitives)
+            if (p.material >= 0 && p.material < static_cast<int>(model.materials.size()) && p.attributes.count("COLOR_0"))
+                im.vertex_colored[static_cast<std::size_t>(p.material)] = true;
     for (std::size_t m = 0; m < model.materials.size(); ++m)
-        im.out.materials.push_back({model.materials[m].name, im.material(static_cast<int>(m))});
+        im.out.materials.push_back({model.materials[m].name, im.material(static_cast<int>(m)), im.alpha(static_cast<int>(m))});
     im.check_trees();
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (model.scenes.empty()) {  // no scene to show: every tree of nodes

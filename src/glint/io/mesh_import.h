@@ -19,6 +19,7 @@ namespace glint {
 struct ImportedMaterial {
     std::string name;
     MaterialDesc desc;  ///< texture file names are absolute or relative to the mesh file's folder
+    std::optional<AlphaDesc> alpha;  ///< glTF alphaMode MASK or BLEND: a cut-out on its meshes
 };
 
 /// One placement of a mesh (glTF nodes; OBJ and PLY have one per mesh, untransformed).

@@ -129,6 +129,8 @@ struct TextureDesc {
     std::optional<WrapMode> wrap_v;
     std::array<Float, 6> uv_transform{1, 0, 0, 0, 1, 0};
     std::shared_ptr<const Image> pixels;  ///< used instead of `filename` when set
+    std::uint8_t uv_set = 0;     ///< image: the texture coordinate set (glTF texCoord)
+    bool alpha_channel = false;  ///< image, vertex colour: the alpha channel (as grey)
 };
 
 /// A participating medium (media/medium.h) as the file gives it: coefficients already in

@@ -25,6 +25,8 @@ std::size_t validate_and_drop_degenerate(TriangleMesh& mesh) {
     check_count(mesh.uvs.size(), "texture coordinates");
     check_count(mesh.tangents.size(), "tangents");
     check_count(mesh.colors.size(), "colours");
+    check_count(mesh.alphas.size(), "alphas");
+    for (const auto& set : mesh.more_uvs) check_count(set.size(), "texture coordinates");
     if (!mesh.face_materials.empty() && mesh.face_materials.size() != mesh.indices.size() / 3)
         throw std::invalid_argument(fmt::format("{} face materials for {} triangles",
                                                 mesh.face_materials.size(), mesh.indices.size() / 3));

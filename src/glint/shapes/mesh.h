@@ -32,6 +32,9 @@ struct TriangleMesh {
     std::vector<Point2> uvs;                       ///< empty, or one per position
     std::vector<std::array<Float, 4>> tangents;    ///< empty, or one per position
     std::vector<Color> colors;                     ///< empty, or one per position (linear RGB)
+    std::vector<Float> alphas;                     ///< empty (opaque), or one per position
+    /// Texture coordinate sets 1, 2, ... (glTF TEXCOORD_1 and up); each empty or one per position.
+    std::vector<std::vector<Point2>> more_uvs;
     std::vector<std::uint32_t> indices;            ///< three per triangle
     std::vector<MaterialId> face_materials;        ///< empty (all `material`), or one per triangle
     MaterialId material = 0;
@@ -54,7 +57,9 @@ struct TriangleMesh {
         const T& c = attribute[indices[3 * tri + 2]];
         const Float b0 = 1 - b1 - b2;
         const auto mix = [&](Float x, Float y, Float z) { return b0 * x + b1 * y + b2 * z; };
-        if constexpr (std::is_same_v<T, Point2>) {
+        if constexpr (std::is_same_v<T, Float>) {
+            return mix(a, b, c);
+        } else if constexpr (std::is_same_v<T, Point2>) {
             return {mix(a.x, b.x, c.x), mix(a.y, b.y, c.y)};
         } else if constexpr (std::is_same_v<T, Color>) {
             return {mix(a.r, b.r, c.r), mix(a.g, b.g, c.g), mix(a.b, b.b, c.b)};
@@ -72,7 +77,13 @@ struct TriangleMesh {
     std::size_t memory_bytes() const {
         return positions.size() * sizeof(Point3) + normals.size() * sizeof(Normal3) +
                uvs.size() * sizeof(Point2) + tangents.size() * sizeof(tangents[0]) + colors.size() * sizeof(Color) +
-               indices.size() * sizeof(std::uint32_t) + face_materials.size() * sizeof(MaterialId);
+               indices.size() * sizeof(std::uint32_t) + face_materials.size() * sizeof(MaterialId) +
+               alphas.size() * sizeof(Float) + more_uv_count() * sizeof(Point2);
+    }
+    std::size_t more_uv_count() const {
+        std::size_t n = 0;
+        for (const auto& set : more_uvs) n += set.size();
+        return n;
     }
 };
 

@@ -34,9 +34,10 @@ struct Overloaded : F... {
 template <typename... F>
 Overloaded(F...) -> Overloaded<F...>;
 
-}  // namespace
-
-Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v) {
+// The four texels around uv and their weights, in the order (xa, ya), (xb, ya), (xa, yb), (xb, yb),
+// given to `at(x, y)`.
+template <typename At>
+auto bilinear_at(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v, At at) {
     // v = 0 is the bottom row: flip before addressing rows.
     const float x = to_texels(uv.x, image.width, wrap_u), y = to_texels(1 - uv.y, image.height, wrap_v);
     const float fx0 = std::floor(x), fy0 = std::floor(y);
@@ -44,8 +45,21 @@ Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v) 
     const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
     const int xa = wrap_index(x0, image.width, wrap_u), xb = wrap_index(x0 + 1, image.width, wrap_u);
     const int ya = wrap_index(y0, image.height, wrap_v), yb = wrap_index(y0 + 1, image.height, wrap_v);
-    return image.texel(xa, ya) * ((1 - tx) * (1 - ty)) + image.texel(xb, ya) * (tx * (1 - ty)) +
-           image.texel(xa, yb) * ((1 - tx) * ty) + image.texel(xb, yb) * (tx * ty);
+    return at(xa, ya) * ((1 - tx) * (1 - ty)) + at(xb, ya) * (tx * (1 - ty)) + at(xa, yb) * ((1 - tx) * ty) +
+           at(xb, yb) * (tx * ty);
+}
+
+}  // namespace
+
+Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v) {
+    return bilinear_at(image, uv, wrap_u, wrap_v, [&](int x, int y) { return image.texel(x, y); });
+}
+
+float bilinear_alpha(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v) {
+    if (image.alpha.empty()) return 1;
+    return bilinear_at(image, uv, wrap_u, wrap_v, [&](int x, int y) {
+        return image.alpha[static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)];
+    });
 }
 
 Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& images, TextureId id,
@@ -54,12 +68,15 @@ Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& i
     return std::visit(
         Overloaded{
             [](const ConstantTexture& t) { return t.value; },
-            [&](const VertexColorTexture&) { return ctx.vertex_color; },
+            [&](const VertexColorTexture& t) { return t.alpha ? Color{ctx.vertex_alpha} : ctx.vertex_color; },
             [&](const CheckerTexture& t) { return t.eval(ctx.p); },
             [&](const ImageTexture& t) {
                 const auto& m = t.uv_transform;
-                const Point2 uv{m[0] * ctx.uv.x + m[1] * ctx.uv.y + m[2], m[3] * ctx.uv.x + m[4] * ctx.uv.y + m[5]};
-                return bilinear(images[t.image], {uv.x / t.size, uv.y / t.size}, t.wrap, t.wrap_v);
+                const Point2 st = t.uv_set == 0 || !ctx.uv_set ? ctx.uv : ctx.uv_set(ctx.uv_set_arg, t.uv_set);
+                const Point2 uv{m[0] * st.x + m[1] * st.y + m[2], m[3] * st.x + m[4] * st.y + m[5]};
+                const Point2 at{uv.x / t.size, uv.y / t.size};
+                if (t.alpha) return Color{bilinear_alpha(images[t.image], at, t.wrap, t.wrap_v)};
+                return bilinear(images[t.image], at, t.wrap, t.wrap_v);
             },
             [&](const ScaleTexture& t) {
                 return evaluate(textures, images, t.texture, ctx) *

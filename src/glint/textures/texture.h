@@ -18,8 +18,13 @@ using ImageId = std::uint32_t;
 
 struct TextureContext {
     Point3 p;
-    Point2 uv;
+    Point2 uv;              ///< texture coordinate set 0
     Color vertex_color{1};  ///< interpolated per-vertex colour on meshes that have one; 1 elsewhere
+    Float vertex_alpha = 1; ///< interpolated per-vertex alpha (glTF COLOR_0's fourth channel)
+    /// Texture coordinate set `set` >= 1 (glTF TEXCOORD_1 and up), computed only when a texture
+    /// asks for one; null or returning set 0's where the surface has no such set.
+    Point2 (*uv_set)(const void* arg, int set) = nullptr;
+    const void* uv_set_arg = nullptr;
 };
 
 /// Linear RGB texels, row 0 at the top of the image. Texture coordinates follow the OBJ, pbrt and
@@ -27,6 +32,7 @@ struct TextureContext {
 struct Image {
     int width = 0, height = 0;
     std::vector<Color> texels;
+    std::vector<float> alpha;  ///< empty (opaque), or one per texel: the image's alpha channel
     const Color& texel(int x, int y) const {
         return texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                       static_cast<std::size_t>(x)];
@@ -39,6 +45,8 @@ enum class WrapMode { kRepeat, kClamp, kMirror };
 /// and v = 1 - (j + 1/2)/height for column i, row j), with repeat or clamp addressing.
 Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v);
 inline Color bilinear(const Image& image, Point2 uv, WrapMode wrap) { return bilinear(image, uv, wrap, wrap); }
+/// The same interpolation of the image's alpha channel (1 where it has none).
+float bilinear_alpha(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v);
 
 struct ConstantTexture {
     Color value;
@@ -72,6 +80,8 @@ struct ImageTexture {
     Float size = 1;
     WrapMode wrap_v = WrapMode::kRepeat;
     std::array<Float, 6> uv_transform{1, 0, 0, 0, 1, 0};
+    std::uint8_t uv_set = 0;  ///< which texture coordinate set (glTF texCoord)
+    bool alpha = false;       ///< the alpha channel (as grey) instead of the colour
 };
 
 /// texture * factor, per channel.
@@ -85,7 +95,10 @@ struct MixTexture {
 };
 
 /// The mesh's interpolated per-vertex colour (PLY red/green/blue); 1 on everything else.
-struct VertexColorTexture {};
+/// `alpha`: the per-vertex alpha (as grey) instead.
+struct VertexColorTexture {
+    bool alpha = false;
+};
 
 using Texture = std::variant<ConstantTexture, CheckerTexture, ImageTexture, ScaleTexture, MixTexture,
                              VertexColorTexture>;
