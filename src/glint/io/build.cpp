@@ -166,6 +166,15 @@ public:
                 PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
                               diffuse_fresnel_inside(d.ior), std::nullopt};
                 if (d.metallic_roughness) p.metallic_roughness = add_texture(*d.metallic_roughness);
+                const auto optional = [&](const std::optional<TextureDesc>& t) {
+                    return t ? std::optional<TextureId>(add_texture(*t)) : std::nullopt;
+                };
+                p.clearcoat = optional(d.clearcoat);
+                p.clearcoat_roughness = optional(d.clearcoat_roughness);
+                p.sheen = optional(d.sheen);
+                p.sheen_roughness = optional(d.sheen_roughness);
+                p.specular = optional(d.specular);
+                p.specular_color = optional(d.specular_color);
                 scene_.materials.push_back(p);
                 break;
             }

@@ -334,6 +334,9 @@ struct Importer {
             d.transmission = float(number(it->second, "transmissionFactor", 0));
         if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
         if (const auto it = ext.find("KHR_materials_volume"); it != ext.end()) volume(it->second, at, d);
+        if (const auto it = ext.find("KHR_materials_clearcoat"); it != ext.end()) clearcoat(it->second, at, d);
+        if (const auto it = ext.find("KHR_materials_sheen"); it != ext.end()) sheen(it->second, at, d);
+        if (const auto it = ext.find("KHR_materials_specular"); it != ext.end()) specular(it->second, at, d);
         if (emissive.max_component() > 0) {
             d.emission = Emission{emissive, m.doubleSided, std::nullopt};
             if (m.emissiveTexture.index >= 0)
@@ -382,6 +385,85 @@ struct Importer {
             a.texture = factor == 1 ? std::move(*t) : scaled(std::move(*t), Color{factor});
         }
         return a;
+    }
+
+    // --- KHR_materials_clearcoat, _sheen, _specular ---
+
+    /// A factor in [0, 1] (or [0, inf) when `unbounded`) named `key` of extension object `v`.
+    float factor(const tinygltf::Value& v, const char* key, float fallback, const std::string& at,
+                 bool unbounded = false) const {
+        if (!v.Has(key)) return fallback;
+        const tinygltf::Value& x = v.Get(key);
+        const double f = x.IsNumber() ? x.GetNumberAsDouble() : std::numeric_limits<double>::quiet_NaN();
+        if (!(f >= 0 && (unbounded ? std::isfinite(f) : f <= 1)))
+            fail_at(at + "/" + key, fmt::format("{} must be a number in [0, {}", key, unbounded ? "inf)" : "1]"));
+        return float(f);
+    }
+    Color color_factor(const tinygltf::Value& v, const char* key, Color fallback, const std::string& at,
+                       bool unbounded) const {
+        if (!v.Has(key)) return fallback;
+        const tinygltf::Value& x = v.Get(key);
+        if (!x.IsArray() || x.ArrayLen() != 3) fail_at(at + "/" + key, fmt::format("{} must be 3 numbers", key));
+        float c[3];
+        for (int k = 0; k < 3; ++k) {
+            const double f = x.Get(k).IsNumber() ? x.Get(k).GetNumberAsDouble() : -1;
+            if (!(f >= 0 && (unbounded ? std::isfinite(f) : f <= 1)))
+                fail_at(at + "/" + key, fmt::format("{} must be numbers in [0, {}", key, unbounded ? "inf)" : "1]"));
+            c[k] = float(f);
+        }
+        return Color{c[0], c[1], c[2]};
+    }
+    /// The texture `key` of extension object `v` (a textureInfo), times `factor`; the factor
+    /// alone without one. `alpha`: the texture's alpha channel is read (as grey).
+    TextureDesc factor_texture(const tinygltf::Value& v, const char* key, Color factor, bool srgb, bool alpha,
+                               const std::string& at) {
+        if (!v.Has(key)) return constant(factor);
+        const tinygltf::Value& info = v.Get(key);
+        const std::string where = at + "/" + key;
+        if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsNumber())
+            fail_at(where, fmt::format("{} must be an object with an index", key));
+        tinygltf::ExtensionMap ext;
+        if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
+            ext["KHR_texture_transform"] = info.Get("extensions").Get("KHR_texture_transform");
+        const int tex_coord = info.Has("texCoord") && info.Get("texCoord").IsNumber() ? info.Get("texCoord").GetNumberAsInt() : 0;
+        TextureDesc t = texture(info.Get("index").GetNumberAsInt(), tex_coord, ext, srgb, key, where);
+        t.alpha_channel = alpha;
+        return scaled(std::move(t), factor);
+    }
+
+    // Clear coat: weight = clearcoatFactor x clearcoatTexture.r, roughness =
+    // clearcoatRoughnessFactor x clearcoatRoughnessTexture.g. The coat's own normal map is not
+    // applied (it shares the base's shading normal): noted.
+    void clearcoat(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
+        const std::string e = at + "/extensions/KHR_materials_clearcoat";
+        const float w = factor(v, "clearcoatFactor", 0, e);
+        if (w == 0) return;
+        d.clearcoat = factor_texture(v, "clearcoatTexture", Color{w}, false, false, e);
+        d.clearcoat_roughness =
+            factor_texture(v, "clearcoatRoughnessTexture", Color{factor(v, "clearcoatRoughnessFactor", 0, e)}, false, false, e);
+        if (v.Has("clearcoatNormalTexture"))
+            out.notes.push_back(fmt::format("{}: {}: clearcoatNormalTexture is not applied (the coat uses the base's normal)",
+                                            file, e));
+    }
+
+    // Sheen: colour = sheenColorFactor x sheenColorTexture (sRGB), roughness =
+    // sheenRoughnessFactor x sheenRoughnessTexture.a.
+    void sheen(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
+        const std::string e = at + "/extensions/KHR_materials_sheen";
+        const Color c = color_factor(v, "sheenColorFactor", Color{0}, e, false);
+        if (c.max_component() == 0) return;
+        d.sheen = factor_texture(v, "sheenColorTexture", c, true, false, e);
+        d.sheen_roughness =
+            factor_texture(v, "sheenRoughnessTexture", Color{factor(v, "sheenRoughnessFactor", 0, e)}, false, true, e);
+    }
+
+    // Specular: weight = specularFactor x specularTexture.a, colour = specularColorFactor x
+    // specularColorTexture (sRGB); both shape the dielectric's reflection (PlasticLobe).
+    void specular(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
+        const std::string e = at + "/extensions/KHR_materials_specular";
+        d.specular = factor_texture(v, "specularTexture", Color{factor(v, "specularFactor", 1, e)}, false, true, e);
+        d.specular_color =
+            factor_texture(v, "specularColorTexture", color_factor(v, "specularColorFactor", Color{1}, e, true), true, false, e);
     }
 
     // KHR_materials_volume: a thick (thicknessFactor > 0) transmissive material whose inside

@@ -182,3 +182,46 @@ TEST(GltfExtensions, ARequiredExtensionGlintLacksIsALocatedErrorAndAUsedOneANote
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// KHR_materials_clearcoat, _sheen and _specular on the Khronos Box (its one material extended):
+// factors land in the material's textures, out-of-range values are located errors.
+TEST(GltfExtensions, ClearcoatSheenAndSpecularMapOntoThePbrMaterial) {
+    testing::TempDir dir;
+    const std::string box = testing::read_file(std::filesystem::path(GLINT_SOURCE_DIR) / "tests/data/khronos/Box.gltf");
+    const auto with = [&](const std::string& extensions) {
+        std::string t = box;
+        const std::string key = "\"pbrMetallicRoughness\": {";
+        t.insert(t.find(key), "\"extensions\": {" + extensions + "},\n            ");
+        std::ofstream(dir / "box.gltf") << t;
+        return dir / "box.gltf";
+    };
+    const ImportedFile f = import_gltf(with(
+        R"("KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25},
+           "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.25, 1], "sheenRoughnessFactor": 0.4},
+           "KHR_materials_specular": {"specularFactor": 0.3, "specularColorFactor": [2, 1, 0.5]})"));
+    const MaterialDesc& d = f.materials.at(0).desc;
+    ASSERT_TRUE(d.clearcoat && d.clearcoat_roughness && d.sheen && d.sheen_roughness && d.specular && d.specular_color);
+    EXPECT_EQ(d.clearcoat->value, Color{0.75f});
+    EXPECT_EQ(d.clearcoat_roughness->value, Color{0.25f});
+    EXPECT_EQ(d.sheen->value, (Color{0.5f, 0.25f, 1}));
+    EXPECT_EQ(d.sheen_roughness->value, Color{0.4f});
+    EXPECT_EQ(d.specular->value, Color{0.3f});
+    EXPECT_EQ(d.specular_color->value, (Color{2, 1, 0.5f}));
+    // A zero clear coat or black sheen is no layer at all.
+    const ImportedFile none = import_gltf(with(R"("KHR_materials_clearcoat": {}, "KHR_materials_sheen": {})"));
+    EXPECT_FALSE(none.materials.at(0).desc.clearcoat);
+    EXPECT_FALSE(none.materials.at(0).desc.sheen);
+    try {
+        import_gltf(with(R"("KHR_materials_clearcoat": {"clearcoatFactor": 1.5})"));
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("clearcoatFactor must be a number in [0, 1]"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("box.gltf:"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace glint

@@ -184,6 +184,10 @@ struct MaterialDesc {
     /// mix: the two named materials and the probability of the second (a texture's channel mean).
     std::vector<Located<std::string>> mix;
     std::optional<TextureDesc> amount;
+    /// pbr: glTF's layers and specular, each a texture with its factor folded in. clear coat:
+    /// weight in red, roughness in green; sheen: colour, roughness (grey); specular: weight (grey),
+    /// colour (KHR_materials_clearcoat, _sheen, _specular).
+    std::optional<TextureDesc> clearcoat, clearcoat_roughness, sheen, sheen_roughness, specular, specular_color;
     /// Set by importers (glTF's KHR_materials_volume): an absorbing interior medium for every
     /// surface of this material.
     std::optional<MediumDesc> interior;

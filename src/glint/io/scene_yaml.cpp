@@ -514,7 +514,8 @@ private:
         if (*type == "pbr") {
             d.kind = K::kPbr;
             d.roughness = 0.5f;
-            add({"base_color", "metallic", "roughness", "transmission", "ior"});
+            add({"base_color", "metallic", "roughness", "transmission", "ior", "clearcoat", "clearcoat_roughness", "sheen",
+                 "sheen_roughness", "specular", "specular_color"});
         }
         MapReader m(r_, node, context, keys);
         const auto tex = [&](const char* key) {
@@ -548,6 +549,13 @@ private:
             }
             if (auto n = m.get("amount"))
                 if (auto t = texture(*n)) d.amount = *t;
+        }
+        if (d.kind == K::kPbr) {  // glTF's clear coat, sheen and specular: numbers, colours or textures
+            for (auto [key, slot] : {std::pair{"clearcoat", &d.clearcoat}, {"clearcoat_roughness", &d.clearcoat_roughness},
+                                     {"sheen", &d.sheen}, {"sheen_roughness", &d.sheen_roughness},
+                                     {"specular", &d.specular}, {"specular_color", &d.specular_color}})
+                if (auto n = m.get(key))
+                    if (auto t = texture(*n)) *slot = *t;
         }
         assign(m.get("shininess"), d.shininess, unit("shininess"));
         assign(m.get("roughness"), d.roughness, unit("roughness"));

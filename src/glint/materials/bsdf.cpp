@@ -311,8 +311,20 @@ PlasticLobe make_plastic(Color albedo, float eta, float alpha) {
     return p;
 }
 
+Color PlasticLobe::coat_fresnel(float cos) const {
+    const float f = fresnel_dielectric(cos, eta);
+    if (specular_weight == 1 && specular_color == Color{1}) return Color{f};
+    const float f0 = fresnel_dielectric(1, eta);
+    const float t = f0 < 1 ? std::clamp((f - f0) / (1 - f0), 0.0f, 1.0f) : 1;
+    const auto channel = [&](float c) {
+        const float f0c = std::min(f0 * c, 1.0f);
+        return specular_weight * (f0c + (1 - f0c) * t);
+    };
+    return {channel(specular_color.r), channel(specular_color.g), channel(specular_color.b)};
+}
+
 float PlasticLobe::coat_probability(float cos_o) const {
-    const float f = fresnel_dielectric(cos_o, eta);
+    const float f = coat_fresnel(cos_o).max_component();
     const float base = (1 - f) * (albedo.r + albedo.g + albedo.b) / 3;
     return f + base > 0 ? std::clamp(f / (f + base), 0.05f, 1.0f) : 1.0f;
 }
@@ -320,16 +332,15 @@ float PlasticLobe::coat_probability(float cos_o) const {
 Color PlasticLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
     return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
         if (wo.z <= 0 || wi.z <= 0) return Color{0};
-        const float fo = fresnel_dielectric(wo.z, eta), fi = fresnel_dielectric(wi.z, eta);
+        const float fo = coat_fresnel(wo.z).max_component(), fi = coat_fresnel(wi.z).max_component();
         const float scale = (1 - fo) * (1 - fi) * kInvPi / (eta * eta);
         const Color base{albedo.r * scale / (1 - albedo.r * fdr_inside),
                          albedo.g * scale / (1 - albedo.g * fdr_inside),
                          albedo.b * scale / (1 - albedo.b * fdr_inside)};
         if (ggx.smooth()) return base;
         const Vector3 wm = normalize(wo + wi);
-        const float coat = ggx.d(wm) * ggx.g(wo, wi) * fresnel_dielectric(dot(wo, wm), eta) /
-                           (4 * wo.z * wi.z);
-        return base + Color{coat};
+        const Color coat = coat_fresnel(dot(wo, wm)) * (ggx.d(wm) * ggx.g(wo, wi) / (4 * wo.z * wi.z));
+        return base + coat;
     });
 }
 
@@ -355,8 +366,7 @@ std::optional<BsdfSample> PlasticLobe::sample(Vector3 wo_in, float uc, Sample2 u
     if (uc < pc) {
         if (ggx.smooth()) {
             wi = mirror_z(wo);
-            const float f = fresnel_dielectric(wo.z, eta);
-            return BsdfSample{Color{f / wi.z}, below ? flip_z(wi) : wi, pc, true};
+            return BsdfSample{coat_fresnel(wo.z) / wi.z, below ? flip_z(wi) : wi, pc, true};
         }
         wi = reflect_about(wo, ggx.sample_visible(wo, u));
     } else {
@@ -366,6 +376,124 @@ std::optional<BsdfSample> PlasticLobe::sample(Vector3 wo_in, float uc, Sample2 u
     const float p = pdf(wo, wi);
     if (p <= 0) return std::nullopt;
     return BsdfSample{eval(wo, wi), below ? flip_z(wi) : wi, p};
+}
+
+// ------------------------------------------------------------------------------------ sheen
+
+namespace {
+constexpr float kMinSheenRoughness = 0.07f;
+}  // namespace
+
+Color SheenLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
+    return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
+        if (wo.z <= 0 || wi.z <= 0) return Color{0};
+        const Vector3 wm = normalize(wo + wi);
+        const float a = sqr(std::max(roughness, kMinSheenRoughness));
+        const float sin2 = std::max(0.0f, 1 - wm.z * wm.z);
+        const float d = (2 + 1 / a) * std::pow(sin2, 0.5f / a) * (0.5f * kInvPi);
+        const float v = 1 / (4 * (wi.z + wo.z - wi.z * wo.z));
+        return color * (d * v);
+    });
+}
+
+float SheenLobe::pdf(Vector3 wo, Vector3 wi) const {
+    return same_side(wo, wi) ? std::abs(wi.z) * kInvPi : 0;
+}
+
+std::optional<BsdfSample> SheenLobe::sample(Vector3 wo, float, Sample2 u) const {
+    if (wo.z == 0) return std::nullopt;
+    Vector3 wi = sample_cosine_hemisphere(u);
+    if (wi.z <= 0) return std::nullopt;
+    if (wo.z < 0) wi = flip_z(wi);
+    return BsdfSample{eval(wo, wi), wi, std::abs(wi.z) * kInvPi};
+}
+
+// ------------------------------------------------------------------------ layer albedo tables
+
+namespace {
+
+// E(mu, roughness) on a 32 x 32 grid (mu and roughness from 0 to 1), each entry given by
+// `albedo(mu, roughness)`; read bilinearly.
+class AlbedoGrid {
+public:
+    static constexpr int kN = 32;
+    template <typename Albedo>
+    explicit AlbedoGrid(Albedo albedo) {
+        for (int j = 0; j < kN; ++j)
+            for (int i = 0; i < kN; ++i)
+                e_[static_cast<std::size_t>(j * kN + i)] =
+                    albedo(std::max(static_cast<float>(i) / (kN - 1), 1e-3f), static_cast<float>(j) / (kN - 1));
+    }
+    float at(float mu, float roughness) const {
+        const auto cell = [](float x, int& k0, float& t) {
+            const float f = std::clamp(x, 0.0f, 1.0f) * (kN - 1);
+            k0 = std::min(static_cast<int>(f), kN - 2);
+            t = f - static_cast<float>(k0);
+        };
+        int i, j;
+        float ti, tj;
+        cell(mu, i, ti);
+        cell(roughness, j, tj);
+        const auto e = [&](int jj, int ii) { return e_[static_cast<std::size_t>(jj * kN + ii)]; };
+        return (e(j, i) * (1 - ti) + e(j, i + 1) * ti) * (1 - tj) + (e(j + 1, i) * (1 - ti) + e(j + 1, i + 1) * ti) * tj;
+    }
+
+private:
+    std::array<float, kN * kN> e_{};
+};
+
+ConductorLobe clearcoat_lobe(float roughness) {
+    // A dielectric of index 1.5 (the complex Fresnel with k = 0), single scattering only.
+    ConductorLobe c;
+    c.kind = ConductorLobe::FresnelKind::kComplex;
+    c.eta = Color{1.5f};
+    c.k = Color{0};
+    c.ggx = Ggx{roughness * roughness};
+    c.f_avg = Color{0};
+    return c;
+}
+
+}  // namespace
+
+float sheen_albedo(float mu, float roughness) {
+    // Midpoint quadrature of f cos over the hemisphere (the lobe is mirror-symmetric in phi):
+    // cosine sampling would miss the grazing peak of a low roughness.
+    static const AlbedoGrid grid([](float m, float r) {
+        const SheenLobe lobe{Color{1}, r};
+        const Vector3 wo{std::sqrt(1 - m * m), 0, m};
+        constexpr int kTheta = 96, kPhi = 48;
+        const float dt = 0.5f * std::numbers::pi_v<float> / kTheta, dp = std::numbers::pi_v<float> / kPhi;
+        double sum = 0;
+        for (int t = 0; t < kTheta; ++t) {
+            const float theta = (t + 0.5f) * dt, st = std::sin(theta), ct = std::cos(theta);
+            for (int p = 0; p < kPhi; ++p) {
+                const float phi = (p + 0.5f) * dp;
+                sum += double(lobe.eval(wo, {st * std::cos(phi), st * std::sin(phi), ct}).r) * ct * st;
+            }
+        }
+        return static_cast<float>(2 * sum * dt * dp);
+    });
+    return grid.at(mu, roughness);
+}
+
+float clearcoat_albedo(float mu, float roughness) {
+    // The lobe's own (visible-normal) sampling, 64 x 64 stratified; a smooth coat is F(mu).
+    static const AlbedoGrid grid([](float m, float r) {
+        const ConductorLobe lobe = clearcoat_lobe(r);
+        const Vector3 wo{std::sqrt(1 - m * m), 0, m};
+        constexpr int kSide = 64;
+        double sum = 0;
+        for (int a = 0; a < kSide; ++a) {
+            for (int b = 0; b < kSide; ++b) {
+                const Sample2 u{(a + 0.5f) / kSide, (b + 0.5f) / kSide};
+                const float uc = std::fmod(static_cast<float>(a * kSide + b) * 0.6180339887f, 1.0f);
+                const auto s = lobe.sample(wo, uc, u);
+                if (s && s->pdf > 0) sum += double(s->f.r) * std::abs(s->wi.z) / s->pdf;
+            }
+        }
+        return static_cast<float>(sum / (kSide * kSide));
+    });
+    return grid.at(mu, roughness);
 }
 
 // ------------------------------------------------------------------------------- composite
@@ -394,8 +522,7 @@ Bsdf::Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes) {
         weight_[static_cast<std::size_t>(i)] / total;
 }
 
-Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const {
-    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+Color Bsdf::eval_lobes(Vector3 wo, Vector3 wi) const {
     Color f{0};
     for (int i = 0; i < count_; ++i) {
         const auto k = static_cast<std::size_t>(i);
@@ -404,8 +531,7 @@ Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const {
     return f;
 }
 
-float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
-    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+float Bsdf::pdf_lobes(Vector3 wo, Vector3 wi) const {
     float p = 0;
     for (int i = 0; i < count_; ++i) {
         const auto k = static_cast<std::size_t>(i);
@@ -414,14 +540,13 @@ float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
     return p;
 }
 
-std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const {
+std::optional<BsdfSample> Bsdf::sample_lobes(Vector3 wo, float uc, Sample2 u) const {
     if (count_ == 0) return std::nullopt;
     // Choose a lobe with uc, then reuse the remainder of uc inside it.
     std::size_t k = 0;
     float lo = 0;
     while (k + 1 < static_cast<std::size_t>(count_) && uc >= lo + select_[k]) lo += select_[k++];
     const float uc_lobe = std::clamp((uc - lo) / select_[k], 0.0f, 0x1.fffffep-1f);
-    const Vector3 wo = to_local(wo_w);
     auto s = std::visit([&](const auto& l) { return l.sample(wo, uc_lobe, u); }, lobes_[k]);
     if (!s) return std::nullopt;
     if (s->specular || count_ == 1) {
@@ -444,6 +569,107 @@ std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const 
         s->pdf = p;
     }
     if (!(s->pdf > 0)) return std::nullopt;
+    return s;
+}
+
+// ----------------------------------------------------------------------------- glTF layers
+
+void Bsdf::set_clearcoat(float weight, float roughness) {
+    coat_weight_ = std::clamp(weight, 0.0f, 1.0f);
+    coat_roughness_ = std::clamp(roughness, 0.0f, 1.0f);
+    coat_ = clearcoat_lobe(coat_roughness_);
+    if (coat_weight_ > 0 && !coat_.ggx.smooth()) has_non_delta_ = true;
+}
+
+void Bsdf::set_sheen(Color color, float roughness) {
+    sheen_ = SheenLobe{Color{std::clamp(color.r, 0.0f, 1.0f), std::clamp(color.g, 0.0f, 1.0f),
+                             std::clamp(color.b, 0.0f, 1.0f)},
+                       std::clamp(roughness, 0.0f, 1.0f)};
+    if (sheen_.color.max_component() > 0) has_non_delta_ = true;
+}
+
+float Bsdf::coat_keep(Vector3 wo, Vector3 wi) const {
+    if (!(coat_weight_ > 0)) return 1;
+    return (1 - coat_weight_ * clearcoat_albedo(std::abs(wo.z), coat_roughness_)) *
+           (1 - coat_weight_ * clearcoat_albedo(std::abs(wi.z), coat_roughness_));
+}
+
+float Bsdf::sheen_keep(Vector3 wo, Vector3 wi) const {
+    const float m = sheen_.color.max_component();
+    if (!(m > 0)) return 1;
+    return (1 - m * sheen_albedo(std::abs(wo.z), sheen_.roughness)) *
+           (1 - m * sheen_albedo(std::abs(wi.z), sheen_.roughness));
+}
+
+Bsdf::LayerWeights Bsdf::layer_weights(Vector3 wo) const {
+    // Roughly each layer's share of the reflected energy, kept away from 0 and 1 so that every
+    // part is sampled; what lies under nothing takes everything.
+    const float mu = std::abs(wo.z);
+    LayerWeights w;
+    const bool sheen = sheen_.color.max_component() > 0;
+    if (sheen) w.p_sheen = count_ == 0 ? 1 : std::clamp(sheen_.color.max_component() * sheen_albedo(mu, sheen_.roughness), 0.05f, 0.9f);
+    if (coat_weight_ > 0)
+        w.p_coat = count_ == 0 && !sheen ? 1 : std::clamp(coat_weight_ * clearcoat_albedo(mu, coat_roughness_), 0.05f, 0.9f);
+    return w;
+}
+
+Color Bsdf::eval_local(Vector3 wo, Vector3 wi) const {
+    Color f = eval_lobes(wo, wi);
+    if (!layered()) return f;
+    if (sheen_.color.max_component() > 0) f = f * sheen_keep(wo, wi) + sheen_.eval(wo, wi);
+    if (coat_weight_ > 0) f = f * coat_keep(wo, wi) + coat_.eval(wo, wi) * coat_weight_;
+    return f;
+}
+
+float Bsdf::pdf_local(Vector3 wo, Vector3 wi, const LayerWeights& w) const {
+    float p = pdf_lobes(wo, wi) * (1 - w.p_sheen);
+    if (w.p_sheen > 0) p += sheen_.pdf(wo, wi) * w.p_sheen;
+    p *= 1 - w.p_coat;
+    if (w.p_coat > 0) p += coat_.pdf(wo, wi) * w.p_coat;
+    return p;
+}
+
+Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const { return eval_local(to_local(wo_w), to_local(wi_w)); }
+
+float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
+    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+    if (!layered()) return pdf_lobes(wo, wi);
+    return pdf_local(wo, wi, layer_weights(wo));
+}
+
+std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const {
+    const Vector3 wo = to_local(wo_w);
+    std::optional<BsdfSample> s;
+    if (!layered()) {
+        s = sample_lobes(wo, uc, u);
+    } else {
+        const LayerWeights w = layer_weights(wo);
+        constexpr float kBelowOne = 0x1.fffffep-1f;
+        if (uc < w.p_coat) {
+            s = coat_.sample(wo, std::min(uc / w.p_coat, kBelowOne), u);
+            if (s && s->specular) {
+                s->f = s->f * coat_weight_;
+                s->pdf *= w.p_coat;
+            }
+        } else {
+            const float v = std::min((uc - w.p_coat) / (1 - w.p_coat), kBelowOne);
+            if (v < w.p_sheen) {
+                s = sheen_.sample(wo, v / w.p_sheen, u);
+            } else {
+                s = sample_lobes(wo, std::min((v - w.p_sheen) / (1 - w.p_sheen), kBelowOne), u);
+                if (s && s->specular) {
+                    s->f = s->f * (coat_keep(wo, s->wi) * sheen_keep(wo, s->wi));
+                    s->pdf *= (1 - w.p_coat) * (1 - w.p_sheen);
+                }
+            }
+        }
+        if (s && !s->specular) {  // the whole of f and of the density in that direction
+            s->f = eval_local(wo, s->wi);
+            s->pdf = pdf_local(wo, s->wi, w);
+        }
+        if (s && !(s->pdf > 0)) s.reset();
+    }
+    if (!s) return std::nullopt;
     s->wi = to_world(s->wi);
     return s;
 }

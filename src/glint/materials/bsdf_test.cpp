@@ -28,6 +28,12 @@ Vector3 direction(float theta_deg, float phi_deg = 30) {
     return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
+Bsdf layered(Bsdf b, float coat, float coat_roughness, Color sheen, float sheen_roughness) {
+    if (coat > 0) b.set_clearcoat(coat, coat_roughness);
+    if (sheen.max_component() > 0) b.set_sheen(sheen, sheen_roughness);
+    return b;
+}
+
 struct Case {
     std::string name;
     Bsdf bsdf;
@@ -51,6 +57,9 @@ std::vector<Case> cases() {
     const PlasticLobe plastic_smooth = make_plastic(Color{0.5f}, 1.5f, 0);
     const ConductorLobe pbr_metal = make_conductor(ConductorLobe::FresnelKind::kSchlick,
                                                    Color{0.9f, 0.6f, 0.3f}, Color{0}, 0.16f);
+    PlasticLobe specular_plastic = make_plastic(Color{0.3f, 0.6f, 0.2f}, 1.5f, 0.3f);
+    specular_plastic.specular_weight = 0.6f;
+    specular_plastic.specular_color = Color{1, 0.5f, 30};  // 30 f0 > 1: clamped to 1
     return {
         {"diffuse", Bsdf(n, {{DiffuseLobe{Color{0.7f}}, 1.0f}})},
         {"gold rough", Bsdf(n, {{gold, 1.0f}})},
@@ -67,6 +76,13 @@ std::vector<Case> cases() {
         // normalised by its largest channel, which becomes its weight.
         {"diffuse transmission", Bsdf(n, {{DiffuseLobe{Color{0.5f, 1, 0.25f}}, 0.4f},
                                           {DiffuseTransmissionLobe{Color{1, 0.6f, 0.6f}}, 0.5f}})},
+        // glTF's layers (KHR_materials_clearcoat, _sheen) and KHR_materials_specular.
+        {"rough clear coat over diffuse", layered(Bsdf(n, {{DiffuseLobe{Color{0.9f}}, 1.0f}}), 1, 0.3f, Color{0}, 0)},
+        {"smooth clear coat over plastic", layered(Bsdf(n, {{plastic_rough, 1.0f}}), 0.7f, 0, Color{0}, 0)},
+        {"sheen over diffuse", layered(Bsdf(n, {{DiffuseLobe{Color{0.8f}}, 1.0f}}), 0, 0, Color{1, 0.8f, 0.6f}, 0.4f)},
+        {"coat and sheen over pbr mix",
+         layered(Bsdf(n, {{pbr_metal, 0.3f}, {plastic_rough, 0.5f}, {glass_rough, 0.2f}}), 0.5f, 0.2f, Color{0.5f}, 0.8f)},
+        {"tinted specular plastic", Bsdf(n, {{specular_plastic, 1.0f}})},
     };
 }
 
@@ -217,6 +233,78 @@ TEST(Ggx, AlbedoTableMatchesBruteForce) {
             EXPECT_NEAR(ggx_albedo(mu, alpha), sum / kN, 0.01) << alpha << " " << mu;
         }
     }
+}
+
+// The layer tables agree with brute-force Monte Carlo integrals of the lobes sampled uniformly
+// over the hemisphere; a smooth coat reflects exactly Fresnel's F(mu) of index 1.5.
+TEST(Layers, AlbedoTablesMatchBruteForce) {
+    // Roughness from 0.3: below, 2^20 uniform directions put too few in the coat's narrow peak.
+    for (const float r : {0.3f, 0.55f, 1.0f}) {
+        for (const float mu : {0.1f, 0.5f, 0.95f}) {
+            const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
+            const SheenLobe sheen{Color{1}, r};
+            ConductorLobe coat;
+            coat.kind = ConductorLobe::FresnelKind::kComplex;
+            coat.eta = Color{1.5f};
+            coat.k = Color{0};
+            coat.ggx = Ggx{r * r};
+            coat.f_avg = Color{0};
+            double e_sheen = 0, e_coat = 0;
+            constexpr int kN = 1 << 20;
+            for (int i = 0; i < kN; ++i) {
+                const Vector3 wi = sample_uniform_sphere(rnd2(13, static_cast<std::uint32_t>(i)));
+                if (wi.z <= 0) continue;
+                e_sheen += sheen.eval(wo, wi).r * wi.z / kUniformSpherePdf;
+                e_coat += coat.eval(wo, wi).r * wi.z / kUniformSpherePdf;
+            }
+            EXPECT_NEAR(sheen_albedo(mu, r), e_sheen / kN, 0.01 + 0.02 * e_sheen / kN) << r << " " << mu;
+            EXPECT_NEAR(clearcoat_albedo(mu, r), e_coat / kN, 0.01) << r << " " << mu;
+        }
+    }
+    for (const float mu : {0.05f, 0.3f, 1.0f}) EXPECT_NEAR(clearcoat_albedo(mu, 0), fresnel_dielectric(mu, 1.5f), 0.01f) << mu;
+    // The sheen's peak is broad in phi: uniform directions resolve it at low roughness too.
+    for (const float mu : {0.1f, 0.5f, 0.95f}) {
+        const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
+        const SheenLobe sheen{Color{1}, 0.1f};
+        double e = 0;
+        constexpr int kN = 1 << 20;
+        for (int i = 0; i < kN; ++i) {
+            const Vector3 wi = sample_uniform_sphere(rnd2(17, static_cast<std::uint32_t>(i)));
+            if (wi.z > 0) e += sheen.eval(wo, wi).r * wi.z / kUniformSpherePdf;
+        }
+        EXPECT_NEAR(sheen_albedo(mu, 0.1f), e / kN, 0.01 + 0.02 * e / kN) << mu;
+    }
+}
+
+// KHR_materials_specular's defaults change nothing; its weight is the grazing reflectance, its
+// colour tints normal incidence (f0 = 0.04 x colour, at most 1).
+TEST(Layers, SpecularWeightAndColourShapeTheCoatFresnel) {
+    PlasticLobe p = make_plastic(Color{0.5f}, 1.5f, 0.2f);
+    for (const float c : {0.0f, 0.3f, 1.0f}) EXPECT_EQ(p.coat_fresnel(c), Color{fresnel_dielectric(c, 1.5f)});
+    p.specular_weight = 0.5f;
+    p.specular_color = Color{1, 10, 50};
+    const Color f1 = p.coat_fresnel(1), f0 = p.coat_fresnel(1e-6f);
+    EXPECT_NEAR(f1.r, 0.5f * 0.04f, 1e-5f);
+    EXPECT_NEAR(f1.g, 0.5f * 0.4f, 1e-5f);
+    EXPECT_NEAR(f1.b, 0.5f, 1e-5f);  // 0.04 x 50 clamped to 1
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(f0[k], 0.5f, 1e-3f);
+}
+
+// A sheen or coat adds reflection where the base has little, and takes it from the base: the
+// coated diffuse reflects more at grazing angles and less at normal incidence into the diffuse.
+TEST(Layers, ACoatTakesFromTheBaseWhatItReflects) {
+    const Normal3 n{0, 0, 1};
+    const Bsdf base(n, {{DiffuseLobe{Color{0.9f}}, 1.0f}});
+    const Bsdf coated = layered(base, 1, 0.3f, Color{0}, 0);
+    const Vector3 wo = direction(40), wi = direction(70, 200);
+    const float expected = 0.9f / kPi * (1 - clearcoat_albedo(wo.z, 0.3f)) * (1 - clearcoat_albedo(wi.z, 0.3f));
+    ConductorLobe coat;
+    coat.kind = ConductorLobe::FresnelKind::kComplex;
+    coat.eta = Color{1.5f};
+    coat.k = Color{0};
+    coat.ggx = Ggx{0.09f};
+    coat.f_avg = Color{0};
+    EXPECT_NEAR(coated.eval(wo, wi).r, expected + coat.eval(wo, wi).r, 1e-6f);
 }
 
 TEST(Bsdf, SmoothGlassSplitsByFresnelAndBendsBySnell) {

@@ -1,5 +1,6 @@
 #include "glint/materials/make_bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -66,14 +67,26 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 plastic.eta = m.ior;
                 plastic.ggx = Ggx{alpha};
                 plastic.fdr_inside = m.fdr_inside;
+                if (m.specular) plastic.specular_weight = std::clamp(scene.texture(*m.specular, si).r, 0.0f, 1.0f);
+                if (m.specular_color) plastic.specular_color = scene.texture(*m.specular_color, si);
                 DielectricLobe glass;
                 glass.eta = m.ior;
                 glass.ggx = Ggx{alpha};
                 glass.tint = base;
                 const float dielectric = 1 - metallic;
-                return Bsdf(si.ns, {{metal, metallic},
-                                   {plastic, dielectric * (1 - m.transmission)},
-                                   {glass, dielectric * m.transmission}});
+                Bsdf b(si.ns, {{metal, metallic},
+                               {plastic, dielectric * (1 - m.transmission)},
+                               {glass, dielectric * m.transmission}});
+                if (m.sheen) {
+                    const Color c = scene.texture(*m.sheen, si);
+                    if (c.max_component() > 0)
+                        b.set_sheen(c, m.sheen_roughness ? scene.texture(*m.sheen_roughness, si).r : 0);
+                }
+                if (m.clearcoat) {
+                    const float w = scene.texture(*m.clearcoat, si).r;
+                    if (w > 0) b.set_clearcoat(w, m.clearcoat_roughness ? scene.texture(*m.clearcoat_roughness, si).g : 0);
+                }
+                return b;
             }
         },
         scene.materials[scene.surface_material(si)]);

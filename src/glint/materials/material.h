@@ -57,6 +57,10 @@ struct PbrMaterial {
     float fdr_inside = 0;  ///< of the coat, precomputed
     /// glTF's metallicRoughnessTexture: blue scales metallic, green scales roughness.
     std::optional<TextureId> metallic_roughness;
+    /// glTF's KHR_materials_clearcoat (weight in red, roughness in green), KHR_materials_sheen
+    /// (colour; roughness in red) and KHR_materials_specular (weight in red; colour), factors
+    /// folded into the textures. Absent: no coat, no sheen, specular 1 and white.
+    std::optional<TextureId> clearcoat, clearcoat_roughness, sheen, sheen_roughness, specular, specular_color;
 };
 
 /// pbrt's diffusetransmission: Lambertian reflection of `reflectance` on the side light comes
