@@ -13,6 +13,8 @@ packages=(
   libcli11-dev             # command line
   libtinyobjloader-dev     # OBJ + MTL import
   libtinygltf-dev nlohmann-json3-dev  # glTF 2.0 import (tinygltf's JSON)
+  libdraco-dev libmeshoptimizer-dev   # glTF compressed meshes (KHR_draco_mesh_compression, EXT_meshopt_compression)
+  draco                               # draco_transcoder: the Draco test files
   libembree-dev            # the Embree backend (--accel embree) and its benchmark
   libfmt-dev               # formatting
   libopenvdb-dev libboost-dev  # grid media (smoke, clouds) read from .vdb files (its headers need Boost)

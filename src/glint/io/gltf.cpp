@@ -15,6 +15,9 @@
 // Blender's importer does by default; emission is one-sided unless the material is doubleSided.
 #include <tiny_gltf.h>
 
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -26,6 +29,7 @@
 #include <set>
 #include <sstream>
 
+#include "glint/io/draco_decode.h"
 #include "glint/io/json_locate.h"
 #include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
@@ -98,19 +102,29 @@ struct Importer {
         if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
             fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
         const tinygltf::BufferView& bv = model.bufferViews[view];
-        if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-            fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
-        const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
         __extension__ typedef unsigned __int128 Wide;
-        if (Wide{bv.byteOffset} + bv.byteLength > data.size())
-            fail_at(fmt::format("/bufferViews/{}/byteLength", view),
-                    fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
+        const unsigned char* bytes = nullptr;  // the view's first byte
+        std::size_t length = 0;
+        if (const auto it = bv.extensions.find("EXT_meshopt_compression"); it != bv.extensions.end()) {
+            const std::vector<unsigned char>& decoded = meshopt_view(view, it->second, what);
+            bytes = decoded.data();
+            length = decoded.size();
+        } else {
+            if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
+                fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+            const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
+            if (Wide{bv.byteOffset} + bv.byteLength > data.size())
+                fail_at(fmt::format("/bufferViews/{}/byteLength", view),
+                        fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
+            bytes = data.data() + bv.byteOffset;
+            length = bv.byteLength;
+        }
         const int size = component_size(ct);
         const std::size_t elem = static_cast<std::size_t>(n * size);
         const std::size_t stride = strided && bv.byteStride ? bv.byteStride : elem;
-        if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > bv.byteLength)
+        if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > length)
             fail_at(at + "/count", fmt::format("{} reaches past the end of its buffer", what));
-        const unsigned char* base = data.data() + bv.byteOffset + offset;
+        const unsigned char* base = bytes + offset;
         for (std::size_t i = 0; i < count; ++i) {
             const unsigned char* p = base + i * stride;
             for (int c = 0; c < n; ++c) {
@@ -130,6 +144,60 @@ struct Importer {
             }
         }
     }
+
+    /// Buffer view `view` compressed by EXT_meshopt_compression (`ext`), decoded once: vertex
+    /// streams (mode ATTRIBUTES, with the OCTAHEDRAL, QUATERNION or EXPONENTIAL filter undone),
+    /// index buffers (TRIANGLES) and index sequences (INDICES), by meshoptimizer's decoders.
+    const std::vector<unsigned char>& meshopt_view(int view, const tinygltf::Value& ext, const std::string& what) const {
+        if (const auto it = meshopt_views.find(view); it != meshopt_views.end()) return it->second;
+        const std::string at = fmt::format("/bufferViews/{}/extensions/EXT_meshopt_compression", view);
+        const auto integer = [&](const char* key, double fallback) {
+            const double x = number(ext, key, fallback);
+            if (!(x >= 0 && x <= 9e15) || x != std::floor(x))
+                fail_at(at + "/" + key, fmt::format("{}: EXT_meshopt_compression: {} must be a whole number >= 0", what, key));
+            return static_cast<std::size_t>(x);
+        };
+        const std::size_t buffer = integer("buffer", -1), offset = integer("byteOffset", 0),
+                          length = integer("byteLength", -1), stride = integer("byteStride", -1),
+                          count = integer("count", -1);
+        const std::string mode = ext.Has("mode") && ext.Get("mode").IsString() ? ext.Get("mode").Get<std::string>() : "";
+        const std::string filter =
+            ext.Has("filter") && ext.Get("filter").IsString() ? ext.Get("filter").Get<std::string>() : "NONE";
+        if (buffer >= model.buffers.size())
+            fail_at(at + "/buffer", fmt::format("{}: EXT_meshopt_compression: buffer {} does not exist", what, buffer));
+        const std::vector<unsigned char>& data = model.buffers[buffer].data;
+        if (offset > data.size() || length > data.size() - offset)
+            fail_at(at + "/byteLength", fmt::format("{}: EXT_meshopt_compression: bytes {} to {} are past the end of buffer {} ({} bytes)",
+                                                    what, offset, offset + length, buffer, data.size()));
+        if (stride == 0 || stride > 256 || count > kMaxAccessorValues / stride)
+            fail_at(at + "/count", fmt::format("{}: EXT_meshopt_compression: {} elements of {} bytes is out of range", what,
+                                               count, stride));
+        std::vector<unsigned char> out(count * stride);
+        const unsigned char* src = data.data() + offset;
+        int status = -1;
+        if (mode == "ATTRIBUTES") {
+            if (stride % 4 == 0) status = meshopt_decodeVertexBuffer(out.data(), count, stride, src, length);
+            if (status == 0 && filter != "NONE") {
+                if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(out.data(), count, stride);
+                else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(out.data(), count, stride);
+                else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);
+                else
+                    fail_at(at + "/filter", fmt::format("{}: EXT_meshopt_compression: filter '{}' with {}-byte elements", what,
+                                                        filter, stride));
+            }
+        } else if (mode == "TRIANGLES" || mode == "INDICES") {
+            if (stride == 2 || stride == 4)
+                status = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out.data(), count, stride, src, length)
+                                             : meshopt_decodeIndexSequence(out.data(), count, stride, src, length);
+        } else {
+            fail_at(at + "/mode", fmt::format("{}: EXT_meshopt_compression: mode '{}' (ATTRIBUTES, TRIANGLES or INDICES)", what, mode));
+        }
+        if (status != 0)
+            fail_at(at, fmt::format("{}: EXT_meshopt_compression: the {} data of buffer view {} cannot be decoded", what,
+                                    mode, view));
+        return meshopt_views.emplace(view, std::move(out)).first->second;
+    }
+    mutable std::map<int, std::vector<unsigned char>> meshopt_views;
 
     /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
     /// [0, 1] or [-1, 1] when the accessor says so), sparse substitutions applied. `ref` is the
@@ -498,6 +566,55 @@ struct Importer {
     }
 
     // --- meshes ---
+
+    /// A primitive compressed by KHR_draco_mesh_compression, decoded: its attributes by name
+    /// (the extension's map from glTF names to Draco's attribute ids) and its triangles.
+    struct DracoPrimitive {
+        DracoMesh mesh;
+        std::map<std::string, int> ids;
+    };
+    DracoPrimitive decode_draco(const tinygltf::Value& ext, const std::string& at, const std::string& what) const {
+        if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber())
+            fail_at(at, what + ": KHR_draco_mesh_compression needs a bufferView");
+        const int view = ext.Get("bufferView").GetNumberAsInt();
+        if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
+            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
+        const tinygltf::BufferView& bv = model.bufferViews[view];
+        if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
+            fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+        const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
+        if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+            fail_at(fmt::format("/bufferViews/{}/byteLength", view),
+                    fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
+        DracoPrimitive d;
+        try {
+            d.mesh = decode_draco_mesh(data.data() + bv.byteOffset, bv.byteLength, kMaxAccessorValues);
+        } catch (const std::exception& e) {
+            fail_at(at, fmt::format("{}: the Draco data cannot be decoded: {}", what, e.what()));
+        }
+        if (ext.Has("attributes") && ext.Get("attributes").IsObject()) {
+            const tinygltf::Value& a = ext.Get("attributes");
+            for (const std::string& key : a.Keys())
+                if (a.Get(key).IsNumber()) d.ids[key] = a.Get(key).GetNumberAsInt();
+        }
+        return d;
+    }
+    /// Attribute `name` of a Draco primitive as doubles, `n` components per point; nothing if the
+    /// primitive's extension does not list it.
+    std::optional<std::vector<double>> draco_attribute(const DracoPrimitive& d, const std::string& name, int n,
+                                                       const std::string& at, const std::string& what) const {
+        const auto it = d.ids.find(name);
+        if (it == d.ids.end()) return std::nullopt;
+        const auto a = std::find_if(d.mesh.attributes.begin(), d.mesh.attributes.end(),
+                                    [&](const DracoAttribute& x) { return x.unique_id == it->second; });
+        if (a == d.mesh.attributes.end())
+            fail_at(at + "/attributes/" + name, fmt::format("{}: {} names Draco attribute {}, which the data lacks", what, name, it->second));
+        if (a->components != n)
+            fail_at(at + "/attributes/" + name, fmt::format("{}: Draco attribute {} has {} components; {} needs {}", what,
+                                                            it->second, a->components, name, n));
+        return std::vector<double>(a->values.begin(), a->values.end());
+    }
+
     void mesh(int index) {
         const tinygltf::Mesh& gm = model.meshes[index];
         mesh_first[index] = static_cast<std::uint32_t>(out.meshes.size());
@@ -512,16 +629,27 @@ struct Importer {
                 out.notes.push_back(fmt::format("{}: {}: points and lines are skipped", file, what));
                 continue;
             }
+            std::optional<DracoPrimitive> draco;
+            if (const auto it = prim.extensions.find("KHR_draco_mesh_compression"); it != prim.extensions.end())
+                draco = decode_draco(it->second, at + "/extensions/KHR_draco_mesh_compression", what);
+            // An attribute from the Draco data when the primitive is compressed and lists it, else
+            // from its accessor.
+            const auto values = [&](const std::string& name, int accessor, int n) {
+                if (draco)
+                    if (auto v = draco_attribute(*draco, name, n, at + "/extensions/KHR_draco_mesh_compression", what))
+                        return std::move(*v);
+                return read(accessor, n, what, attribute(name));
+            };
             const auto pos_it = prim.attributes.find("POSITION");
             if (pos_it == prim.attributes.end()) fail_at(at, what + ": no POSITION attribute");
             TriangleMesh m;
             m.name = gm.name;
-            const std::vector<double> pos = read(pos_it->second, 3, what, attribute("POSITION"));
+            const std::vector<double> pos = values("POSITION", pos_it->second, 3);
             const std::size_t nv = pos.size() / 3;
             for (std::size_t i = 0; i < nv; ++i)
                 m.positions.push_back({float(pos[3 * i]), float(pos[3 * i + 1]), float(-pos[3 * i + 2])});
             if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-                const auto n = read(it->second, 3, what, attribute("NORMAL"));
+                const auto n = values("NORMAL", it->second, 3);
                 if (n.size() == pos.size())
                     for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
             }
@@ -529,7 +657,7 @@ struct Importer {
                 const std::string name = fmt::format("TEXCOORD_{}", set);
                 const auto it = prim.attributes.find(name);
                 if (it == prim.attributes.end()) continue;
-                const auto t = read(it->second, 2, what, attribute(name));
+                const auto t = values(name, it->second, 2);
                 if (t.size() != 2 * nv) continue;
                 std::vector<Point2>* dst = &m.uvs;
                 if (set > 0) {  // sets come in increasing order; missing ones stay empty
@@ -539,7 +667,7 @@ struct Importer {
                 for (std::size_t i = 0; i < nv; ++i) dst->push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
             }
             if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
-                const auto t = read(it->second, 4, what, attribute("TANGENT"));
+                const auto t = values("TANGENT", it->second, 4);
                 // z negated like positions; the mirror also flips the bitangent's handedness,
                 // and so does the v flip: the two cancel, w stays.
                 if (t.size() == 4 * nv)
@@ -550,7 +678,7 @@ struct Importer {
                 // RGB or RGBA; read() reports a missing accessor.
                 const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
                 const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
-                const auto c = read(it->second, n, what, attribute("COLOR_0"));
+                const auto c = values("COLOR_0", it->second, n);
                 for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i) {
                     m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
                     if (n == 4) m.alphas.push_back(float(c[n * i + 3]));
@@ -558,7 +686,14 @@ struct Importer {
                 if (std::all_of(m.alphas.begin(), m.alphas.end(), [](Float a) { return a >= 1; })) m.alphas.clear();
             }
             std::vector<std::uint32_t> idx;
-            if (prim.indices >= 0) {
+            if (draco) {  // Draco's faces are triangles of point indices
+                for (std::size_t k = 0; k < draco->mesh.indices.size(); ++k) {
+                    const std::uint32_t v = draco->mesh.indices[k];
+                    if (v >= nv) fail_at(at + "/extensions/KHR_draco_mesh_compression",
+                                         fmt::format("{}: Draco face {} uses point {} of {}", what, k / 3, v, nv));
+                    idx.push_back(v);
+                }
+            } else if (prim.indices >= 0) {
                 for (double x : read(prim.indices, 1, what, at + "/indices")) {
                     if (!(x >= 0 && x < double(nv)))
                         fail_at(fmt::format("/accessors/{}", prim.indices),
@@ -568,12 +703,13 @@ struct Importer {
             } else {
                 for (std::uint32_t i = 0; i < nv; ++i) idx.push_back(i);
             }
-            if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const int mode = draco ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // Draco decodes to triangles
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
                 for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
                     if (i % 2 == 0) m.indices.insert(m.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
                     else m.indices.insert(m.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
                 }
-            } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
                 for (std::size_t i = 1; i + 1 < idx.size(); ++i) m.indices.insert(m.indices.end(), {idx[0], idx[i], idx[i + 1]});
             } else {
                 if (idx.size() % 3 != 0)
@@ -627,6 +763,7 @@ struct Importer {
     /// error. One that only uses such an extension renders without it, with a note naming it.
     void check_extensions() {
         static const std::set<std::string> supported = {
+            "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
             "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
             "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
             "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
@@ -749,6 +886,70 @@ struct Importer {
     }
 };
 
+/// Two things tinygltf (built without the extensions) refuses in files that use them, and which
+/// glint's importer does not read anyway: gltfpack's EXT_meshopt_compression fallback buffers (a
+/// length and no data: tinygltf would look for a file) become a 4-byte data URI, and the index
+/// accessors of KHR_draco_mesh_compression primitives (no buffer view: the indices are in the
+/// Draco data) are detached from them. The file's bytes so changed, or nothing when neither occurs
+/// (the file is then loaded as it is). JSON pointers into the file stay valid for messages.
+std::optional<std::string> prepare_for_tinygltf(const std::filesystem::path& path, bool glb) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.find("EXT_meshopt_compression") == std::string::npos &&
+        bytes.find("KHR_draco_mesh_compression") == std::string::npos)
+        return std::nullopt;
+    // A .glb: a 12-byte header, then the JSON chunk (length, type, text), then the rest.
+    std::size_t json_at = 0, json_size = bytes.size();
+    if (glb) {
+        if (bytes.size() < 20) return std::nullopt;  // tinygltf reports the broken header
+        std::uint32_t n = 0;
+        std::memcpy(&n, bytes.data() + 12, 4);
+        if (n > bytes.size() - 20) return std::nullopt;
+        json_at = 20;
+        json_size = n;
+    }
+    nlohmann::json j = nlohmann::json::parse(bytes.begin() + static_cast<std::ptrdiff_t>(json_at),
+                                             bytes.begin() + static_cast<std::ptrdiff_t>(json_at + json_size), nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return std::nullopt;
+    bool changed = false;
+    if (j.contains("meshes") && j["meshes"].is_array())
+        for (nlohmann::json& mesh : j["meshes"]) {
+            if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+            for (nlohmann::json& prim : mesh["primitives"]) {
+                if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
+                    !prim["extensions"].contains("KHR_draco_mesh_compression") || !prim.contains("indices"))
+                    continue;
+                prim.erase("indices");
+                changed = true;
+            }
+        }
+    nlohmann::json no_buffers = nlohmann::json::array();
+    nlohmann::json& buffers = j.contains("buffers") && j["buffers"].is_array() ? j["buffers"] : no_buffers;
+    for (nlohmann::json& b : buffers) {
+        if (!b.is_object() || b.contains("uri") || !b.contains("extensions") || !b["extensions"].is_object()) continue;
+        const nlohmann::json& e = b["extensions"];
+        if (!e.contains("EXT_meshopt_compression") || !e["EXT_meshopt_compression"].is_object()) continue;
+        const nlohmann::json& m = e["EXT_meshopt_compression"];
+        if (!m.contains("fallback") || m["fallback"] != true) continue;
+        b["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+        b["byteLength"] = 4;
+        changed = true;
+    }
+    if (!changed) return std::nullopt;
+    std::string text = j.dump();
+    if (!glb) return text;
+    while (text.size() % 4) text += ' ';
+    std::string out = bytes.substr(0, 12);
+    const std::uint32_t n = static_cast<std::uint32_t>(text.size());
+    out.append(reinterpret_cast<const char*>(&n), 4);
+    out.append(bytes, 16, 4);  // the chunk type, JSON
+    out += text;
+    out.append(bytes, json_at + json_size, std::string::npos);
+    const std::uint32_t total = static_cast<std::uint32_t>(out.size());
+    std::memcpy(out.data() + 8, &total, 4);
+    return out;
+}
+
 }  // namespace
 
 ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name) {
@@ -757,8 +958,18 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = mesh_format(path) == MeshFormat::kGlb ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
-                                  : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+    const bool glb = mesh_format(path) == MeshFormat::kGlb;
+    bool ok = false;
+    if (auto patched = prepare_for_tinygltf(path, glb)) {
+        const std::string base = path.parent_path().string();
+        if (patched->size() > std::numeric_limits<unsigned int>::max()) throw IoError(fmt::format("{}: too large", file));
+        const auto size = static_cast<unsigned int>(patched->size());
+        ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(patched->data()),
+                                               size, base)
+                 : loader.LoadASCIIFromString(&model, &err, &warn, patched->data(), size, base);
+    } else {
+        ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+    }
     const auto trim = [](std::string s) {
         while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
         return s;
@@ -773,7 +984,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
             throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
         throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : why));
     }
-    Importer im{model, file, mesh_format(path) == MeshFormat::kGlb, {}, {}, {}, {}, std::nullopt, camera_name};
+    Importer im{model, file, glb, {}, {}, {}, {}, {}, std::nullopt, camera_name};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
     im.check_extensions();
     im.vertex_colored.assign(model.materials.size(), false);
