@@ -68,3 +68,40 @@ if [[ -f $killeroos ]]; then
   echo docs/images/pbrt-killeroos.png
 fi
 rm -rf "$features_tmp"
+# glTF as found in the wild: the Khronos sample models of tests/data/khronos, framed by glint (no
+# camera in the files but Cameras'), and BoxVertexColors again after Draco's own transcoder.
+khronos_tmp=$(mktemp -d)
+for name in Box BoxTextured BoxVertexColors Cameras SimpleSparseAccessor; do
+  "$glint" render "tests/data/khronos/$name.gltf" --spp 64 --width 320 --height 240 -q -o "$khronos_tmp/$name.png"
+done
+if command -v draco_transcoder > /dev/null; then
+  draco_transcoder -i tests/data/khronos/BoxVertexColors.gltf -o "$khronos_tmp/draco.gltf" > /dev/null
+  "$glint" render "$khronos_tmp/draco.gltf" --spp 64 --width 320 --height 240 -q -o "$khronos_tmp/Draco.png"
+else
+  cp "$khronos_tmp/BoxVertexColors.png" "$khronos_tmp/Draco.png"
+fi
+oiiotool "$khronos_tmp/Box.png" "$khronos_tmp/BoxTextured.png" "$khronos_tmp/BoxVertexColors.png" \
+  "$khronos_tmp/Cameras.png" "$khronos_tmp/SimpleSparseAccessor.png" "$khronos_tmp/Draco.png" \
+  --mosaic 3x2 --resize 720x360 -o docs/images/gltf-khronos.png
+echo docs/images/gltf-khronos.png
+# Alpha and texture-coordinate sets: scripts/make_gltf_alpha.py's five quads in front of a checker
+# wall (left to right: MASK texture, BLEND 0.25, MASK by vertex alpha, TEXCOORD_1, quantized).
+python3 scripts/make_gltf_alpha.py "$khronos_tmp" > /dev/null
+cat > "$khronos_tmp/alpha.yaml" <<'YAML'
+camera: {type: look_at, from: [22, 9, -30], to: [22, 2, 0], fov: 40}
+film: {width: 800, height: 300, tonemap: aces}
+sampler: {spp: 128}
+integrator: {type: path, max_depth: 8}
+materials:
+  wall: {type: diffuse, albedo: {type: checker, size: 1, even: [0.8, 0.8, 0.8], odd: [0.15, 0.15, 0.15]}}
+objects:
+  - {type: quad, corner: [-10, 0, 3], edge1: [0, 12, 0], edge2: [70, 0, 0], material: wall}
+  - {type: quad, corner: [-10, 0, -30], edge1: [0, 0, 33], edge2: [70, 0, 0], material: wall}
+  - {type: mesh, file: alpha.gltf}
+YAML
+"$glint" render "$khronos_tmp/alpha.yaml" -q -o docs/images/gltf-alpha.png
+echo docs/images/gltf-alpha.png
+rm -rf "$khronos_tmp"
+# glTF's material extensions as pbr keys: clear coat, sheen, specular.
+"$glint" render scenes/gltf-layers.yaml -q -o docs/images/gltf-layers.png
+echo docs/images/gltf-layers.png

@@ -227,6 +227,12 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
     // The generator's camera: yfov 0.7 rad, at (0, 2.2, -6) in glTF, so z = 6 in glint's frame.
     EXPECT_NE(r.out.find("cameras      main (perspective, 40.1 degrees) at [0, 2.2, 6]"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("(used)"), std::string::npos) << r.out;
+    // Khronos' Cameras: two unnamed cameras at one place, perspective then orthographic; only
+    // the first is used.
+    r = run("info '" + std::string(GLINT_SOURCE_DIR) + "/tests/data/khronos/Cameras.gltf'");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("(perspective, 40.1 degrees) at [0.5, 0.5, -3] looking [0, 0, 1] (used)\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(orthographic, 2 high) at [0.5, 0.5, -3] looking [0, 0, 1]\n"), std::string::npos) << r.out;
     // bench: one line per backend built in, with the same hit counts.
     r = run("bench textured.glb --width 32 --height 24 --runs 1 --threads 1");
     EXPECT_EQ(r.status, 0) << r.err;

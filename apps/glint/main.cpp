@@ -169,7 +169,9 @@ int run_info(const RenderArgs& args) {
         const glint::GltfCamera& c = job.file_cameras[k];
         const std::string kind = c.orthographic ? fmt::format("orthographic, {:.4g} high", 2 * c.ymag)
                                                 : fmt::format("perspective, {:.3g} degrees", c.yfov_degrees);
-        const bool used = job.file_camera && job.file_camera->name == c.name && job.file_camera->position == c.position;
+        const auto& u = job.file_camera;  // the same camera: every field alike (unnamed ones too)
+        const bool used = u && u->name == c.name && u->position == c.position && u->direction == c.direction &&
+                          u->orthographic == c.orthographic && u->yfov_degrees == c.yfov_degrees && u->ymag == c.ymag;
         fmt::print("{}{} ({}) at [{:.4g}, {:.4g}, {:.4g}] looking [{:.3g}, {:.3g}, {:.3g}]{}\n",
                    k == 0 ? "cameras      " : "             ", c.name.empty() ? "(unnamed)" : c.name, kind,
                    c.position.x, c.position.y, c.position.z, c.direction.x, c.direction.y, c.direction.z,
