@@ -442,8 +442,10 @@ private:
     std::array<float, kN * kN> e_{};
 };
 
+
+}  // namespace
+
 ConductorLobe clearcoat_lobe(float roughness) {
-    // A dielectric of index 1.5 (the complex Fresnel with k = 0), single scattering only.
     ConductorLobe c;
     c.kind = ConductorLobe::FresnelKind::kComplex;
     c.eta = Color{1.5f};
@@ -452,8 +454,6 @@ ConductorLobe clearcoat_lobe(float roughness) {
     c.f_avg = Color{0};
     return c;
 }
-
-}  // namespace
 
 float sheen_albedo(float mu, float roughness) {
     // Midpoint quadrature of f cos over the hemisphere (the lobe is mirror-symmetric in phi):

@@ -121,6 +121,9 @@ struct SheenLobe {
 /// of index 1.5, single scattering) of the given roughness.
 float sheen_albedo(float mu, float roughness);
 float clearcoat_albedo(float mu, float roughness);
+/// glTF's clear coat: a GGX dielectric of index 1.5 (the complex Fresnel with k = 0) and the
+/// given roughness, single scattering only.
+ConductorLobe clearcoat_lobe(float roughness);
 
 using Lobe = std::variant<DiffuseLobe, ConductorLobe, DielectricLobe, PlasticLobe, DiffuseTransmissionLobe>;
 

@@ -243,12 +243,7 @@ TEST(Layers, AlbedoTablesMatchBruteForce) {
         for (const float mu : {0.1f, 0.5f, 0.95f}) {
             const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
             const SheenLobe sheen{Color{1}, r};
-            ConductorLobe coat;
-            coat.kind = ConductorLobe::FresnelKind::kComplex;
-            coat.eta = Color{1.5f};
-            coat.k = Color{0};
-            coat.ggx = Ggx{r * r};
-            coat.f_avg = Color{0};
+            const ConductorLobe coat = clearcoat_lobe(r);
             double e_sheen = 0, e_coat = 0;
             constexpr int kN = 1 << 20;
             for (int i = 0; i < kN; ++i) {
@@ -298,12 +293,7 @@ TEST(Layers, ACoatTakesFromTheBaseWhatItReflects) {
     const Bsdf coated = layered(base, 1, 0.3f, Color{0}, 0);
     const Vector3 wo = direction(40), wi = direction(70, 200);
     const float expected = 0.9f / kPi * (1 - clearcoat_albedo(wo.z, 0.3f)) * (1 - clearcoat_albedo(wi.z, 0.3f));
-    ConductorLobe coat;
-    coat.kind = ConductorLobe::FresnelKind::kComplex;
-    coat.eta = Color{1.5f};
-    coat.k = Color{0};
-    coat.ggx = Ggx{0.09f};
-    coat.f_avg = Color{0};
+    const ConductorLobe coat = clearcoat_lobe(0.3f);
     EXPECT_NEAR(coated.eval(wo, wi).r, expected + coat.eval(wo, wi).r, 1e-6f);
 }
 
