@@ -442,7 +442,6 @@ private:
     std::array<float, kN * kN> e_{};
 };
 
-
 }  // namespace
 
 ConductorLobe clearcoat_lobe(float roughness) {
