@@ -571,6 +571,21 @@ Color Scene::vertex_color(const SurfaceInteraction& si) const {
     return m.interpolate(m.colors, si.prim, si.bary.x, si.bary.y);
 }
 
+Color Scene::texture_general(TextureId id, const SurfaceInteraction& si) const {
+    const std::uint8_t reads = texture_reads_[id];
+    TextureContext ctx{si.p, reads & kReadsUv ? uv(si) : Point2{}};
+    if (reads & kReadsVertexColor) {
+        ctx.vertex_color = vertex_color(si);
+        ctx.vertex_alpha = vertex_alpha(si);
+    }
+    const UvSetArg arg{this, &si};
+    if (reads & kReadsMoreUvs) {
+        ctx.uv_set = &Scene::uv_set_of;
+        ctx.uv_set_arg = &arg;
+    }
+    return evaluate(textures, images, id, ctx);
+}
+
 Float Scene::vertex_alpha(const SurfaceInteraction& si) const {
     if (si.shape != ShapeKind::kMesh) return 1;
     const TriangleMesh& m = meshes[instances[si.shape_index].mesh];

@@ -108,18 +108,7 @@ struct Scene {
         const Texture& t = textures[id];
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
         if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
-        const std::uint8_t reads = texture_reads_[id];
-        TextureContext ctx{si.p, reads & kReadsUv ? uv(si) : Point2{}};
-        if (reads & kReadsVertexColor) {
-            ctx.vertex_color = vertex_color(si);
-            ctx.vertex_alpha = vertex_alpha(si);
-        }
-        const UvSetArg arg{this, &si};
-        if (reads & kReadsMoreUvs) {
-            ctx.uv_set = &Scene::uv_set_of;
-            ctx.uv_set_arg = &arg;
-        }
-        return evaluate(textures, images, id, ctx);
+        return texture_general(id, si);
     }
     const Emission& emission_of(MaterialId m) const {
         static const Emission kNone;
@@ -195,6 +184,9 @@ private:
     std::vector<std::uint32_t> top_refs_;  ///< leaf order
     std::vector<MeshBvh> mesh_bvhs_;
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
+    /// texture() for the textures that are neither constants nor checkers (out of line, so that
+    /// the two common cases stay small enough to inline).
+    Color texture_general(TextureId id, const SurfaceInteraction& si) const;
     static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2, kReadsMoreUvs = 4;
     struct UvSetArg {
         const Scene* scene;

@@ -1,8 +1,10 @@
 // glTF 2.0 (.gltf and .glb) through tinygltf: the default scene's node hierarchy with its
-// transforms, meshes (triangle primitives; strips and fans converted), metallic-roughness
-// materials with their textures and samplers, KHR_materials_emissive_strength,
-// KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume, KHR_texture_transform,
-// KHR_lights_punctual and cameras (perspective and orthographic).
+// transforms, meshes (triangle primitives; strips and fans converted; every TEXCOORD set;
+// KHR_mesh_quantization, KHR_draco_mesh_compression, EXT_meshopt_compression), metallic-roughness
+// materials with their textures and samplers, alpha modes (MASK, BLEND) as cut-outs,
+// KHR_materials_emissive_strength, _transmission, _ior, _volume, _clearcoat, _sheen, _specular,
+// KHR_texture_transform, KHR_lights_punctual and cameras (perspective and orthographic). A file
+// that requires an extension not in that list is refused.
 //
 // Frames: glTF is right-handed with +y up and cameras looking along -z; glint is left-handed. A
 // glTF file is imported with z negated (a mirror applied to every node), so a model looks as it
@@ -10,9 +12,10 @@
 // front side). UVs: glTF's v runs down the image, glint's up: v' = 1 - v.
 //
 // Decisions where glTF and a path tracer part ways: occlusion textures are read but not applied
-// (the path tracer computes occlusion); alpha modes are ignored (opaque); light intensities are
-// used as radiometric (candela -> W/sr, lux -> W/m^2) without the 683 lm/W conversion, as
-// Blender's importer does by default; emission is one-sided unless the material is doubleSided.
+// (the path tracer computes occlusion); BLEND is stochastic transparency (each ray passes with
+// probability 1 - alpha); light intensities are used as radiometric (candela -> W/sr, lux ->
+// W/m^2) without the 683 lm/W conversion, as Blender's importer does by default; emission is
+// one-sided unless the material is doubleSided.
 #include <tiny_gltf.h>
 
 #include <meshoptimizer.h>

@@ -576,8 +576,7 @@ std::optional<BsdfSample> Bsdf::sample_lobes(Vector3 wo, float uc, Sample2 u) co
 void Bsdf::set_clearcoat(float weight, float roughness) {
     coat_weight_ = std::clamp(weight, 0.0f, 1.0f);
     coat_roughness_ = std::clamp(roughness, 0.0f, 1.0f);
-    coat_ = clearcoat_lobe(coat_roughness_);
-    if (coat_weight_ > 0 && !coat_.ggx.smooth()) has_non_delta_ = true;
+    if (coat_weight_ > 0 && !clearcoat_lobe(coat_roughness_).ggx.smooth()) has_non_delta_ = true;
 }
 
 void Bsdf::set_sheen(Color color, float roughness) {
@@ -616,7 +615,7 @@ Color Bsdf::eval_local(Vector3 wo, Vector3 wi) const {
     Color f = eval_lobes(wo, wi);
     if (!layered()) return f;
     if (sheen_.color.max_component() > 0) f = f * sheen_keep(wo, wi) + sheen_.eval(wo, wi);
-    if (coat_weight_ > 0) f = f * coat_keep(wo, wi) + coat_.eval(wo, wi) * coat_weight_;
+    if (coat_weight_ > 0) f = f * coat_keep(wo, wi) + clearcoat_lobe(coat_roughness_).eval(wo, wi) * coat_weight_;
     return f;
 }
 
@@ -624,11 +623,14 @@ float Bsdf::pdf_local(Vector3 wo, Vector3 wi, const LayerWeights& w) const {
     float p = pdf_lobes(wo, wi) * (1 - w.p_sheen);
     if (w.p_sheen > 0) p += sheen_.pdf(wo, wi) * w.p_sheen;
     p *= 1 - w.p_coat;
-    if (w.p_coat > 0) p += coat_.pdf(wo, wi) * w.p_coat;
+    if (w.p_coat > 0) p += clearcoat_lobe(coat_roughness_).pdf(wo, wi) * w.p_coat;
     return p;
 }
 
-Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const { return eval_local(to_local(wo_w), to_local(wi_w)); }
+Color Bsdf::eval(Vector3 wo_w, Vector3 wi_w) const {
+    const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
+    return layered() ? eval_local(wo, wi) : eval_lobes(wo, wi);
+}
 
 float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
     const Vector3 wo = to_local(wo_w), wi = to_local(wi_w);
@@ -638,38 +640,39 @@ float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
 
 std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const {
     const Vector3 wo = to_local(wo_w);
-    std::optional<BsdfSample> s;
-    if (!layered()) {
-        s = sample_lobes(wo, uc, u);
-    } else {
-        const LayerWeights w = layer_weights(wo);
-        constexpr float kBelowOne = 0x1.fffffep-1f;
-        if (uc < w.p_coat) {
-            s = coat_.sample(wo, std::min(uc / w.p_coat, kBelowOne), u);
-            if (s && s->specular) {
-                s->f = s->f * coat_weight_;
-                s->pdf *= w.p_coat;
-            }
-        } else {
-            const float v = std::min((uc - w.p_coat) / (1 - w.p_coat), kBelowOne);
-            if (v < w.p_sheen) {
-                s = sheen_.sample(wo, v / w.p_sheen, u);
-            } else {
-                s = sample_lobes(wo, std::min((v - w.p_sheen) / (1 - w.p_sheen), kBelowOne), u);
-                if (s && s->specular) {
-                    s->f = s->f * (coat_keep(wo, s->wi) * sheen_keep(wo, s->wi));
-                    s->pdf *= (1 - w.p_coat) * (1 - w.p_sheen);
-                }
-            }
-        }
-        if (s && !s->specular) {  // the whole of f and of the density in that direction
-            s->f = eval_local(wo, s->wi);
-            s->pdf = pdf_local(wo, s->wi, w);
-        }
-        if (s && !(s->pdf > 0)) s.reset();
-    }
+    std::optional<BsdfSample> s = layered() ? sample_layered(wo, uc, u) : sample_lobes(wo, uc, u);
     if (!s) return std::nullopt;
     s->wi = to_world(s->wi);
+    return s;
+}
+
+std::optional<BsdfSample> Bsdf::sample_layered(Vector3 wo, float uc, Sample2 u) const {
+    std::optional<BsdfSample> s;
+    const LayerWeights w = layer_weights(wo);
+    constexpr float kBelowOne = 0x1.fffffep-1f;
+    if (uc < w.p_coat) {
+        s = clearcoat_lobe(coat_roughness_).sample(wo, std::min(uc / w.p_coat, kBelowOne), u);
+        if (s && s->specular) {
+            s->f = s->f * coat_weight_;
+            s->pdf *= w.p_coat;
+        }
+    } else {
+        const float v = std::min((uc - w.p_coat) / (1 - w.p_coat), kBelowOne);
+        if (v < w.p_sheen) {
+            s = sheen_.sample(wo, v / w.p_sheen, u);
+        } else {
+            s = sample_lobes(wo, std::min((v - w.p_sheen) / (1 - w.p_sheen), kBelowOne), u);
+            if (s && s->specular) {
+                s->f = s->f * (coat_keep(wo, s->wi) * sheen_keep(wo, s->wi));
+                s->pdf *= (1 - w.p_coat) * (1 - w.p_sheen);
+            }
+        }
+    }
+    if (s && !s->specular) {  // the whole of f and of the density in that direction
+        s->f = eval_local(wo, s->wi);
+        s->pdf = pdf_local(wo, s->wi, w);
+    }
+    if (s && !(s->pdf > 0)) s.reset();
     return s;
 }
 

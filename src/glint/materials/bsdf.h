@@ -173,15 +173,16 @@ private:
     Color eval_lobes(Vector3 wo, Vector3 wi) const;  ///< local frame, layers left out
     float pdf_lobes(Vector3 wo, Vector3 wi) const;
     std::optional<BsdfSample> sample_lobes(Vector3 wo, float uc, Sample2 u) const;  ///< local frame
-    Color eval_local(Vector3 wo, Vector3 wi) const;  ///< everything, local frame
-    float pdf_local(Vector3 wo, Vector3 wi, const LayerWeights& w) const;
+    /// The layered parts, out of line so that a Bsdf without layers runs the lobes' code alone.
+    [[gnu::noinline]] std::optional<BsdfSample> sample_layered(Vector3 wo, float uc, Sample2 u) const;
+    [[gnu::noinline]] Color eval_local(Vector3 wo, Vector3 wi) const;  ///< everything, local frame
+    [[gnu::noinline]] float pdf_local(Vector3 wo, Vector3 wi, const LayerWeights& w) const;
     float coat_keep(Vector3 wo, Vector3 wi) const;   ///< (1 - E_coat(mu_o)) (1 - E_coat(mu_i))
     float sheen_keep(Vector3 wo, Vector3 wi) const;
     bool layered() const { return coat_weight_ > 0 || sheen_.color.max_component() > 0; }
 
     float coat_weight_ = 0;
-    float coat_roughness_ = 0;
-    ConductorLobe coat_;
+    float coat_roughness_ = 0;  ///< the coat's lobe is clearcoat_lobe(coat_roughness_), made when used
     SheenLobe sheen_;
 
     Vector3 t_{1, 0, 0}, b_{0, 1, 0}, n_{0, 0, 1};
