@@ -339,8 +339,11 @@ Color PlasticLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
                          albedo.b * scale / (1 - albedo.b * fdr_inside)};
         if (ggx.smooth()) return base;
         const Vector3 wm = normalize(wo + wi);
-        const Color coat = coat_fresnel(dot(wo, wm)) * (ggx.d(wm) * ggx.g(wo, wi) / (4 * wo.z * wi.z));
-        return base + coat;
+        // Multiplied in the order of the plain coat's d g F / (4 cos cos), so that its images
+        // stay bit for bit what they were.
+        const Color f = coat_fresnel(dot(wo, wm));
+        const float dg = ggx.d(wm) * ggx.g(wo, wi), den = 4 * wo.z * wi.z;
+        return base + Color{dg * f.r / den, dg * f.g / den, dg * f.b / den};
     });
 }
 
