@@ -296,6 +296,13 @@ struct Importer {
         return WrapMode::kRepeat;
     }
 
+    /// A JSON number that is a whole number in int's range; -1 otherwise (an index nothing has).
+    static int whole(const tinygltf::Value& v) {
+        if (!v.IsNumber()) return -1;
+        const double x = v.GetNumberAsDouble();
+        return x >= -2147483648.0 && x < 2147483648.0 && x == std::floor(x) ? static_cast<int>(x) : -1;
+    }
+
     static double number(const tinygltf::Value& v, const char* key, double fallback) {
         if (!v.Has(key)) return fallback;
         const tinygltf::Value& x = v.Get(key);
@@ -334,7 +341,7 @@ struct Importer {
             const double cc = -s * sc[0], dd = c * sc[1], f = off[1];
             // F T F: u' = a u + b (1 - v) + e ; v' = 1 - (cc u + dd (1 - v) + f).
             d.uv_transform = {Float(a), Float(-b), Float(b + e), Float(-cc), Float(dd), Float(1 - dd - f)};
-            if (v.Has("texCoord")) tex_coord = static_cast<int>(number(v, "texCoord", tex_coord));  // overrides
+            if (v.Has("texCoord")) tex_coord = whole(v.Get("texCoord"));  // overrides; -1 if not a set number
         }
         if (tex_coord < 0 || tex_coord >= kMaxUvSets)
             fail_at(ref + "/texCoord", fmt::format("{}: texCoord {} (glint reads TEXCOORD_0 to TEXCOORD_{})", what,
@@ -375,6 +382,8 @@ struct Importer {
         MaterialDesc d;
         d.kind = MaterialDesc::Kind::kPbr;
         const auto& pbr = m.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() != 4)
+            fail_at(at + "/pbrMetallicRoughness/baseColorFactor", "baseColorFactor must be 4 numbers");
         const Color base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
         d.color = pbr.baseColorTexture.index >= 0
                       ? scaled(texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
@@ -397,6 +406,7 @@ struct Importer {
         if (m.occlusionTexture.index >= 0)
             (void)texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions,
                           false, "occlusionTexture", at + "/occlusionTexture");  // checked, not applied (see the top)
+        if (m.emissiveFactor.size() != 3) fail_at(at + "/emissiveFactor", "emissiveFactor must be 3 numbers");
         Color emissive{float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2])};
         const auto& ext = m.extensions;
         if (const auto it = ext.find("KHR_materials_emissive_strength"); it != ext.end())
@@ -496,8 +506,8 @@ struct Importer {
         tinygltf::ExtensionMap ext;
         if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
             ext["KHR_texture_transform"] = info.Get("extensions").Get("KHR_texture_transform");
-        const int tex_coord = info.Has("texCoord") && info.Get("texCoord").IsNumber() ? info.Get("texCoord").GetNumberAsInt() : 0;
-        TextureDesc t = texture(info.Get("index").GetNumberAsInt(), tex_coord, ext, srgb, key, where);
+        const int tex_coord = info.Has("texCoord") ? whole(info.Get("texCoord")) : 0;
+        TextureDesc t = texture(whole(info.Get("index")), tex_coord, ext, srgb, key, where);
         t.alpha_channel = alpha;
         return scaled(std::move(t), factor);
     }
@@ -579,7 +589,7 @@ struct Importer {
     DracoPrimitive decode_draco(const tinygltf::Value& ext, const std::string& at, const std::string& what) const {
         if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber())
             fail_at(at, what + ": KHR_draco_mesh_compression needs a bufferView");
-        const int view = ext.Get("bufferView").GetNumberAsInt();
+        const int view = whole(ext.Get("bufferView"));
         if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
             fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
         const tinygltf::BufferView& bv = model.bufferViews[view];
@@ -598,7 +608,7 @@ struct Importer {
         if (ext.Has("attributes") && ext.Get("attributes").IsObject()) {
             const tinygltf::Value& a = ext.Get("attributes");
             for (const std::string& key : a.Keys())
-                if (a.Get(key).IsNumber()) d.ids[key] = a.Get(key).GetNumberAsInt();
+                if (a.Get(key).IsNumber()) d.ids[key] = whole(a.Get(key));
         }
         return d;
     }
@@ -866,7 +876,7 @@ struct Importer {
             }
         }
         if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end() && it->second.Has("light")) {
-            const int li = it->second.Get("light").GetNumberAsInt();
+            const int li = whole(it->second.Get("light"));
             if (li >= 0 && li < static_cast<int>(model.lights.size())) {
                 const tinygltf::Light& l = model.lights[li];
                 Color c{1};

@@ -214,6 +214,22 @@ TEST(GltfExtensions, ClearcoatSheenAndSpecularMapOntoThePbrMaterial) {
     const ImportedFile none = import_gltf(with(R"("KHR_materials_clearcoat": {}, "KHR_materials_sheen": {})"));
     EXPECT_FALSE(none.materials.at(0).desc.clearcoat);
     EXPECT_FALSE(none.materials.at(0).desc.sheen);
+    // A texCoord far outside int's range, or not a whole number: an error at it, not a cast.
+    // (On BoxTextured, which has a texture 0.)
+    const std::string textured =
+        testing::read_file(std::filesystem::path(GLINT_SOURCE_DIR) / "tests/data/khronos/BoxTextured.gltf");
+    for (const char* tc : {"1e300", "2.5", "-3"}) {
+        std::string t = textured;
+        const std::string key = "\"pbrMetallicRoughness\": {";
+        t.insert(t.find(key), fmt::format(R"("extensions": {{"KHR_materials_clearcoat": {{"clearcoatFactor": 1, "clearcoatTexture": {{"index": 0, "texCoord": {}}}}}}},)", tc));
+        std::ofstream(dir / "textured.gltf") << t;
+        try {
+            import_gltf(dir / "textured.gltf");
+            ADD_FAILURE() << "no error for texCoord " << tc;
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find("texCoord"), std::string::npos) << e.what();
+        }
+    }
     try {
         import_gltf(with(R"("KHR_materials_clearcoat": {"clearcoatFactor": 1.5})"));
         ADD_FAILURE() << "no error";
