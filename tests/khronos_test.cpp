@@ -71,6 +71,23 @@ TEST(Khronos, CamerasListsBothCameras) {
     }
 }
 
+TEST(Khronos, UnnamedCamerasArePickedByTheirOrder) {
+    const ImportedFile second = import_gltf(khronos("Cameras"), "#1");
+    ASSERT_TRUE(second.camera);
+    EXPECT_TRUE(second.camera->orthographic);
+    const ImportedFile first = import_gltf(khronos("Cameras"), "#0");
+    ASSERT_TRUE(first.camera);
+    EXPECT_FALSE(first.camera->orthographic);
+    try {
+        import_gltf(khronos("Cameras"), "#2");
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("no camera named '#2' (the file has 2; '#0' to '#1' pick them in order)"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Khronos, SimpleSparseAccessorMovesThreeVertices) {
     // Vertices 8, 10 and 12 of the 2 x 7 grid are replaced by (1, 2), (3, 3) and (5, 4).
     const ImportedFile f = import_gltf(khronos("SimpleSparseAccessor"));

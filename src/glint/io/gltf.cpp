@@ -856,7 +856,11 @@ struct Importer {
         const auto place = [&](Vector3 local) { return g.apply(local); };
         if (n.camera >= 0 && n.camera < static_cast<int>(model.cameras.size())) {
             const tinygltf::Camera& c = model.cameras[n.camera];
-            const bool wanted = camera_name.empty() ? !camera.has_value() : c.name == camera_name;
+            // Wanted: the first camera; or the one named; or, for "#N" when no camera has that
+            // name, the N-th met (from 0; unnamed cameras have no other handle).
+            const bool wanted = camera_name.empty()    ? !camera.has_value()
+                                : c.name == camera_name ? !camera.has_value() || camera->name != camera_name
+                                : !camera.has_value() && camera_name == fmt::format("#{}", out.cameras.size());
             if (c.type == "perspective" || c.type == "orthographic") {
                 GltfCamera cam;
                 cam.name = c.name;
@@ -1017,7 +1021,10 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         for (int n : model.scenes[scene].nodes) im.visit(n, Matrix34{}, 0);
     }
     if (!camera_name.empty() && !im.camera)
-        throw IoError(fmt::format("{}: no camera named '{}'", file, camera_name));
+        throw IoError(im.out.cameras.empty()
+                          ? fmt::format("{}: no camera named '{}' (the file has no cameras)", file, camera_name)
+                          : fmt::format("{}: no camera named '{}' (the file has {}; '#0' to '#{}' pick them in order)", file,
+                                        camera_name, im.out.cameras.size(), im.out.cameras.size() - 1));
     im.out.camera = im.camera;
     if (im.out.meshes.empty()) throw IoError(fmt::format("{}: no triangle meshes in the scene", file));
     return std::move(im.out);
