@@ -164,7 +164,7 @@ public:
             }
             case K::kPbr: {
                 PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
-                              diffuse_fresnel_inside(d.ior), std::nullopt};
+                              diffuse_fresnel_inside(d.ior), std::nullopt, {}, {}, {}, {}, {}, {}};
                 if (d.metallic_roughness) p.metallic_roughness = add_texture(*d.metallic_roughness);
                 const auto optional = [&](const std::optional<TextureDesc>& t) {
                     return t ? std::optional<TextureId>(add_texture(*t)) : std::nullopt;
@@ -345,7 +345,7 @@ private:
             image = read_image(path, encoding);
         } catch (const IoError& e) {
             diagnostics_.error(filename.loc, e.what());
-            image = Image{1, 1, {Color{0}}};  // keeps ids valid; the build fails anyway
+            image = Image{1, 1, {Color{0}}, {}};  // keeps ids valid; the build fails anyway
         }
         scene_.images.push_back(std::move(image));
         const auto id = static_cast<ImageId>(scene_.images.size() - 1);
@@ -683,7 +683,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
                     if (!fallback) fallback = materials.add_material(MaterialDesc{});
                     return *fallback;
                 };
-                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera, f.cameras};
+                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera, f.cameras, {}};
                 for (TriangleMesh& m : f.meshes) {
                     lf.mesh_alpha.push_back(m.material != kNoImportedMaterial ? alphas.at(m.material) : -1);
                     m.material = map_id(m.material);

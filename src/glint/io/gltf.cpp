@@ -175,30 +175,30 @@ struct Importer {
         if (stride == 0 || stride > 256 || count > kMaxAccessorValues / stride)
             fail_at(at + "/count", fmt::format("{}: EXT_meshopt_compression: {} elements of {} bytes is out of range", what,
                                                count, stride));
-        std::vector<unsigned char> out(count * stride);
+        std::vector<unsigned char> decoded(count * stride);
         const unsigned char* src = data.data() + offset;
         int status = -1;
         if (mode == "ATTRIBUTES") {
-            if (stride % 4 == 0) status = meshopt_decodeVertexBuffer(out.data(), count, stride, src, length);
+            if (stride % 4 == 0) status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, src, length);
             if (status == 0 && filter != "NONE") {
-                if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(out.data(), count, stride);
-                else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(out.data(), count, stride);
-                else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);
+                if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(decoded.data(), count, stride);
+                else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(decoded.data(), count, stride);
+                else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
                 else
                     fail_at(at + "/filter", fmt::format("{}: EXT_meshopt_compression: filter '{}' with {}-byte elements", what,
                                                         filter, stride));
             }
         } else if (mode == "TRIANGLES" || mode == "INDICES") {
             if (stride == 2 || stride == 4)
-                status = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out.data(), count, stride, src, length)
-                                             : meshopt_decodeIndexSequence(out.data(), count, stride, src, length);
+                status = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, src, length)
+                                             : meshopt_decodeIndexSequence(decoded.data(), count, stride, src, length);
         } else {
             fail_at(at + "/mode", fmt::format("{}: EXT_meshopt_compression: mode '{}' (ATTRIBUTES, TRIANGLES or INDICES)", what, mode));
         }
         if (status != 0)
             fail_at(at, fmt::format("{}: EXT_meshopt_compression: the {} data of buffer view {} cannot be decoded", what,
                                     mode, view));
-        return meshopt_views.emplace(view, std::move(out)).first->second;
+        return meshopt_views.emplace(view, std::move(decoded)).first->second;
     }
     mutable std::map<int, std::vector<unsigned char>> meshopt_views;
 
@@ -1001,7 +1001,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
             throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
         throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : why));
     }
-    Importer im{model, file, glb, {}, {}, {}, {}, {}, std::nullopt, camera_name};
+    Importer im{model, file, glb, {}, {}, {}, {}, {}, std::nullopt, camera_name, {}};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
     im.check_extensions();
     im.vertex_colored.assign(model.materials.size(), false);

@@ -68,7 +68,9 @@ void expect_grid(const ImportedFile& f) {
         EXPECT_NEAR(m.uvs[i].x, p.x / 4, 1e-3) << i;
         EXPECT_NEAR(m.uvs[i].y, 1 - p.y / 8, 1e-3) << i;
         EXPECT_NEAR(p.z, 0, 1e-6);
-        if (!m.normals.empty()) EXPECT_NEAR(m.normals[i].z, -1, 0.02) << i;  // glTF +z is glint's -z
+        if (!m.normals.empty()) {
+            EXPECT_NEAR(m.normals[i].z, -1, 0.02) << i;  // glTF +z is glint's -z
+        }
     }
 }
 
@@ -113,8 +115,9 @@ TEST(GltfCompression, DracoTranscodedSampleModelsDecodeToTheOriginals) {
                 if (d < best_d) best_d = d, best = j;
             }
             EXPECT_LT(best_d, 2e-3f) << name << " vertex " << i;
-            if (!a.colors.empty())
+            if (!a.colors.empty()) {
                 for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.colors[best][k], b.colors[i][k], 1e-3) << name << " vertex " << i;
+            }
             if (!a.uvs.empty()) {
                 EXPECT_NEAR(a.uvs[best].x, b.uvs[i].x, 1e-3) << name << " vertex " << i;
                 EXPECT_NEAR(a.uvs[best].y, b.uvs[i].y, 1e-3) << name << " vertex " << i;

@@ -125,7 +125,7 @@ ImportedFile import_obj(const std::filesystem::path& path) {
     };
     const tinyobj::attrib_t& a = reader.GetAttrib();
     for (const tinyobj::material_t& m : reader.GetMaterials())
-        out.materials.push_back({m.name, map_material(m, path.parent_path(), file, out)});
+        out.materials.push_back({m.name, map_material(m, path.parent_path(), file, out), std::nullopt});
 
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
         const tinyobj::mesh_t& sm = shape.mesh;

@@ -45,7 +45,7 @@ Scene light_scene(bool env_map) {
     sun.one_minus_cos = 2 * s4 * s4;
     s.lights.push_back(sun);
     if (env_map) {
-        Image image{32, 16, std::vector<Color>(32 * 16, Color{0.2f})};
+        Image image{32, 16, std::vector<Color>(32 * 16, Color{0.2f}), {}};
         for (int y = 3; y < 6; ++y)
             for (int x = 20; x < 24; ++x) image.texels[static_cast<std::size_t>(y * 32 + x)] = Color{50};
         s.background = EnvironmentMap::make(image, 1);
