@@ -453,7 +453,7 @@ TEST(Pbrt, EqualAreaEnvironmentMaps) {
     }
     for (int c : cells) EXPECT_NEAR(c, n / 64, 5 * std::sqrt(n / 64.0)) << "cell count";
 
-    Image square{64, 64, std::vector<Color>(64 * 64)};
+    Image square{64, 64, std::vector<Color>(64 * 64), {}};
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
             const float u = 2 * (x + 0.5f) / 64 - 1, v = 2 * (y + 0.5f) / 64 - 1;
@@ -468,7 +468,7 @@ TEST(Pbrt, EqualAreaEnvironmentMaps) {
     EXPECT_NEAR(r.to_world.apply(Vector3{0, 1, 0}).z, 1, 1e-6f);  // the rotation is the one meant
 
     // A uniform sky of luminance 1 gives an illuminance of pi on a surface facing any way.
-    const Image white{256, 128, std::vector<Color>(256 * 128, Color{1})};
+    const Image white{256, 128, std::vector<Color>(256 * 128, Color{1}), {}};
     for (Vector3 up : {Vector3{0, 1, 0}, Vector3{0, 0, 1}, normalize(Vector3{1, -2, 0.5f})})
         EXPECT_NEAR(illuminance(white, up), M_PI, 2e-3);
 }

@@ -43,7 +43,7 @@ namespace glint {
 namespace {
 
 // 2 x 2 grey image: row 0 (the top, v near 1) is 0, 1; row 1 (the bottom, v near 0) is 2, 3.
-Image two_by_two() { return Image{2, 2, {Color{0}, Color{1}, Color{2}, Color{3}}}; }
+Image two_by_two() { return Image{2, 2, {Color{0}, Color{1}, Color{2}, Color{3}}, {}}; }
 
 TEST(ImageTexture, BilinearHandValues) {
     const Image img = two_by_two();
