@@ -6,7 +6,8 @@
 // reflection, smooth refraction): eval and pdf never see them, sample returns them with
 // `specular` set and f / pdf equal to the delta's weight.
 //
-// Lobes are plain structs in a closed set; a Bsdf is a weighted sum of up to three of them,
+// Lobes are plain structs in a closed set; a Bsdf is a weighted sum of up to three of them (under
+// glTF's clear-coat and sheen layers, when a material has them),
 // built per hit from a material (materials/material.h).
 #include <array>
 #include <cstdint>
