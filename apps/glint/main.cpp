@@ -99,9 +99,7 @@ glint::RenderJob load_job(const RenderArgs& args) {
         if (job.file_camera) {  // the file's own camera
             const glint::GltfCamera& c = *job.file_camera;
             if (c.orthographic) {
-                const float h = 2 * c.ymag, w = h * float(job.width) / float(job.height);
-                job.camera = glint::Camera(c.position, c.direction, c.up, w, h, 1, job.width, job.height);
-                job.camera.make_orthographic();
+                job.camera = glint::Camera::orthographic(c.position, c.direction, c.up, 2 * c.ymag, job.width, job.height);
             } else {
                 job.camera = glint::Camera::look_at(c.position, c.position + c.direction, c.up, c.yfov_degrees,
                                                     job.width, job.height);

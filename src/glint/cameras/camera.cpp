@@ -46,6 +46,14 @@ Camera Camera::look_at(Point3 from, Point3 to, Vector3 up, Float vertical_fov_de
     return Camera(from, to - from, up, w, h, 1, film_width, film_height);
 }
 
+Camera Camera::orthographic(Point3 from, Vector3 direction, Vector3 up, Float height, int film_width,
+                            int film_height) {
+    const Float aspect = static_cast<Float>(film_width) / static_cast<Float>(film_height);
+    Camera c(from, direction, up, height * aspect, height, 1, film_width, film_height);
+    c.make_orthographic();
+    return c;
+}
+
 Camera frame_box(const Bounds3& b, Vector3 towards_camera, Vector3 up, Float vfov_degrees, int film_width,
                  int film_height, Float margin) {
     const Vector3 v = -normalize(towards_camera);  // the view direction

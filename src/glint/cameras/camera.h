@@ -49,6 +49,10 @@ public:
 
     static Camera look_at(Point3 from, Point3 to, Vector3 up, Float vertical_fov_degrees,
                           int film_width, int film_height);
+    /// An orthographic camera at `from` looking along `direction`, showing `height` world units
+    /// vertically (the width follows the film's aspect ratio).
+    static Camera orthographic(Point3 from, Vector3 direction, Vector3 up, Float height, int film_width,
+                               int film_height);
 
     /// Turns the camera into a thin lens of `aperture_radius` focused at `focus_distance` along
     /// V (both > 0 to have an effect; aperture 0 keeps the pinhole).

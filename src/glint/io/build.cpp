@@ -532,10 +532,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     } else {
         const auto& l = std::get<LookAtCameraDesc>(d.camera);
         if (l.orthographic) {
-            const Float aspect = static_cast<Float>(job.width) / static_cast<Float>(job.height);
-            job.camera = Camera(l.from, l.to - l.from, l.up, l.height * aspect, l.height, 1,
-                                job.width, job.height);
-            job.camera.make_orthographic();
+            job.camera = Camera::orthographic(l.from, l.to - l.from, l.up, l.height, job.width, job.height);
         } else {
             job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
         }

@@ -470,14 +470,12 @@ struct Importer {
 
     // --- KHR_materials_clearcoat, _sheen, _specular ---
 
-    /// A factor in [0, 1] (or [0, inf) when `unbounded`) named `key` of extension object `v`.
-    float factor(const tinygltf::Value& v, const char* key, float fallback, const std::string& at,
-                 bool unbounded = false) const {
+    /// A factor in [0, 1] named `key` of extension object `v`.
+    float factor(const tinygltf::Value& v, const char* key, float fallback, const std::string& at) const {
         if (!v.Has(key)) return fallback;
         const tinygltf::Value& x = v.Get(key);
         const double f = x.IsNumber() ? x.GetNumberAsDouble() : std::numeric_limits<double>::quiet_NaN();
-        if (!(f >= 0 && (unbounded ? std::isfinite(f) : f <= 1)))
-            fail_at(at + "/" + key, fmt::format("{} must be a number in [0, {}", key, unbounded ? "inf)" : "1]"));
+        if (!(f >= 0 && f <= 1)) fail_at(at + "/" + key, fmt::format("{} must be a number in [0, 1]", key));
         return float(f);
     }
     Color color_factor(const tinygltf::Value& v, const char* key, Color fallback, const std::string& at,
@@ -909,9 +907,7 @@ struct Importer {
 /// accessors of KHR_draco_mesh_compression primitives (no buffer view: the indices are in the
 /// Draco data) are detached from them. The file's bytes so changed, or nothing when neither occurs
 /// (the file is then loaded as it is). JSON pointers into the file stay valid for messages.
-std::optional<std::string> prepare_for_tinygltf(const std::filesystem::path& path, bool glb) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+std::optional<std::string> prepare_for_tinygltf(const std::string& bytes, bool glb) {
     if (bytes.find("EXT_meshopt_compression") == std::string::npos &&
         bytes.find("KHR_draco_mesh_compression") == std::string::npos)
         return std::nullopt;
@@ -976,17 +972,18 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     tinygltf::Model model;
     std::string err, warn;
     const bool glb = mesh_format(path) == MeshFormat::kGlb;
-    bool ok = false;
-    if (auto patched = prepare_for_tinygltf(path, glb)) {
-        const std::string base = path.parent_path().string();
-        if (patched->size() > std::numeric_limits<unsigned int>::max()) throw IoError(fmt::format("{}: too large", file));
-        const auto size = static_cast<unsigned int>(patched->size());
-        ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(patched->data()),
-                                               size, base)
-                 : loader.LoadASCIIFromString(&model, &err, &warn, patched->data(), size, base);
-    } else {
-        ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, file) : loader.LoadASCIIFromFile(&model, &err, &warn, file);
-    }
+    // The file is read once, here; tinygltf parses it from memory (adjusted when it uses the
+    // compression extensions).
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(fmt::format("{}: cannot open", file));
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (auto patched = prepare_for_tinygltf(bytes, glb)) bytes = std::move(*patched);
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw IoError(fmt::format("{}: too large", file));
+    const auto size = static_cast<unsigned int>(bytes.size());
+    const std::string base = path.parent_path().string();
+    const bool ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                      size, base)
+                        : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, base);
     const auto trim = [](std::string s) {
         while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
         return s;
