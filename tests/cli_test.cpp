@@ -170,9 +170,15 @@ TEST_F(Cli, DemoRendersTheBuiltInFigure14) {
     const Result r = run("render --width 64 --height 36 -q");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "glint.png"));
-    // The demo is the fig14 file: same pixels.
+    // The demo is the fig14 file: same pixels (the headers differ: scene name, render time).
     ASSERT_EQ(run("render " + seed("fig14-reflections.yaml") + " --width 64 --height 36 -q -o f.png").status, 0);
-    EXPECT_EQ(read(dir_ / "glint.png"), read(dir_ / "f.png"));
+    const auto pixels = [](const fs::path& p) {
+        auto in = OIIO::ImageInput::open(p.string());
+        std::vector<unsigned char> v(64 * 36 * 3);
+        if (in) in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, v.data());
+        return v;
+    };
+    EXPECT_EQ(pixels(dir_ / "glint.png"), pixels(dir_ / "f.png"));
 }
 
 TEST_F(Cli, OutputDefaultsToTheSceneName) {
@@ -267,6 +273,385 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
     r = run("render textured.glb --accel rtx");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("--accel: unknown backend 'rtx' (known: bvh, sbvh, embree)"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+// Long renders: progressive passes, interruption, checkpoints, time budgets and the live view,
+// each through the real binary in a child process.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <atomic>
+#include <cstring>
+#include <map>
+
+#include "glint/io/checkpoint.h"
+
+namespace {
+
+class LongRender : public Cli {
+protected:
+    // Starts glint in the test's folder (the shell execs it: the pid is glint's).
+    pid_t start(const std::string& args) {
+        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && exec '" + GLINT_CLI + "' " +
+                                args + " >>out.txt 2>>err.txt </dev/null";
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        return pid;
+    }
+    static int wait_for(pid_t pid) {
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+    }
+    // Waits (up to 60 s) until `file` exists with a modification time other than `before`, or
+    // the child has exited; true if it did appear.
+    bool wait_for_file(pid_t pid, const fs::path& file, fs::file_time_type before) {
+        for (int i = 0; i < 6000; ++i) {
+            std::error_code ec;
+            if (fs::exists(file, ec) && fs::last_write_time(file, ec) != before) return true;
+            int status;
+            if (::waitpid(pid, &status, WNOHANG) == pid) {
+                exited_status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+                return false;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+    static std::vector<float> pixels(const fs::path& file, std::map<std::string, std::string>* meta = nullptr) {
+        auto in = OIIO::ImageInput::open(file.string());
+        if (!in) return {};
+        const OIIO::ImageSpec& spec = in->spec();
+        std::vector<float> v(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, v.data());
+        if (meta) {
+            for (const auto& p : spec.extra_attribs) (*meta)[p.name().string()] = p.get_string();
+        }
+        return v;
+    }
+    int exited_status_ = -1;
+    const std::string cornell_ = std::string(GLINT_SOURCE_DIR) + "/scenes/cornell-box.yaml";
+};
+
+// Interrupted by SIGINT, then SIGTERM, then SIGKILL, each time resumed from the checkpoint: the
+// final image is the uninterrupted one, bit for bit. After SIGINT and SIGTERM the exit status is
+// 3 and the image of the completed passes is whole; after SIGKILL the last checkpoint is whole.
+TEST_F(LongRender, InterruptedAndResumedRendersEqualTheUninterruptedOne) {
+    const std::string scene = cornell_ + " --width 96 --height 72 --spp 256 --threads 2";
+    ASSERT_EQ(run("render " + scene + " -q -o full.exr").status, 0);
+    const std::vector<float> full = pixels(dir_ / "full.exr");
+    ASSERT_FALSE(full.empty());
+
+    const fs::path ckpt = dir_ / "c.ckpt";
+    const int signals[] = {SIGINT, SIGTERM, SIGKILL};
+    int interrupted = 0, status = -1;
+    for (int round = 0; round < 12; ++round) {
+        const fs::file_time_type before = fs::exists(ckpt) ? fs::last_write_time(ckpt) : fs::file_time_type{};
+        const std::string resume = round == 0 ? "--checkpoint c.ckpt" : "--resume c.ckpt";
+        exited_status_ = -1;
+        const pid_t pid = start("render " + scene + " -o part.exr --checkpoint-every 0.15 " + resume);
+        if (!wait_for_file(pid, ckpt, before)) {  // it finished before a new checkpoint
+            status = exited_status_;
+            break;
+        }
+        const int sig = signals[interrupted % 3];
+        ::kill(pid, sig);
+        status = wait_for(pid);
+        if (status == 0) break;  // it had just finished
+        ++interrupted;
+        // Whatever the signal, the checkpoint on disk is whole.
+        const glint::Checkpoint c = glint::read_checkpoint(ckpt);
+        EXPECT_GT(c.state.spp_done, 0);
+        const auto temporaries = [&] {
+            std::vector<fs::path> t;
+            for (const auto& e : fs::directory_iterator(dir_.path()))
+                if (e.path().extension() == ".tmp") t.push_back(e.path());
+            return t;
+        };
+        if (sig == SIGKILL) {
+            EXPECT_EQ(status, 1000 + SIGKILL);
+            // A process killed outright may leave the temporary file it was writing (never a
+            // truncated image or checkpoint); cleared here so the check below means something.
+            for (const fs::path& t : temporaries()) fs::remove(t);
+        } else {
+            EXPECT_TRUE(temporaries().empty());
+            EXPECT_EQ(status, 3) << read(dir_ / "err.txt");
+            std::map<std::string, std::string> meta;
+            EXPECT_EQ(pixels(dir_ / "part.exr", &meta).size(), full.size());  // whole, readable
+            EXPECT_EQ(meta["glint:spp"], std::to_string(c.state.spp_done));
+            EXPECT_EQ(meta["glint:complete"], "no");
+        }
+    }
+    EXPECT_EQ(status, 0) << read(dir_ / "err.txt");
+    EXPECT_GE(interrupted, 3) << "the render finished too soon to be interrupted by each signal";
+    const std::vector<float> part = pixels(dir_ / "part.exr");
+    ASSERT_EQ(part.size(), full.size());
+    EXPECT_EQ(0, std::memcmp(part.data(), full.data(), full.size() * sizeof(float)));
+    for (const auto& e : fs::directory_iterator(dir_.path()))  // no temporary file left behind
+        EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+    EXPECT_NE(read(dir_ / "err.txt").find("interrupted by SIGINT"), std::string::npos);
+    EXPECT_NE(read(dir_ / "err.txt").find("interrupted by SIGTERM"), std::string::npos);
+}
+
+// A second SIGINT exits at once (status 130), removes the temporary files and leaves the old
+// image as it was.
+TEST_F(LongRender, SecondSigintAbortsAtOnceWithoutATruncatedFile) {
+    write("old.exr", "precious bytes");
+    const pid_t pid = start("render " + cornell_ + " --width 1000 --height 1000 --spp 64 -q -o old.exr "
+                            "--checkpoint c.ckpt --checkpoint-every 0");
+    ASSERT_TRUE(wait_for_file(pid, dir_ / "c.ckpt", {}));
+    ::kill(pid, SIGINT);
+    // Two signals sent back to back can merge into one: the second follows once the first has
+    // been taken, while the render winds down (abandoning the pass, writing 1000x1000 pixels).
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    ::kill(pid, SIGINT);
+    EXPECT_EQ(wait_for(pid), 130);
+    EXPECT_TRUE(read(dir_ / "old.exr") == "precious bytes");
+    for (const auto& e : fs::directory_iterator(dir_.path()))
+        EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+    EXPECT_NO_THROW(glint::read_checkpoint(dir_ / "c.ckpt"));
+}
+
+TEST_F(LongRender, ACheckpointOfAnotherRenderIsRefused) {
+    const std::string scene = cornell_ + " --width 16";
+    ASSERT_EQ(run("render " + scene + " --height 12 --spp 8 -q -o a.exr --checkpoint c.ckpt").status, 0);
+    for (const std::string other : {"--height 12 --spp 16", "--height 12 --spp 8 --seed 3", "--height 13 --spp 8",
+                                    "--height 12 --spp 8 --aovs",
+                                    "--height 12 --spp 8 --noise-threshold 0.1"}) {
+        const Result r = run("render " + scene + " " + other + " -o b.exr --resume c.ckpt");
+        EXPECT_EQ(r.status, 1) << other;
+        EXPECT_NE(r.err.find("c.ckpt: a checkpoint of another scene or other options"), std::string::npos)
+            << other << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir_ / "b.exr")) << other;
+    }
+    // Another scene file (the same scene, one colour changed).
+    std::string text = read(cornell_);
+    text.replace(text.find("0.63"), 4, "0.64");
+    write("edited.yaml", text);
+    Result r = run("render edited.yaml --width 16 --height 12 --spp 8 -o b.exr --resume c.ckpt");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("a checkpoint of another scene"), std::string::npos) << r.err;
+    // Not a checkpoint at all; and a missing one.
+    write("junk.ckpt", "GLINTCKP but not really");
+    r = run("render " + scene + " --height 12 --spp 8 -o b.exr --resume junk.ckpt");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("junk.ckpt: "), std::string::npos) << r.err;
+    r = run("render " + scene + " --height 12 --spp 8 -o b.exr --resume none.ckpt");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("none.ckpt: no such checkpoint"), std::string::npos) << r.err;
+    // The same render resumes: a complete checkpoint just writes its image again.
+    r = run("render " + scene + " --height 12 --spp 8 -q -o b.exr --resume c.ckpt");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(pixels(dir_ / "a.exr"), pixels(dir_ / "b.exr"));
+}
+
+TEST_F(LongRender, ATimeBudgetStopsAtAPassAndSaysHowFarItGot) {
+    const Result r = run("render " + cornell_ + " --width 64 --height 48 --spp 100000 --time 1s -o t.exr");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("(time budget reached)"), std::string::npos) << r.err;
+    std::map<std::string, std::string> meta;
+    ASSERT_FALSE(pixels(dir_ / "t.exr", &meta).empty());
+    EXPECT_EQ(meta["glint:complete"], "no");
+    EXPECT_EQ(meta["glint:spp_target"], "100000");
+    const int spp = std::stoi(meta["glint:spp"]);
+    EXPECT_GT(spp, 0);
+    EXPECT_LT(spp, 100000);
+    EXPECT_NE(r.err.find("at " + std::to_string(spp) + " spp of 100000"), std::string::npos) << r.err;
+    // PNG carries the same metadata.
+    ASSERT_EQ(run("render " + cornell_ + " --width 8 --height 6 --spp 4 -q -o t.png").status, 0);
+    meta.clear();
+    pixels(dir_ / "t.png", &meta);
+    EXPECT_EQ(meta["glint:spp"], "4");
+    EXPECT_EQ(meta["glint:complete"], "yes");
+    // Bad values are refused before rendering.
+    EXPECT_EQ(run("render " + cornell_ + " --time 10x -o u.png").status, 1);
+    EXPECT_EQ(run("render " + cornell_ + " --noise-threshold -1 -o u.png").status, 1);
+    EXPECT_EQ(run("render " + cornell_ + " --min-spp 4 -o u.png").status, 1);
+    EXPECT_FALSE(fs::exists(dir_ / "u.png"));
+}
+
+TEST_F(LongRender, AdaptiveSamplingWritesTheSampleCounts) {
+    const Result r = run("render " + cornell_ +
+                         " --width 48 --height 36 --spp 512 --noise-threshold 0.05 --min-spp 8 -o a.exr");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("converged"), std::string::npos) << r.err;
+    auto in = OIIO::ImageInput::open((dir_ / "a.exr").string());
+    ASSERT_TRUE(in);
+    const OIIO::ImageSpec spec = in->spec();
+    ASSERT_EQ(spec.nchannels, 4);
+    EXPECT_EQ(spec.channelnames[3], "spp");
+    std::vector<float> v(static_cast<std::size_t>(spec.width) * spec.height * 4);
+    in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, v.data());
+    float lo = 1e9f, hi = 0;
+    for (std::size_t i = 3; i < v.size(); i += 4) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    EXPECT_EQ(lo, 8.0f);
+    EXPECT_GT(hi, 8.0f);
+}
+
+// A viewer: tev's side of the protocol, decoded here from the bytes (independently of glint's
+// encoder), serving one connection.
+struct TevReceiver {
+    int listener = -1, port = 0;
+    std::thread thread;
+    std::map<std::string, std::vector<float>> images;  // RGB
+    std::map<std::string, std::pair<int, int>> sizes;
+    int creates = 0, updates = 0, closes = 0;
+    bool hang_up_after_first = false;
+    std::string error;
+
+    TevReceiver() {
+        listener = ::socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in a{};
+        a.sin_family = AF_INET;
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        ::bind(listener, reinterpret_cast<sockaddr*>(&a), sizeof a);
+        ::listen(listener, 1);
+        socklen_t len = sizeof a;
+        ::getsockname(listener, reinterpret_cast<sockaddr*>(&a), &len);
+        port = ntohs(a.sin_port);
+    }
+    void serve() {
+        thread = std::thread([this] {
+            const int fd = ::accept(listener, nullptr, nullptr);
+            if (fd < 0) return;
+            std::vector<char> buf;
+            char chunk[65536];
+            for (;;) {
+                const ssize_t n = ::recv(fd, chunk, sizeof chunk, 0);
+                if (n <= 0) break;
+                buf.insert(buf.end(), chunk, chunk + n);
+                while (buf.size() >= 4) {
+                    std::uint32_t size;
+                    std::memcpy(&size, buf.data(), 4);
+                    if (size < 5) {
+                        error = "bad packet size";
+                        ::close(fd);
+                        return;
+                    }
+                    if (buf.size() < size) break;
+                    decode(std::vector<char>(buf.begin(), buf.begin() + size));
+                    buf.erase(buf.begin(), buf.begin() + size);
+                    if (hang_up_after_first) {
+                        ::close(fd);
+                        return;
+                    }
+                }
+            }
+            ::close(fd);
+        });
+    }
+    void decode(const std::vector<char>& p) {
+        std::size_t at = 5;
+        const auto str = [&] {
+            std::string s;
+            while (at < p.size() && p[at] != '\0') s += p[at++];
+            ++at;
+            return s;
+        };
+        const auto i32 = [&] {
+            std::int32_t v;
+            std::memcpy(&v, p.data() + at, 4);
+            at += 4;
+            return v;
+        };
+        const auto i64 = [&] {
+            std::int64_t v;
+            std::memcpy(&v, p.data() + at, 8);
+            at += 8;
+            return v;
+        };
+        switch (p[4]) {
+            case 2: ++closes, str(); break;
+            case 4: {
+                ++creates;
+                ++at;  // grab focus
+                const std::string name = str();
+                const int w = i32(), h = i32(), c = i32();
+                for (int k = 0; k < c; ++k) str();
+                sizes[name] = {w, h};
+                images[name].assign(static_cast<std::size_t>(w) * h * 3, -1.0f);
+                break;
+            }
+            case 6: {
+                ++updates;
+                ++at;
+                const std::string name = str();
+                const int c = i32();
+                std::vector<std::string> names;
+                for (int k = 0; k < c; ++k) names.push_back(str());
+                const int x = i32(), y = i32(), w = i32(), h = i32();
+                std::vector<std::int64_t> offset(c), stride(c);
+                for (auto& o : offset) o = i64();
+                for (auto& s : stride) s = i64();
+                const float* data = reinterpret_cast<const float*>(p.data() + at);
+                const int width = sizes[name].first;
+                for (int k = 0; k < c; ++k) {
+                    const int ch = names[k] == "R" ? 0 : names[k] == "G" ? 1 : 2;
+                    for (int j = 0; j < h; ++j)
+                        for (int i = 0; i < w; ++i) {
+                            float v;
+                            std::memcpy(&v, data + offset[k] + (static_cast<std::int64_t>(j) * w + i) * stride[k], 4);
+                            images[name][(static_cast<std::size_t>(y + j) * width + x + i) * 3 + ch] = v;
+                        }
+                }
+                break;
+            }
+            default: error = "unknown packet type " + std::to_string(p[4]);
+        }
+    }
+    ~TevReceiver() {
+        if (thread.joinable()) thread.join();
+        ::close(listener);
+    }
+};
+
+TEST_F(LongRender, TheLiveViewStreamsTheImageAsItForms) {
+    TevReceiver tev;
+    tev.serve();
+    const Result r = run("render " + cornell_ + " --width 40 --height 30 --spp 16 -q -o v.exr --display 127.0.0.1:" +
+                         std::to_string(tev.port));
+    EXPECT_EQ(r.status, 0) << r.err;
+    tev.thread.join();
+    EXPECT_EQ(tev.error, "");
+    EXPECT_EQ(tev.creates, 1);
+    EXPECT_EQ(tev.closes, 1);  // any earlier image of the name, before creating it
+    EXPECT_GE(tev.updates, 5);  // passes of 1, 1, 2, 4, 8 samples: one update each
+    ASSERT_EQ(tev.images.count("cornell-box.yaml"), 1u);
+    const std::vector<float> shown = tev.images["cornell-box.yaml"];
+    const std::vector<float> file = pixels(dir_ / "v.exr");
+    ASSERT_EQ(shown.size(), file.size());
+    EXPECT_EQ(0, std::memcmp(shown.data(), file.data(), file.size() * sizeof(float)));
+}
+
+TEST_F(LongRender, AMissingOrVanishingViewerNeverStopsTheRender) {
+    TevReceiver closed;  // bound, never accepting: a port with nothing behind it once closed
+    const int port = closed.port;
+    ::close(closed.listener);
+    closed.listener = ::socket(AF_INET, SOCK_STREAM, 0);
+    Result r = run("render " + cornell_ + " --width 16 --height 12 --spp 4 -o a.exr --display 127.0.0.1:" +
+                   std::to_string(port));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("glint: note: display 127.0.0.1:" + std::to_string(port)), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "a.exr"));
+
+    TevReceiver rude;
+    rude.hang_up_after_first = true;
+    rude.serve();
+    r = run("render " + cornell_ + " --width 200 --height 150 --spp 8 -o b.exr --display 127.0.0.1:" +
+            std::to_string(rude.port));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("rendering on without it"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "b.exr"));
+
+    r = run("render " + cornell_ + " --width 16 --height 12 --spp 4 -o c.exr --display nonsense");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("expected HOST:PORT"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -1,12 +1,17 @@
 // glint: the command line. The only place that prints diagnostics and chooses an exit status.
+#include <signal.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <new>
@@ -17,10 +22,13 @@
 #include "glint/demo_scene.h"
 #include "glint/film/film.h"
 #include "glint/io/build.h"
+#include "glint/io/checkpoint.h"
+#include "glint/io/tev.h"
 #include "glint/io/pbrt.h"
 #include "glint/io/image_io.h"
 #include "glint/io/scene_writer.h"
 #include "glint/io/scene_yaml.h"
+#include "glint/render/progressive.h"
 #include "glint/render/ray_bench.h"
 #include "glint/render/render.h"
 
@@ -36,7 +44,47 @@ struct RenderArgs {
     bool strict = false;
     std::string accel;
     std::string camera;
+    // Long renders.
+    std::string time, checkpoint, checkpoint_every = "5m", resume, display;
+    std::optional<double> noise_threshold;
+    std::optional<long long> min_spp;
 };
+
+// Exit status of a render stopped by SIGINT or SIGTERM (the image of the completed passes, if
+// any, was written): distinct from success (0) and errors (1).
+constexpr int kExitInterrupted = 3;
+
+// Signals: the first SIGINT or SIGTERM only raises a flag the render loop polls between tiles;
+// a second one removes the temporary files being written (if any) and exits at once. Nothing in
+// the handler allocates, locks or throws.
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;
+char g_temporary[2][4096];  // the image's and the checkpoint's temporary files, or empty
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void on_signal(int sig) {
+    if (g_signal != 0) {
+        for (const char* path : g_temporary)
+            if (path[0] != '\0') ::unlink(path);
+        ::_exit(128 + sig);
+    }
+    g_signal = sig;
+    g_stop.store(true, std::memory_order_relaxed);
+}
+
+void remember_temporary(int slot, const std::filesystem::path& target) {
+    const std::string t = glint::temporary_path(target).string();
+    if (t.size() < sizeof g_temporary[slot]) std::memcpy(g_temporary[slot], t.c_str(), t.size() + 1);
+}
+
+void install_signal_handlers() {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    ::sigaction(SIGINT, &sa, nullptr);
+    ::sigaction(SIGTERM, &sa, nullptr);
+}
 
 std::optional<glint::AccelKind> parse_accel(const std::string& name) {
     if (name.empty()) return std::nullopt;
@@ -230,6 +278,29 @@ int run_bench(const RenderArgs& args, const std::string& set, int runs) {
     return 0;
 }
 
+// The options that change the image, as text: part of a checkpoint's fingerprint.
+std::string image_settings(const RenderArgs& args, const glint::RenderJob& job) {
+    const glint::RenderOptions& o = job.options;
+    return fmt::format(
+        "glint {}|film {}x{} of {}x{} at {},{}|spp {}|seed {}|sampler {}|filter {} {} {}|scale {}|"
+        "noise {} min {}|aovs {}|max-depth {}|camera {}|{}",
+        GLINT_VERSION, job.film_width, job.film_height, job.width, job.height, o.offset_x, o.offset_y, o.spp,
+        o.seed, static_cast<int>(o.sampler), static_cast<int>(o.filter.type), o.filter.radius,
+        o.filter.sigma, o.scale, o.noise_threshold, o.min_spp, job.aovs,
+        args.max_depth ? *args.max_depth : -1, args.camera, args.scene.empty() ? "(demo)" : "");
+}
+
+std::string spp_text(const glint::ProgressiveRender& r) {
+    if (!r.adaptive()) return fmt::format("{} spp", r.spp_done());
+    const auto& s = r.state().samples;
+    double mean = 0;
+    for (std::uint32_t n : s) mean += n;
+    mean /= static_cast<double>(std::max<std::size_t>(1, s.size()));
+    return fmt::format("{:.1f} spp on average ({} to {} per pixel, {:.1f}% converged)", mean,
+                       s.empty() ? 0 : *std::min_element(s.begin(), s.end()),
+                       s.empty() ? 0 : *std::max_element(s.begin(), s.end()), 100 * r.converged_fraction());
+}
+
 int run_render(const RenderArgs& args) {
     glint::RenderJob job = load_job(args);
     const std::filesystem::path out = output_path(args, job);
@@ -239,20 +310,156 @@ int run_render(const RenderArgs& args) {
             "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
             out.string()));
     }
+    if (args.noise_threshold) {
+        if (!(*args.noise_threshold > 0) || !std::isfinite(*args.noise_threshold))
+            throw glint::IoError(fmt::format("--noise-threshold {}: must be a number above 0 (e.g. 0.01)",
+                                             *args.noise_threshold));
+        job.options.noise_threshold = static_cast<float>(*args.noise_threshold);
+    }
+    if (args.min_spp) {
+        if (!args.noise_threshold) throw glint::IoError("--min-spp goes with --noise-threshold (adaptive sampling)");
+        if (*args.min_spp < 1 || *args.min_spp > job.options.spp)
+            throw glint::IoError(fmt::format("--min-spp {}: must be between 1 and the spp ({})", *args.min_spp,
+                                             job.options.spp));
+        job.options.min_spp = static_cast<int>(*args.min_spp);
+    }
+    const double budget = args.time.empty() ? -1 : glint::parse_duration(args.time, "--time");
+    const double every = glint::parse_duration(args.checkpoint_every, "--checkpoint-every");
+    // --resume FILE goes on writing FILE, unless --checkpoint names another.
+    const std::filesystem::path checkpoint = !args.checkpoint.empty() ? args.checkpoint : args.resume;
+    if (!checkpoint.empty()) {
+        if (std::filesystem::weakly_canonical(checkpoint) == std::filesystem::weakly_canonical(out))
+            throw glint::IoError(fmt::format("{}: the checkpoint and the image cannot be one file", out.string()));
+        const auto dir = checkpoint.parent_path().empty() ? std::filesystem::path(".") : checkpoint.parent_path();
+        if (!std::filesystem::is_directory(dir))
+            throw glint::IoError(fmt::format("{}: cannot write: folder '{}' does not exist", checkpoint.string(), dir.string()));
+    }
 
     const auto mode = args.quiet                 ? glint::ProgressMode::kQuiet
                       : ::isatty(::fileno(stderr)) ? glint::ProgressMode::kBar
                                                    : glint::ProgressMode::kSummary;
-    glint::Film film(job.film_width, job.film_height);
+    const int w = job.film_width, h = job.film_height;
+    const auto pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+    glint::Film film(w, h);
     if (job.aovs) film.enable_aovs();
-    glint::Progress progress(mode, stderr,
-                             static_cast<std::uint64_t>(job.film_width) *
-                                 static_cast<std::uint64_t>(job.film_height));
-    const glint::RenderStats stats =
-        glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress);
-    glint::write_image(out, film, job.display);
-    progress.finish(stats, job.film_width, job.film_height, job.options.spp);
-    if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
+    const bool adaptive = job.options.noise_threshold > 0 && job.options.spp > 1;
+    if (adaptive && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();
+    glint::Progress progress(mode, stderr, pixels * static_cast<std::uint64_t>(std::max(1, job.options.spp)));
+    remember_temporary(0, out);
+    if (!checkpoint.empty()) remember_temporary(1, checkpoint);
+    install_signal_handlers();
+    const auto note = [&args](const std::string& text) {
+        if (!args.quiet) fmt::print(stderr, "\nglint: note: {}\n", text);
+    };
+    const auto interrupted_status = [&args](const std::string& what) {
+        if (!args.quiet)
+            fmt::print(stderr, "glint: interrupted by {}: {}\n", g_signal == SIGTERM ? "SIGTERM" : "SIGINT", what);
+        return kExitInterrupted;
+    };
+
+    // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums.
+    if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty()) {
+        const glint::RenderStats stats =
+            glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress, &g_stop);
+        if (!stats.complete) return interrupted_status("no pass completed; nothing written");
+        glint::write_image(out, film, job.display,
+                           {{"glint:spp", "1"}, {"glint:render_seconds", fmt::format("{:.3f}", stats.seconds)},
+                            {"glint:scene", args.scene}, {"Software", std::string("glint ") + GLINT_VERSION}});
+        progress.finish(stats, w, h, "1 spp");
+        if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
+        return 0;
+    }
+
+    glint::ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.aovs);
+    std::uint64_t fingerprint = 0;
+    if (!checkpoint.empty()) {
+        fingerprint = glint::render_fingerprint(job, *job.sources, image_settings(args, job));
+    }
+    if (!args.resume.empty()) {
+        glint::Checkpoint c = glint::read_checkpoint(args.resume);
+        if (c.fingerprint != fingerprint)
+            throw glint::IoError(fmt::format(
+                "{}: a checkpoint of another scene or other options (the scene files, meshes, textures, "
+                "camera, film, spp, seed, sampler, filter, adaptive settings and AOVs must all match); "
+                "nothing rendered", args.resume));
+        try {
+            render.restore(std::move(c.state));
+        } catch (const std::runtime_error& e) {
+            throw glint::IoError(fmt::format("{}: does not fit this render: {}", args.resume, e.what()));
+        }
+        progress.set_done(render.adaptive() ? 0 : pixels * static_cast<std::uint64_t>(render.spp_done()));
+        if (!args.quiet)
+            fmt::print(stderr, "glint: resuming {} at {} after {} pass{} ({:.1f} s)\n", args.resume,
+                       spp_text(render), render.passes(), render.passes() == 1 ? "" : "es", render.state().seconds);
+    }
+    std::optional<glint::TevClient> display;
+    if (!args.display.empty()) {
+        display.emplace(args.display);
+        if (!display->connected()) note(display->note());
+    }
+    const std::string view_name = args.scene.empty() ? "glint" : std::filesystem::path(args.scene).filename().string();
+
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    auto last_checkpoint = start;
+    const auto seconds_since = [](clock::time_point t) {
+        return std::chrono::duration<double>(clock::now() - t).count();
+    };
+    const auto save = [&] {
+        glint::write_checkpoint(checkpoint, fingerprint, render.state());
+        last_checkpoint = clock::now();
+    };
+    bool interrupted = false, budget_hit = false;
+    while (!render.finished()) {
+        if (g_stop.load()) {
+            interrupted = true;
+            break;
+        }
+        const double left = budget >= 0 ? std::max(0.0, budget - seconds_since(start)) : -1;
+        const int n = render.next_pass_size(left);
+        if (n == 0) {
+            budget_hit = true;
+            break;
+        }
+        progress.pass_started({render.passes() + 1, render.spp_done(), render.spp_target(),
+                               render.adaptive() ? render.converged_fraction() : -1, left});
+        if (!render.run_pass(n, &g_stop, &progress)) {  // the pass in flight is abandoned
+            interrupted = true;
+            break;
+        }
+        if (display && display->connected()) {
+            render.resolve(film);
+            if (!display->send(view_name, film)) note(display->note());
+        }
+        if (!checkpoint.empty() && seconds_since(last_checkpoint) >= every && !render.finished()) save();
+    }
+    if (render.passes() == 0) {
+        if (interrupted) return interrupted_status("no pass completed; nothing written");
+        if (budget_hit) throw glint::IoError("--time: the budget ended before the first pass; nothing written");
+    }
+    if (!checkpoint.empty()) save();
+    render.resolve(film);
+    const glint::ProgressiveState& state = render.state();
+    glint::RenderStats stats;
+    stats.seconds = state.seconds;
+    stats.rays = state.rays;
+    std::string what = spp_text(render);
+    if (!render.finished()) what += fmt::format(" of {}", render.spp_target());
+    if (budget_hit) what += " (time budget reached)";
+    glint::write_image(out, film, job.display,
+                       {{"glint:spp", std::to_string(render.spp_done())},
+                        {"glint:spp_target", std::to_string(render.spp_target())},
+                        {"glint:passes", std::to_string(render.passes())},
+                        {"glint:render_seconds", fmt::format("{:.3f}", state.seconds)},
+                        {"glint:complete", render.finished() ? "yes" : "no"},
+                        {"glint:scene", args.scene},
+                        {"Software", std::string("glint ") + GLINT_VERSION}});
+    progress.finish(stats, w, h, what);
+    if (!args.quiet) {
+        fmt::print(stderr, "wrote {}{}\n", out.string(),
+                   checkpoint.empty() ? "" : fmt::format(" and checkpoint {}", checkpoint.string()));
+    }
+    if (interrupted) return interrupted_status(fmt::format("the image holds {} passes ({})", render.passes(), what));
     return 0;
 }
 
@@ -297,6 +504,25 @@ int main(int argc, char** argv) {
         "Acceleration structure: bvh (glint's own), sbvh (the same with spatial splits) or embree "
         "(Embree 3, when built in)";
     render->add_option("--accel", args.accel, accel_help);
+    render->add_option("--time", args.time,
+                       "Time budget for rendering (90s, 10m, 1h30m): stops after the last sample pass "
+                       "that fits and writes the image with the spp reached");
+    render->add_option("--checkpoint", args.checkpoint,
+                       "Save the render's state to this file every --checkpoint-every, at the end, and "
+                       "when interrupted, so --resume can continue it");
+    render->add_option("--checkpoint-every", args.checkpoint_every, "How often to checkpoint (default 5m)");
+    render->add_option("--resume", args.resume,
+                       "Continue the render saved in this checkpoint (same scene and options); it goes on "
+                       "being checkpointed there");
+    render->add_option("--noise-threshold", args.noise_threshold,
+                       "Adaptive sampling: a pixel stops when its relative error estimate falls below this "
+                       "(Cycles' meaning; 0.01 is a good start); --spp is then the maximum");
+    render->add_option("--min-spp", args.min_spp,
+                       "Adaptive sampling: samples every pixel takes first (default: Cycles' rule, "
+                       "16 / threshold^0.3)");
+    render->add_option("--display", args.display,
+                       "Show the image as it forms in a viewer speaking tev's protocol at HOST:PORT "
+                       "(tev's default: 127.0.0.1:14158)");
     render->add_option("--camera", args.camera,
                        "For a .gltf/.glb rendered directly: the camera to look through, by name "
                        "(default: the first one)");

@@ -1,6 +1,6 @@
 #pragma once
 // The film: float linear RGB per pixel, row 0 at the top, and optionally the AOVs denoisers
-// consume (albedo, normal, depth). It knows nothing about scenes or files; the renderer fills
+// consume (albedo, normal, depth) and each pixel's sample count. It knows nothing about scenes or files; the renderer fills
 // it, image_io encodes and writes it.
 #include <cstddef>
 #include <vector>
@@ -35,6 +35,12 @@ public:
     const std::vector<Normal3>& normal() const { return normal_; }
     const std::vector<float>& depth() const { return depth_; }
 
+    /// Allocates the per-pixel sample-count plane (adaptive sampling writes it).
+    void enable_sample_counts() { samples_.assign(pixels_.size(), 0); }
+    bool has_sample_counts() const { return !samples_.empty(); }
+    float& sample_count(int col, int row) { return samples_[index(col, row)]; }
+    const std::vector<float>& sample_counts() const { return samples_; }
+
 private:
     std::size_t index(int col, int row) const {
         return static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
@@ -45,6 +51,7 @@ private:
     std::vector<Color> albedo_;
     std::vector<Normal3> normal_;
     std::vector<float> depth_;
+    std::vector<float> samples_;
 };
 
 }  // namespace glint

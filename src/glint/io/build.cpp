@@ -455,8 +455,9 @@ Medium make_medium(const MediumDesc& d, Diagnostics& diagnostics, const std::fil
 
 RenderJob build(const SceneDescription& d, const Overrides& overrides,
                 std::shared_ptr<SourceFiles> sources) {
-    Diagnostics diagnostics(std::move(sources));
     RenderJob job;
+    job.sources = sources;
+    Diagnostics diagnostics(std::move(sources));
     for (const Diagnostic& w : d.warnings) {
         std::string text = format_warning(w, diagnostics.sources());
         while (!text.empty() && text.back() == '\n') text.pop_back();

@@ -41,6 +41,8 @@ struct RenderJob {
     std::optional<GltfCamera> file_camera;
     /// Every camera of the included glTF files, placed (listed by `glint info`).
     std::vector<GltfCamera> file_cameras;
+    /// The text of every scene file read (for messages, and a checkpoint's fingerprint).
+    std::shared_ptr<SourceFiles> sources;
 };
 
 RenderJob build(const SceneDescription& description, const Overrides& overrides,

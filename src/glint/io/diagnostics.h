@@ -32,6 +32,8 @@ public:
     void add(const std::string& path, std::string text);
     /// Line `line` (1-based) of `path`, without its newline; empty if unknown.
     std::string line(const std::string& path, int line) const;
+    /// Every file read, by path.
+    const std::map<std::string, std::string>& texts() const { return texts_; }
 
 private:
     std::map<std::string, std::string> texts_;

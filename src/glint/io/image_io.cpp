@@ -193,12 +193,19 @@ void check_writable(const fs::path& path) {
     }
 }
 
-void write_image(const fs::path& path, const Film& film, const DisplaySettings& display) {
+fs::path temporary_path(const fs::path& target) {
+    const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    return dir / fmt::format(".{}.glint-{}.tmp", target.filename().string(), ::getpid());
+}
+
+void write_image(const fs::path& path, const Film& film, const DisplaySettings& display,
+                 const ImageMetadata& metadata) {
     const ImageFormat format = image_format_for(path);
     const int w = film.width(), h = film.height();
-    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    const fs::path tmp =
-        dir / fmt::format(".{}.glint-{}.tmp", path.filename().string(), ::getpid());
+    const fs::path tmp = temporary_path(path);
+    const auto annotate = [&metadata](OIIO::ImageSpec& spec) {
+        for (const auto& [name, value] : metadata) spec.attribute(name, value);
+    };
 
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) {
@@ -210,15 +217,20 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     std::vector<std::uint8_t> bytes;
     const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (format == ImageFormat::kExr) {
-        // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names.
-        const int channels = film.has_aovs() ? 10 : 3;
+        // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names, then
+        // the sample counts.
+        const bool counts = film.has_sample_counts();
+        const int channels = (film.has_aovs() ? 10 : 3) + (counts ? 1 : 0);
         OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
         spec.attribute("compression", "zip");
+        spec.channelnames = {"R", "G", "B"};
         if (film.has_aovs()) {
-            spec.channelnames = {"R",   "G",   "B",   "albedo.R", "albedo.G",
-                                 "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+            spec.channelnames.insert(spec.channelnames.end(),
+                                     {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
             spec.z_channel = 9;
         }
+        if (counts) spec.channelnames.push_back("spp");
+        annotate(spec);
         const auto stride = static_cast<std::size_t>(channels);
         floats.resize(n * stride);
         for (std::size_t i = 0; i < n; ++i) {
@@ -232,12 +244,14 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
                 px[6] = nn.x, px[7] = nn.y, px[8] = nn.z;
                 px[9] = film.depth()[i];
             }
+            if (counts) px[channels - 1] = film.sample_counts()[i];
         }
         ok = out->open(tmp.string(), spec) &&
              out->write_image(OIIO::TypeDesc::FLOAT, floats.data());
     } else {
         OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", display.encoding == Encoding::kSrgb ? "sRGB" : "Linear");
+        annotate(spec);
         bytes.resize(n * 3);
         for (std::size_t i = 0; i < n; ++i) {
             const Color c = film.pixels()[i];

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "glint/film/film.h"
 #include "glint/film/tonemap.h"
@@ -41,10 +43,18 @@ ImageFormat image_format_for(const std::filesystem::path& path);
 /// writable folder. Throws IoError with the reason.
 void check_writable(const std::filesystem::path& path);
 
+/// Name and value pairs written into the image's header (EXR attributes, PNG text chunks):
+/// glint writes the spp reached, the render time and the scene.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+/// The temporary file a write to `target` goes through before its rename: in the same folder,
+/// named after the target and the process, so a signal handler can find and remove it.
+std::filesystem::path temporary_path(const std::filesystem::path& target);
+
 /// PNG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values as
 /// 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as
-/// channels albedo.R/G/B, N.X/Y/Z and Z.
+/// channels albedo.R/G/B, N.X/Y/Z and Z, and its per-pixel sample counts as channel `spp`.
 void write_image(const std::filesystem::path& path, const Film& film,
-                 const DisplaySettings& display);
+                 const DisplaySettings& display, const ImageMetadata& metadata = {});
 
 }  // namespace glint

@@ -6,91 +6,63 @@
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
 
+#include "glint/render/progressive.h"
 #include "glint/samplers/sampler.h"
 
 namespace glint {
 
 RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                   const RenderOptions& options, Film& film, Progress* progress) {
+                   const RenderOptions& options, Film& film, Progress* progress,
+                   const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const int w = film.width(), h = film.height();
     const int spp = std::max(1, options.spp);
-    const int tile = std::max(1, options.tile_size);
-    const FilterSampler filter(options.filter);
-    const bool aovs = film.has_aovs();
-    std::atomic<std::uint64_t> total_rays{0};
+    RenderStats stats;
+    if (spp > 1 || film.has_aovs()) {
+        ProgressiveRender r(scene, camera, integrator, options, w, h, film.has_aovs());
+        while (!r.finished()) {
+            if (!r.run_pass(r.next_pass_size(), cancel, progress)) {
+                stats.complete = false;
+                break;
+            }
+        }
+        r.resolve(film);
+        stats.rays = r.state().rays;
+        stats.samples = 0;
+        if (r.adaptive()) {
+            for (std::uint32_t n : r.state().samples) stats.samples += n;
+        } else {
+            stats.samples = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
+                            static_cast<std::uint64_t>(r.spp_done());
+        }
+        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return stats;
+    }
 
-    // The single-sample ray: the pixel centre, through the lens centre.
+    // The article's case, one sample through each pixel centre, kept minimal: the film is
+    // written directly, with no sums.
+    const int tile = std::max(1, options.tile_size);
+    std::atomic<std::uint64_t> total_rays{0};
+    std::atomic<bool> skipped{false};
     // Film pixel (col, row) is pixel (col + ox, row + oy) of the camera's frame (a crop).
     const int ox = options.offset_x, oy = options.offset_y;
-    const auto centre_ray = [&camera, ox, oy](int col, int row) {
-        return camera.generate_ray(static_cast<float>(col + ox) + 0.5f,
-                                   static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
-    };
-
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) {
+            skipped.store(true, std::memory_order_relaxed);
+            return;
+        }
         RayCounter counter;
-        const auto seed_of = [&options, ox, oy](int col, int row) {
-            return pixel_seed(options.seed, static_cast<std::uint32_t>(col + ox),
-                              static_cast<std::uint32_t>(row + oy));
-        };
         for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
-                if (spp == 1 && !aovs) {  // the article's case, kept minimal
-                    const PixelSampler sampler(options.sampler, 1, seed_of(col, row));
-                    SampleStream samples(sampler, 0);
-                    film.at(col, row) = integrator.li(scene, centre_ray(col, row), samples, counter);
-                    if (options.scale != 1) film.at(col, row) = film.at(col, row) * options.scale;
-                    continue;
-                }
-                Color sum{0};
-                // AOVs, filter-weighted like the colour; depth averages the samples that hit.
-                FirstHit first;
-                FirstHit* const want = aovs ? &first : nullptr;
-                Color albedo{0};
-                Vector3 normal{0, 0, 0};
-                float depth = 0, hit_weight = 0;
-                auto add_aovs = [&](float weight) {
-                    albedo += first.albedo * weight;
-                    normal += to_vector(first.normal) * weight;
-                    if (first.hit) depth += first.depth * weight, hit_weight += weight;
-                };
-                float weight_sum = 1;
-                if (spp == 1) {
-                    const PixelSampler sampler(options.sampler, 1, seed_of(col, row));
-                    SampleStream samples(sampler, 0);
-                    sum = integrator.li(scene, centre_ray(col, row), samples, counter, want);
-                    if (aovs) add_aovs(1);
-                } else {
-                    // Dimension pair 0 places the sample in the pixel (through the filter), pair 1
-                    // on the lens; later pairs are the integrator's.
-                    const PixelSampler sampler(options.sampler, static_cast<std::uint32_t>(spp),
-                                               seed_of(col, row));
-                    weight_sum = 0;
-                    for (int i = 0; i < spp; ++i) {
-                        const auto index = static_cast<std::uint32_t>(i);
-                        const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
-                        const Sample2 lens = sampler.get_2d(index, 1);
-                        const Ray ray =
-                            camera.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
-                                                static_cast<float>(row + oy) + 0.5f + f.dy, lens);
-                        SampleStream samples(sampler, index);
-                        sum += integrator.li(scene, ray, samples, counter, want) * f.weight;
-                        if (aovs) add_aovs(f.weight);
-                        weight_sum += f.weight;
-                    }
-                    sum = weight_sum > 0 ? sum / weight_sum : Color{0};
-                }
-                film.at(col, row) = options.scale != 1 ? sum * options.scale : sum;
-                if (aovs) {
-                    const float inv = weight_sum > 0 ? 1 / weight_sum : 0;
-                    film.albedo(col, row) = albedo * inv;
-                    film.normal(col, row) = Normal3(normal * inv);
-                    film.depth(col, row) = hit_weight > 0 ? depth / hit_weight
-                                                          : std::numeric_limits<float>::infinity();
-                }
+                const PixelSampler sampler(options.sampler, 1,
+                                           pixel_seed(options.seed, static_cast<std::uint32_t>(col + ox),
+                                                      static_cast<std::uint32_t>(row + oy)));
+                SampleStream samples(sampler, 0);
+                const Ray ray = camera.generate_ray(static_cast<float>(col + ox) + 0.5f,
+                                                    static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
+                film.at(col, row) = integrator.li(scene, ray, samples, counter);
+                if (options.scale != 1) film.at(col, row) = film.at(col, row) * options.scale;
             }
         }
         total_rays.fetch_add(counter.rays, std::memory_order_relaxed);
@@ -107,12 +79,11 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
                           tbb::simple_partitioner());
     });
 
-    RenderStats stats;
     stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.rays = total_rays.load();
-    stats.samples = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
-                    static_cast<std::uint64_t>(spp);
+    stats.complete = !skipped.load();
+    stats.samples = stats.complete ? static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) : 0;
     return stats;
 }
 

@@ -2,6 +2,7 @@
 // The parallel render loop: oneTBB over 16x16 tiles. Each pixel is computed entirely by one task
 // from its own deterministic samples and summed in a fixed order, so the image is bit-identical
 // for any thread count and any tile schedule.
+#include <atomic>
 #include <cstdint>
 
 #include "glint/cameras/camera.h"
@@ -26,9 +27,17 @@ struct RenderOptions {
     int offset_x = 0, offset_y = 0;
     /// Multiplies every pixel's radiance (pbrt's imaging ratio: exposure time x ISO / 100).
     float scale = 1;
+    /// Adaptive sampling (progressive.h): a pixel stops when its relative error estimate falls
+    /// below this (Cycles' noise threshold); 0: every pixel gets `spp` samples.
+    float noise_threshold = 0;
+    int min_spp = 0;  ///< adaptive: samples every pixel gets first (0: Cycles' default for the threshold)
 };
 
+/// Renders every sample (passes of progressive.h, or one sweep for one sample without AOVs).
+/// If `cancel` becomes true the render stops early: stats.complete is false and the film holds
+/// nothing of use.
 RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                   const RenderOptions& options, Film& film, Progress* progress = nullptr);
+                   const RenderOptions& options, Film& film, Progress* progress = nullptr,
+                   const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace glint

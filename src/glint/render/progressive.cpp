@@ -1,0 +1,356 @@
+#include "glint/render/progressive.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "glint/samplers/sampler.h"
+
+namespace glint {
+
+namespace {
+
+constexpr int kAdaptiveStep = 16;  // Cycles' adaptive_step: passes of 16 samples after the minimum
+constexpr double kMargin = 1.1;    // a pass must fit the time left with 10 % to spare
+
+template <typename T>
+void check_plane(const std::vector<T>& v, std::size_t want, const char* name) {
+    if (v.size() != want)
+        throw std::runtime_error(std::string("the ") + name + " plane holds " + std::to_string(v.size()) +
+                                 " pixels, not " + std::to_string(want));
+}
+
+}  // namespace
+
+void ProgressiveState::allocate() {
+    const std::size_t n = pixels();
+    sum.assign(n, Color{0});
+    weight.assign(n, 0.0f);
+    odd_sum.assign(adaptive ? n : 0, Color{0});
+    odd_weight.assign(adaptive ? n : 0, 0.0f);
+    samples.assign(adaptive ? n : 0, 0);
+    active.assign(adaptive ? n : 0, 1);
+    albedo.assign(aovs ? n : 0, Color{0});
+    normal.assign(aovs ? n : 0, Vector3{0, 0, 0});
+    depth.assign(aovs ? n : 0, 0.0f);
+    hit_weight.assign(aovs ? n : 0, 0.0f);
+}
+
+void ProgressiveState::check_shape() const {
+    const std::size_t n = pixels(), a = adaptive ? n : 0, v = aovs ? n : 0;
+    check_plane(sum, n, "sum");
+    check_plane(weight, n, "weight");
+    check_plane(odd_sum, a, "odd-sample sum");
+    check_plane(odd_weight, a, "odd-sample weight");
+    check_plane(samples, a, "sample count");
+    check_plane(active, a, "active");
+    check_plane(albedo, v, "albedo");
+    check_plane(normal, v, "normal");
+    check_plane(depth, v, "depth");
+    check_plane(hit_weight, v, "depth weight");
+}
+
+float adaptive_internal_threshold(float threshold) { return threshold * 5.0f; }
+
+int adaptive_default_min_spp(float threshold) {
+    // Cycles: threshold 0.1 -> 32, 0.01 -> 64, 0.001 -> 128.
+    return std::max(4, static_cast<int>(std::ceil(16.0f / std::pow(threshold, 0.3f))));
+}
+
+ProgressiveRender::ProgressiveRender(const Scene& scene, const Camera& camera,
+                                     const Integrator& integrator, const RenderOptions& options,
+                                     int width, int height, bool aovs)
+    : scene_(scene), camera_(camera), integrator_(integrator), options_(options) {
+    state_.width = width;
+    state_.height = height;
+    state_.spp_target = std::max(1, options.spp);
+    state_.adaptive = options.noise_threshold > 0 && state_.spp_target > 1;
+    state_.aovs = aovs;
+    if (state_.adaptive) {
+        threshold_ = adaptive_internal_threshold(options.noise_threshold);
+        min_spp_ = options.min_spp > 0 ? std::max(4, options.min_spp)
+                                       : adaptive_default_min_spp(options.noise_threshold);
+        min_spp_ = std::min(min_spp_, state_.spp_target);
+    }
+    state_.allocate();
+}
+
+void ProgressiveRender::restore(ProgressiveState state) {
+    const auto mismatch = [](const char* what, long long have, long long want) {
+        return std::runtime_error(std::string("its ") + what + " is " + std::to_string(have) +
+                                  ", this render's is " + std::to_string(want));
+    };
+    if (state.width != state_.width) throw mismatch("width", state.width, state_.width);
+    if (state.height != state_.height) throw mismatch("height", state.height, state_.height);
+    if (state.spp_target != state_.spp_target)
+        throw mismatch("target spp", state.spp_target, state_.spp_target);
+    if (state.adaptive != state_.adaptive)
+        throw std::runtime_error(state.adaptive ? "it was rendered with adaptive sampling, this render is not"
+                                                : "this render uses adaptive sampling, it was rendered without");
+    if (state.aovs != state_.aovs)
+        throw std::runtime_error(state.aovs ? "it holds AOVs, this render has none"
+                                            : "this render writes AOVs, it holds none");
+    if (state.spp_done < 0 || state.spp_done > state.spp_target)
+        throw mismatch("spp done", state.spp_done, state_.spp_target);
+    state.check_shape();
+    state_ = std::move(state);
+    // The pace of the saved passes stands in for this machine's until a pass is measured.
+    double taken = 0;
+    if (state_.adaptive) {
+        for (std::uint32_t n : state_.samples) taken += n;
+    } else {
+        taken = static_cast<double>(state_.pixels()) * state_.spp_done;
+    }
+    seconds_per_sample_ = taken > 0 ? state_.seconds / taken : 0;
+}
+
+bool ProgressiveRender::finished() const {
+    if (state_.spp_done >= state_.spp_target) return true;
+    if (!state_.adaptive || state_.spp_done < min_spp_) return false;
+    return std::none_of(state_.active.begin(), state_.active.end(), [](std::uint8_t a) { return a != 0; });
+}
+
+double ProgressiveRender::converged_fraction() const {
+    if (!state_.adaptive || state_.active.empty() || state_.spp_done < min_spp_) return 0;
+    const auto still = std::count(state_.active.begin(), state_.active.end(), std::uint8_t{1});
+    return 1.0 - static_cast<double>(still) / static_cast<double>(state_.active.size());
+}
+
+int ProgressiveRender::next_pass_size(double seconds_left) const {
+    const int done = state_.spp_done, target = state_.spp_target;
+    if (finished()) return 0;
+    const bool budget = seconds_left >= 0;
+    if (budget && seconds_left <= 0) return 0;
+    double active = static_cast<double>(state_.pixels());
+    if (state_.adaptive) {
+        active = static_cast<double>(std::count(state_.active.begin(), state_.active.end(), std::uint8_t{1}));
+        // The fixed schedule: 1, 1, 2, 4, ... up to the minimum, then steps of 16.
+        int n = done < min_spp_ ? std::min(std::max(done, 1), min_spp_ - done)
+                                : std::min(kAdaptiveStep, target - done);
+        if (budget && seconds_per_sample_ > 0 && kMargin * n * active * seconds_per_sample_ > seconds_left) return 0;
+        return n;
+    }
+    int n = std::min(std::max(done, 1), target - done);  // cumulative 1, 2, 4, 8, ...
+    if (seconds_per_sample_ > 0 && active > 0) {
+        const double per_spp = seconds_per_sample_ * active;
+        const double cap = std::max(2.0, 0.1 * state_.seconds);
+        n = std::min(n, std::max(1, static_cast<int>(std::min(cap / per_spp, 1e9))));
+        if (budget) {
+            const double fit = std::floor(seconds_left / (kMargin * per_spp));
+            if (fit < 1) return 0;
+            n = std::min(n, static_cast<int>(std::min(fit, 1e9)));
+        }
+    }
+    return n;
+}
+
+// Samples [c, c + n) of one pixel, c its count so far, continuing its sums from state_ into
+// next_. The arithmetic is the one-pass loop's, term for term.
+void ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter) {
+    const ProgressiveState& in = state_;
+    ProgressiveState& out = next_;
+    const int spp = in.spp_target;
+    const int ox = options_.offset_x, oy = options_.offset_y;
+    const std::uint32_t seed = pixel_seed(options_.seed, static_cast<std::uint32_t>(col + ox),
+                                          static_cast<std::uint32_t>(row + oy));
+    const PixelSampler sampler(options_.sampler, static_cast<std::uint32_t>(spp), seed);
+    const int first = in.adaptive ? static_cast<int>(in.samples[i]) : in.spp_done;
+    const int last = std::min(spp, first + n);
+
+    Color sum = in.sum[i], odd = in.adaptive ? in.odd_sum[i] : Color{0};
+    float weight = in.weight[i], odd_weight = in.adaptive ? in.odd_weight[i] : 0.0f;
+    Color albedo{0};
+    Vector3 normal{0, 0, 0};
+    float depth = 0, hit_weight = 0;
+    if (in.aovs) albedo = in.albedo[i], normal = in.normal[i], depth = in.depth[i], hit_weight = in.hit_weight[i];
+    const FilterSampler filter(options_.filter);
+    for (int s = first; s < last; ++s) {
+        const auto index = static_cast<std::uint32_t>(s);
+        FirstHit hit;
+        FirstHit* const want = in.aovs ? &hit : nullptr;
+        Color li;
+        float w;
+        if (spp == 1) {  // the pixel centre, through the lens centre
+            const Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f,
+                                                 static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
+            SampleStream samples(sampler, 0);
+            sum = integrator_.li(scene_, ray, samples, counter, want);
+            w = 1;
+            weight = 1;
+            li = sum;
+        } else {
+            // Dimension pair 0 places the sample in the pixel (through the filter), pair 1 on the
+            // lens; later pairs are the integrator's.
+            const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
+            const Sample2 lens = sampler.get_2d(index, 1);
+            const Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
+                                                 static_cast<float>(row + oy) + 0.5f + f.dy, lens);
+            SampleStream samples(sampler, index);
+            li = integrator_.li(scene_, ray, samples, counter, want);
+            w = f.weight;
+            sum += li * w;
+            weight += w;
+            if (in.adaptive && (s & 1)) odd += li * w, odd_weight += w;
+        }
+        if (in.aovs) {
+            albedo += hit.albedo * w;
+            normal += to_vector(hit.normal) * w;
+            if (hit.hit) depth += hit.depth * w, hit_weight += w;
+        }
+    }
+    out.sum[i] = sum;
+    out.weight[i] = weight;
+    if (in.adaptive) {
+        out.odd_sum[i] = odd;
+        out.odd_weight[i] = odd_weight;
+        out.samples[i] = static_cast<std::uint32_t>(std::max(first, last));
+        out.active[i] = in.active[i];
+    }
+    if (in.aovs) {
+        out.albedo[i] = albedo;
+        out.normal[i] = normal;
+        out.depth[i] = depth;
+        out.hit_weight[i] = hit_weight;
+    }
+}
+
+bool ProgressiveRender::run_pass(int n, const std::atomic<bool>* cancel, Progress* progress) {
+    if (n <= 0 || finished()) return true;
+    if (state_.adaptive && n != next_pass_size())
+        throw std::invalid_argument("an adaptive render's passes follow its schedule");
+    n = std::min(n, state_.spp_target - state_.spp_done);
+    const auto start = std::chrono::steady_clock::now();
+    if (next_.pixels() != state_.pixels() || next_.sum.size() != state_.sum.size()) {
+        next_ = state_;  // same shape: the buffer the pass writes
+    }
+    const int w = state_.width, h = state_.height;
+    const int tile = std::max(1, options_.tile_size);
+    std::atomic<bool> skipped{false};
+    std::atomic<std::uint64_t> rays{0}, pixel_samples{0};
+
+    auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) {
+            skipped.store(true, std::memory_order_relaxed);
+            return;
+        }
+        RayCounter counter;
+        std::uint64_t taken = 0;
+        for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
+            for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
+                const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
+                                      static_cast<std::size_t>(col);
+                if (state_.adaptive && !state_.active[i]) {  // converged: carried over as it is
+                    next_.sum[i] = state_.sum[i];
+                    next_.weight[i] = state_.weight[i];
+                    next_.odd_sum[i] = state_.odd_sum[i];
+                    next_.odd_weight[i] = state_.odd_weight[i];
+                    next_.samples[i] = state_.samples[i];
+                    next_.active[i] = 0;
+                    if (state_.aovs) {
+                        next_.albedo[i] = state_.albedo[i];
+                        next_.normal[i] = state_.normal[i];
+                        next_.depth[i] = state_.depth[i];
+                        next_.hit_weight[i] = state_.hit_weight[i];
+                    }
+                    continue;
+                }
+                const int first = state_.adaptive ? static_cast<int>(state_.samples[i]) : state_.spp_done;
+                taken += static_cast<std::uint64_t>(std::max(0, std::min(n, state_.spp_target - first)));
+                sample_pixel(i, col, row, n, counter);
+            }
+        }
+        rays.fetch_add(counter.rays, std::memory_order_relaxed);
+        pixel_samples.fetch_add(taken, std::memory_order_relaxed);
+        if (progress) progress->tile_done(taken, counter.rays);
+    };
+
+    const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, h, tile, 0, w, tile), render_tile,
+                          tbb::simple_partitioner());
+    });
+    if (skipped.load()) return false;  // the state is still the previous pass's
+
+    std::swap(state_, next_);
+    state_.spp_done = next_.spp_done + n;
+    state_.passes = next_.passes + 1;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state_.seconds = next_.seconds + seconds;
+    state_.rays = next_.rays + rays.load();
+    if (pixel_samples.load() > 0) seconds_per_sample_ = seconds / static_cast<double>(pixel_samples.load());
+    if (state_.adaptive && state_.spp_done >= min_spp_) update_convergence();
+    return true;
+}
+
+// Cycles' test: the mean of all samples I against the mean of the odd ones A,
+// error = sum |I - A| / (1e-4 + n(I_r + I_g + I_b)), n(x) = sqrt(x) below 1, x above; converged
+// below the threshold. Then every pixel within one pixel (x, then y) of a noisy one samples on.
+void ProgressiveRender::update_convergence() {
+    const int w = state_.width, h = state_.height;
+    std::vector<std::uint8_t> noisy(state_.pixels(), 0);
+    for (std::size_t i = 0; i < noisy.size(); ++i) {
+        if (!state_.active[i]) continue;
+        if (state_.weight[i] <= 0 || state_.odd_weight[i] <= 0) {
+            noisy[i] = 1;
+            continue;
+        }
+        const Color mean = state_.sum[i] / state_.weight[i] * options_.scale;
+        const Color odd = state_.odd_sum[i] / state_.odd_weight[i] * options_.scale;
+        const float difference = std::abs(mean.r - odd.r) + std::abs(mean.g - odd.g) + std::abs(mean.b - odd.b);
+        const float intensity = std::max(0.0f, mean.r + mean.g + mean.b);
+        const float normalize = intensity < 1 ? std::sqrt(intensity) : intensity;
+        const float error = difference / (1e-4f + normalize);
+        noisy[i] = !(error < threshold_);  // a NaN error is noisy
+    }
+    std::vector<std::uint8_t> wide(noisy.size(), 0);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+            wide[i] = noisy[i] || (x > 0 && noisy[i - 1]) || (x + 1 < w && noisy[i + 1]);
+        }
+    }
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+            const auto W = static_cast<std::size_t>(w);
+            const bool on = wide[i] || (y > 0 && wide[i - W]) || (y + 1 < h && wide[i + W]);
+            state_.active[i] = on && state_.samples[i] < static_cast<std::uint32_t>(state_.spp_target);
+        }
+    }
+}
+
+void ProgressiveRender::resolve(Film& film) const {
+    const int w = state_.width, h = state_.height;
+    for (int row = 0; row < h; ++row) {
+        for (int col = 0; col < w; ++col) {
+            const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
+                                  static_cast<std::size_t>(col);
+            const float weight = state_.weight[i];
+            const Color c = weight > 0 ? state_.sum[i] / weight : Color{0};
+            film.at(col, row) = options_.scale != 1 ? c * options_.scale : c;
+            if (film.has_aovs() && state_.aovs) {
+                const float inv = weight > 0 ? 1 / weight : 0;
+                film.albedo(col, row) = state_.albedo[i] * inv;
+                film.normal(col, row) = Normal3(state_.normal[i] * inv);
+                film.depth(col, row) = state_.hit_weight[i] > 0 ? state_.depth[i] / state_.hit_weight[i]
+                                                                 : std::numeric_limits<float>::infinity();
+            }
+            if (film.has_sample_counts()) {
+                film.sample_count(col, row) = static_cast<float>(
+                    state_.adaptive ? state_.samples[i] : static_cast<std::uint32_t>(state_.spp_done));
+            }
+        }
+    }
+}
+
+}  // namespace glint
