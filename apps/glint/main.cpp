@@ -422,7 +422,8 @@ int run_render(const RenderArgs& args) {
             break;
         }
         progress.pass_started({render.passes() + 1, render.spp_done(), render.spp_target(),
-                               render.adaptive() ? render.converged_fraction() : -1, left});
+                               render.adaptive() ? render.converged_fraction() : -1, left,
+                               render.remaining_samples()});
         if (!render.run_pass(n, &g_stop, &progress)) {  // the pass in flight is abandoned
             interrupted = true;
             break;
@@ -441,6 +442,7 @@ int run_render(const RenderArgs& args) {
     render.resolve(film);
     const glint::ProgressiveState& state = render.state();
     glint::RenderStats stats;
+    stats.complete = !interrupted;
     stats.seconds = state.seconds;
     stats.rays = state.rays;
     std::string what = spp_text(render);

@@ -13,6 +13,7 @@ Progress::Progress(ProgressMode mode, std::FILE* out, std::uint64_t total)
 void Progress::pass_started(const PassInfo& info) {
     if (pass_.pass == 0) samples_at_start_ = samples_.load(std::memory_order_relaxed);
     pass_ = info;
+    total_.store(samples_.load(std::memory_order_relaxed) + info.remaining, std::memory_order_relaxed);
     pass_start_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
@@ -23,7 +24,9 @@ void Progress::tile_done(std::uint64_t samples, std::uint64_t rays) {
     const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                             std::chrono::steady_clock::now() - start_)
                             .count();
-    if (now_ns - last_draw_ns_.load(std::memory_order_relaxed) < 200'000'000 && s < total_) return;
+    if (now_ns - last_draw_ns_.load(std::memory_order_relaxed) < 200'000'000 &&
+        s < total_.load(std::memory_order_relaxed))
+        return;
     if (drawing_.test_and_set(std::memory_order_acquire)) return;  // someone else is drawing
     last_draw_ns_.store(now_ns, std::memory_order_relaxed);
     draw(s, r, static_cast<double>(now_ns) * 1e-9);
@@ -40,12 +43,13 @@ std::string clock(double seconds) {
 
 void Progress::draw(std::uint64_t samples, std::uint64_t rays, double elapsed) {
     constexpr int kWidth = 24;
-    const double fraction = total_ ? static_cast<double>(samples) / static_cast<double>(total_) : 1;
+    const std::uint64_t total = total_.load(std::memory_order_relaxed);
+    const double fraction = total ? static_cast<double>(samples) / static_cast<double>(total) : 1;
     const int filled = static_cast<int>(std::min(1.0, fraction) * kWidth);
     const double mrays = elapsed > 0 ? static_cast<double>(rays) / elapsed * 1e-6 : 0;
     // The rate of this run (a resumed render's earlier samples took no time here).
     const double done_here = static_cast<double>(samples - std::min(samples, samples_at_start_));
-    const double eta = done_here > 0 ? elapsed * static_cast<double>(total_ - std::min(total_, samples)) / done_here : 0;
+    const double eta = done_here > 0 ? elapsed * static_cast<double>(total - std::min(total, samples)) / done_here : 0;
     std::string line = fmt::format("\r[{}{}] {:5.1f}%", std::string(static_cast<std::size_t>(filled), '#'),
                                    std::string(static_cast<std::size_t>(kWidth - filled), '.'), fraction * 100);
     if (pass_.pass > 0) line += fmt::format("  pass {}  {}/{} spp", pass_.pass, pass_.spp_done, pass_.spp_target);
@@ -60,6 +64,7 @@ void Progress::draw(std::uint64_t samples, std::uint64_t rays, double elapsed) {
 void Progress::finish(const RenderStats& stats, int width, int height, const std::string& what) {
     if (mode_ == ProgressMode::kQuiet) return;
     if (mode_ == ProgressMode::kBar) {
+        if (stats.complete) total_.store(samples_.load());  // converged or budget reached: done
         draw(samples_.load(), rays_.load(), stats.seconds);
         fmt::print(out_, "\n");
     }

@@ -28,6 +28,9 @@ struct PassInfo {
     int spp_target = 0;
     double converged = -1;    ///< share of pixels converged; < 0: not adaptive
     double budget_left = -1;  ///< seconds of the time budget left; < 0: no budget
+    /// Pixel samples still to take at most (adaptive: pixels still sampling x spp left); the bar's
+    /// 100 % becomes the samples so far plus these.
+    std::uint64_t remaining = 0;
 };
 
 class Progress {
@@ -48,7 +51,7 @@ private:
     void draw(std::uint64_t samples, std::uint64_t rays, double elapsed);
     ProgressMode mode_;
     std::FILE* out_;
-    std::uint64_t total_;
+    std::atomic<std::uint64_t> total_;
     std::chrono::steady_clock::time_point start_;
     std::atomic<std::uint64_t> samples_{0};
     std::atomic<std::uint64_t> rays_{0};

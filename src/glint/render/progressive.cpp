@@ -68,7 +68,7 @@ int adaptive_default_min_spp(float threshold) {
 ProgressiveRender::ProgressiveRender(const Scene& scene, const Camera& camera,
                                      const Integrator& integrator, const RenderOptions& options,
                                      int width, int height, bool aovs)
-    : scene_(scene), camera_(camera), integrator_(integrator), options_(options) {
+    : scene_(scene), camera_(camera), integrator_(integrator), options_(options), filter_(options.filter) {
     state_.width = width;
     state_.height = height;
     state_.spp_target = std::max(1, options.spp);
@@ -124,6 +124,15 @@ double ProgressiveRender::converged_fraction() const {
     return 1.0 - static_cast<double>(still) / static_cast<double>(state_.active.size());
 }
 
+std::uint64_t ProgressiveRender::remaining_samples() const {
+    if (!state_.adaptive)
+        return static_cast<std::uint64_t>(state_.pixels()) * static_cast<std::uint64_t>(state_.spp_target - state_.spp_done);
+    std::uint64_t r = 0;
+    for (std::size_t i = 0; i < state_.pixels(); ++i)
+        if (state_.active[i]) r += static_cast<std::uint64_t>(state_.spp_target) - state_.samples[i];
+    return r;
+}
+
 int ProgressiveRender::next_pass_size(double seconds_left) const {
     const int done = state_.spp_done, target = state_.spp_target;
     if (finished()) return 0;
@@ -154,7 +163,9 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
 
 // Samples [c, c + n) of one pixel, c its count so far, continuing its sums from state_ into
 // next_. The arithmetic is the one-pass loop's, term for term.
-void ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter) {
+// Flattened: the sampler, filter and camera calls inline into the loop, as they did in the
+// one-pass loop this replaced (7 % of a Whitted render went to the calls otherwise).
+[[gnu::flatten]] void ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter) {
     const ProgressiveState& in = state_;
     ProgressiveState& out = next_;
     const int spp = in.spp_target;
@@ -171,7 +182,7 @@ void ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, Ray
     Vector3 normal{0, 0, 0};
     float depth = 0, hit_weight = 0;
     if (in.aovs) albedo = in.albedo[i], normal = in.normal[i], depth = in.depth[i], hit_weight = in.hit_weight[i];
-    const FilterSampler filter(options_.filter);
+    const FilterSampler& filter = filter_;
     for (int s = first; s < last; ++s) {
         const auto index = static_cast<std::uint32_t>(s);
         FirstHit hit;

@@ -21,6 +21,7 @@
 
 #include "glint/cameras/camera.h"
 #include "glint/film/film.h"
+#include "glint/film/filter.h"
 #include "glint/integrators/integrator.h"
 #include "glint/render/progress.h"
 #include "glint/render/render.h"
@@ -82,6 +83,8 @@ public:
     bool finished() const;
     /// The share of pixels that stopped sampling (adaptive; 0 otherwise).
     double converged_fraction() const;
+    /// Pixel samples still to take at most: pixels still sampling x samples they lack.
+    std::uint64_t remaining_samples() const;
 
     /// The samples per pixel of the next pass. Adaptive sampling has a fixed schedule (doubling
     /// up to the minimum spp, then steps of 16); otherwise passes double while they are short,
@@ -106,6 +109,7 @@ private:
     const Camera& camera_;
     const Integrator& integrator_;
     RenderOptions options_;
+    FilterSampler filter_;  ///< its tables are built once
     int min_spp_ = 0;
     float threshold_ = 0;  ///< Cycles' internal threshold
     ProgressiveState state_, next_;

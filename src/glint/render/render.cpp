@@ -21,11 +21,11 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
     RenderStats stats;
     if (spp > 1 || film.has_aovs()) {
         ProgressiveRender r(scene, camera, integrator, options, w, h, film.has_aovs());
-        while (!r.finished()) {
-            if (!r.run_pass(r.next_pass_size(), cancel, progress)) {
-                stats.complete = false;
-                break;
-            }
+        // Uniform: one pass (nothing to show or save between passes here, and any split gives
+        // these bits); adaptive sampling keeps its schedule.
+        while (stats.complete && !r.finished()) {
+            const int n = r.adaptive() ? r.next_pass_size() : r.spp_target();
+            if (!r.run_pass(n, cancel, progress)) stats.complete = false;
         }
         r.resolve(film);
         stats.rays = r.state().rays;
