@@ -78,8 +78,9 @@ enum class LightStrategy { kMis, kLight, kBsdf };
 
 struct PathSettings {
     int max_depth = 16;  ///< scattering events; 1 = direct lighting only
-    /// Russian roulette from this depth on (0-based); paths die with probability 1 - throughput.
-    int rr_depth = 3;
+    /// Russian roulette from this depth on (0-based): a path continues with probability
+    /// min(1, sqrt(max throughput)).
+    int rr_depth = 5;
     /// Clamp each sample's radiance to this luminance-independent maximum per channel (biased;
     /// off when infinite).
     float clamp = std::numeric_limits<float>::infinity();
