@@ -1,12 +1,14 @@
 # The Cornell box of scenes/cornell-box.yaml, built in Blender and rendered with Cycles on the
 # CPU, for bench/compare_cycles.sh. Same measured geometry, camera (vertical fov 39.3077 deg),
 # reflectances, one-sided quad light of radiance (17, 12, 4), box filter, no denoiser, no
-# adaptive sampling, no clamping, and the same path length: Cycles' max_bounces = 15 traces the
+# adaptive sampling (unless asked for), no clamping, and the same path length: Cycles' max_bounces = 15 traces the
 # same paths as glint's max_depth = 16 (Cycles counts bounces after the first hit, glint counts
 # scattering events including it).
 #
-#   blender -b --factory-startup -P bench/cornell_cycles.py -- OUT.exr SPP THREADS [SEED]
+#   blender -b --factory-startup -P bench/cornell_cycles.py -- OUT.exr SPP THREADS [SEED [SIZE [THRESHOLD]]]
 #
+# SIZE: the square film's side (default 512); THRESHOLD > 0: adaptive sampling with that noise
+# threshold (Cycles' automatic minimum samples), SPP the maximum (bench/compare_adaptive.sh).
 # Prints "cycles render seconds: S" (the render alone, without Blender's start-up).
 import math
 import sys
@@ -17,6 +19,8 @@ import bpy
 argv = sys.argv[sys.argv.index("--") + 1:]
 out, spp, threads = argv[0], int(argv[1]), int(argv[2])
 seed = int(argv[3]) if len(argv) > 3 else 0
+size = int(argv[4]) if len(argv) > 4 else 512
+threshold = float(argv[5]) if len(argv) > 5 else 0.0
 
 # Cornell data (right-handed, y up) to Blender (right-handed, z up): a rotation of +90 degrees
 # about x, (x, y, z) -> (x, -z, y). Handedness is kept, so the red wall stays on the left.
@@ -125,7 +129,7 @@ scene.camera = cam
 
 r = scene.render
 r.engine = "CYCLES"
-r.resolution_x = r.resolution_y = 512
+r.resolution_x = r.resolution_y = size
 r.resolution_percentage = 100
 r.threads_mode = "FIXED"
 r.threads = threads
@@ -137,7 +141,10 @@ scene.view_settings.view_transform = "Standard"
 c = scene.cycles
 c.device = "CPU"
 c.samples = spp
-c.use_adaptive_sampling = False
+c.use_adaptive_sampling = threshold > 0
+if threshold > 0:
+    c.adaptive_threshold = threshold
+    c.adaptive_min_samples = 0  # Cycles' automatic minimum
 c.use_denoising = False
 c.seed = seed
 c.pixel_filter_type = "BOX"
