@@ -290,6 +290,18 @@ std::string image_settings(const RenderArgs& args, const glint::RenderJob& job) 
         args.max_depth ? *args.max_depth : -1, args.camera, args.scene.empty() ? "(demo)" : "");
 }
 
+// What the image header says about the render (EXR attributes, PNG text chunks).
+glint::ImageMetadata metadata(const RenderArgs& args, int spp, int target, int passes, double seconds,
+                              bool complete) {
+    return {{"glint:spp", std::to_string(spp)},
+            {"glint:spp_target", std::to_string(target)},
+            {"glint:passes", std::to_string(passes)},
+            {"glint:render_seconds", fmt::format("{:.3f}", seconds)},
+            {"glint:complete", complete ? "yes" : "no"},
+            {"glint:scene", args.scene},
+            {"Software", std::string("glint ") + GLINT_VERSION}};
+}
+
 std::string spp_text(const glint::ProgressiveRender& r) {
     if (!r.adaptive()) return fmt::format("{} spp", r.spp_done());
     const auto& s = r.state().samples;
@@ -362,9 +374,7 @@ int run_render(const RenderArgs& args) {
         const glint::RenderStats stats =
             glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress, &g_stop);
         if (!stats.complete) return interrupted_status("no pass completed; nothing written");
-        glint::write_image(out, film, job.display,
-                           {{"glint:spp", "1"}, {"glint:render_seconds", fmt::format("{:.3f}", stats.seconds)},
-                            {"glint:scene", args.scene}, {"Software", std::string("glint ") + GLINT_VERSION}});
+        glint::write_image(out, film, job.display, metadata(args, 1, 1, 1, stats.seconds, true));
         progress.finish(stats, w, h, "1 spp");
         if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
         return 0;
@@ -449,13 +459,8 @@ int run_render(const RenderArgs& args) {
     if (!render.finished()) what += fmt::format(" of {}", render.spp_target());
     if (budget_hit) what += " (time budget reached)";
     glint::write_image(out, film, job.display,
-                       {{"glint:spp", std::to_string(render.spp_done())},
-                        {"glint:spp_target", std::to_string(render.spp_target())},
-                        {"glint:passes", std::to_string(render.passes())},
-                        {"glint:render_seconds", fmt::format("{:.3f}", state.seconds)},
-                        {"glint:complete", render.finished() ? "yes" : "no"},
-                        {"glint:scene", args.scene},
-                        {"Software", std::string("glint ") + GLINT_VERSION}});
+                       metadata(args, render.spp_done(), render.spp_target(), render.passes(), state.seconds,
+                                render.finished()));
     progress.finish(stats, w, h, what);
     if (!args.quiet) {
         fmt::print(stderr, "wrote {}{}\n", out.string(),

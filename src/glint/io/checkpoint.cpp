@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "glint/io/image_io.h"
+#include "glint/samplers/hash.h"
 
 namespace glint {
 
@@ -27,15 +28,6 @@ namespace {
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 72;
-
-std::uint64_t mix(std::uint64_t h) {  // a 64-bit finaliser (Stafford's variant 13)
-    h ^= h >> 30;
-    h *= 0xbf58476d1ce4e5b9ULL;
-    h ^= h >> 27;
-    h *= 0x94d049bb133111ebULL;
-    h ^= h >> 31;
-    return h;
-}
 
 // Bytes per pixel of the planes the flags call for.
 std::size_t pixel_bytes(bool adaptive, bool aovs) {
@@ -96,17 +88,17 @@ private:
 
 std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t seed) {
     const auto* p = static_cast<const unsigned char*>(data);
-    std::uint64_t h = mix(seed ^ 0x676c696e74ULL) ^ size;
+    std::uint64_t h = mix64(seed ^ 0x676c696e74ULL) ^ size;
     std::size_t i = 0;
     for (; i + 8 <= size; i += 8) {
         std::uint64_t w;
         std::memcpy(&w, p + i, 8);
-        h = (h ^ mix(w)) * 0x9e3779b97f4a7c15ULL;
+        h = (h ^ mix64(w)) * 0x9e3779b97f4a7c15ULL;
         h ^= h >> 29;
     }
     std::uint64_t tail = 0;
     std::memcpy(&tail, p + i, size - i);
-    return mix(h ^ mix(tail + (size - i)));
+    return mix64(h ^ mix64(tail + (size - i)));
 }
 
 std::uint64_t render_fingerprint(const RenderJob& job, const SourceFiles& sources,

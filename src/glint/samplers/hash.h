@@ -17,6 +17,17 @@ constexpr std::uint32_t mix32(std::uint32_t x) {
     return x;
 }
 
+/// A 64-bit finaliser (Stafford's "variant 13", as in splitmix64): for checksums and
+/// fingerprints (io/checkpoint.cpp).
+constexpr std::uint64_t mix64(std::uint64_t h) {
+    h ^= h >> 30;
+    h *= 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 27;
+    h *= 0x94d049bb133111ebULL;
+    h ^= h >> 31;
+    return h;
+}
+
 constexpr std::uint32_t hash_combine(std::uint32_t seed, std::uint32_t v) {
     return mix32(seed ^ (v + 0x9e3779b9U + (seed << 6) + (seed >> 2)));
 }
