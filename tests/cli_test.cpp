@@ -2,6 +2,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -652,6 +653,83 @@ TEST_F(LongRender, AMissingOrVanishingViewerNeverStopsTheRender) {
     r = run("render " + cornell_ + " --width 16 --height 12 --spp 4 -o c.exr --display nonsense");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("expected HOST:PORT"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+// Inputs that used to hang or be misread (issue 16's findings): devices and FIFOs named as
+// scene, texture or mesh files are refused, not read for ever; values outside the documented
+// ranges are errors at the value; a UTF-8 byte-order mark is dropped, UTF-16 refused by name.
+namespace {
+
+class HostileInput : public Cli {
+protected:
+    // Like run(), but killed after 20 s, so a regression fails instead of hanging the suite.
+    Result run_limited(const std::string& args) {
+        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && timeout 20 '" + GLINT_CLI +
+                                "' " + args + " >out.txt 2>err.txt </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "out.txt"), read(dir_ / "err.txt")};
+        fs::remove(dir_ / "out.txt");
+        fs::remove(dir_ / "err.txt");
+        return r;
+    }
+};
+
+TEST_F(HostileInput, DevicesAndFifosAreRefusedNotRead) {
+    ASSERT_EQ(::mkfifo((dir_ / "scene.yaml").c_str(), 0600), 0);
+    Result r = run_limited("render scene.yaml -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("scene.yaml: error: cannot read scene file: it is not a regular file (a device, FIFO or socket)"),
+              std::string::npos) << r.err;
+    fs::create_symlink("/dev/zero", dir_ / "zero.png");
+    fs::create_symlink("/dev/zero", dir_ / "zero.ply");
+    write("texture.yaml", "film: {width: 8, height: 6}\nmaterials:\n  m: {color: {type: image, filename: zero.png}}\n"
+                          "objects:\n  - {type: sphere, center: [0, 0, 3], radius: 1, material: m}\n");
+    r = run_limited("render texture.yaml -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("zero.png': it is not a regular file"), std::string::npos) << r.err;
+    write("mesh.yaml", "film: {width: 8, height: 6}\nobjects:\n  - {type: mesh, file: zero.ply}\n");
+    r = run_limited("render mesh.yaml -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("zero.ply: cannot read: it is not a regular file"), std::string::npos) << r.err;
+    r = run_limited("render zero.ply -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
+TEST_F(HostileInput, ValuesOutsideTheirRangesAreErrorsAtTheValue) {
+    write("fov.yaml", "camera: {type: look_at, from: [0, 0, -4], to: [0, 0, 0], fov: 180}\n");
+    Result r = run_limited("render fov.yaml -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("fov.yaml:1:63: error: fov must be in (0, 180), got 180"), std::string::npos) << r.err;
+    // A glTF perspective camera with yfov 0 (the specification requires > 0).
+    write("cam.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"camera": 0}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0, "znear": 0.1}}]})");
+    r = run_limited("render cam.gltf -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("cam.gltf:3:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("yfov must be in (0, pi) radians, got 0"), std::string::npos) << r.err;
+}
+
+TEST_F(HostileInput, ByteOrderMarks) {
+    const std::string scene = "film: {width: 8, height: 6}\n";
+    write("bom8.yaml", "\xEF\xBB\xBF" + scene);
+    EXPECT_EQ(run_limited("render bom8.yaml -q -o a.png").status, 0);
+    std::string utf16 = "\xFF\xFE";
+    for (char c : scene) utf16 += std::string{c, '\0'};
+    write("bom16.yaml", utf16);
+    Result r = run_limited("render bom16.yaml -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("bom16.yaml:1:1: error: the file is UTF-16; glint reads scene files as UTF-8: save it as UTF-8"),
+              std::string::npos) << r.err;
+    write("nul.yaml", utf16.substr(2));
+    r = run_limited("render nul.yaml -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("not text (it holds NUL bytes"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "b.png"));
 }
 
 }  // namespace

@@ -110,7 +110,20 @@ SceneError::SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& s
       }()),
       diagnostics_(std::move(diagnostics)) {}
 
+std::string not_a_regular_file(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);  // follows symbolic links
+    if (ec || !std::filesystem::exists(status) || std::filesystem::is_regular_file(status)) return {};
+    if (std::filesystem::is_directory(status)) return "is a folder";
+    return "is not a regular file (a device, FIFO or socket)";
+}
+
 std::string read_scene_text(const std::string& path, const std::shared_ptr<SourceFiles>& sources) {
+    if (const std::string why = not_a_regular_file(path); !why.empty()) {
+        Diagnostics d(sources);
+        d.error({path, 0, 0}, fmt::format("cannot read scene file: it {}", why));
+        d.throw_if_errors();
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         Diagnostics d(sources);
@@ -124,7 +137,21 @@ std::string read_scene_text(const std::string& path, const std::shared_ptr<Sourc
         d.error({path, 0, 0}, "cannot read scene file");
         d.throw_if_errors();
     }
-    return text.str();
+    std::string s = text.str();
+    // UTF-8 is read (its byte-order mark dropped); UTF-16 and UTF-32 are refused by name rather
+    // than read as garbage keys.
+    if (s.size() >= 3 && s.compare(0, 3, "\xEF\xBB\xBF") == 0) s.erase(0, 3);
+    const auto starts = [&s](const char* bom, std::size_t n) { return s.size() >= n && s.compare(0, n, bom, n) == 0; };
+    const char* encoding = starts("\xFF\xFE\0\0", 4) || starts("\0\0\xFE\xFF", 4) ? "UTF-32"
+                           : starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2)           ? "UTF-16"
+                           : s.find('\0') < 4096                                        ? "not text (it holds NUL bytes; UTF-16 without a byte-order mark?)"
+                                                                                          : nullptr;
+    if (encoding) {
+        Diagnostics d(sources);
+        d.error({path, 1, 1}, fmt::format("the file is {}; glint reads scene files as UTF-8: save it as UTF-8", encoding));
+        d.throw_if_errors();
+    }
+    return s;
 }
 
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {

@@ -7,6 +7,7 @@
 //
 // Every value parsed from a file carries a SourceLoc. Errors are collected, not thrown one at a
 // time; when a stage ends with errors it throws one SceneError holding all of them.
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -27,6 +28,11 @@ struct Diagnostic {
 };
 
 /// The text of the files diagnostics point into, so that messages can quote the line.
+/// Why glint must not read `path`: it names a folder, a device, a FIFO or a socket (reading
+/// those blocks or never ends), as "is a folder" or "is not a regular file (a device, FIFO or
+/// socket)"; empty for a regular file or a path that does not exist (opening it says so).
+std::string not_a_regular_file(const std::filesystem::path& path);
+
 class SourceFiles {
 public:
     void add(const std::string& path, std::string text);

@@ -32,6 +32,7 @@
 #include <set>
 #include <sstream>
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/draco_decode.h"
 #include "glint/io/json_locate.h"
 #include "glint/io/limits.h"
@@ -866,7 +867,11 @@ struct Importer {
                 cam.direction = normalize(place({0, 0, 1}));  // glTF's -z, mirrored
                 cam.up = normalize(place({0, 1, 0}));
                 if (c.type == "perspective") {
-                    cam.yfov_degrees = float(c.perspective.yfov * 180 / std::numbers::pi);
+                    const double yfov = c.perspective.yfov;  // the specification: > 0
+                    if (!(yfov > 0 && yfov < std::numbers::pi))
+                        fail_at(fmt::format("/cameras/{}/perspective/yfov", n.camera),
+                                fmt::format("yfov must be in (0, pi) radians, got {}", yfov));
+                    cam.yfov_degrees = float(yfov * 180 / std::numbers::pi);
                 } else {
                     cam.orthographic = true;
                     cam.ymag = float(c.orthographic.ymag);
@@ -974,6 +979,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     const bool glb = mesh_format(path) == MeshFormat::kGlb;
     // The file is read once, here; tinygltf parses it from memory (adjusted when it uses the
     // compression extensions).
+    if (const std::string why = not_a_regular_file(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open", file));
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,5 +1,6 @@
 #include "glint/io/image_io.h"
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/limits.h"
 
 #include <unistd.h>
@@ -149,6 +150,8 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
 }  // namespace
 
 Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
+    if (const std::string why = not_a_regular_file(path); !why.empty())
+        throw IoError(fmt::format("cannot read image '{}': it {}", path.string(), why));
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -19,6 +19,7 @@
 #include <map>
 #include <tuple>
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/mesh_import.h"
 
 namespace glint {
@@ -86,6 +87,7 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
 ImportedFile import_obj(const std::filesystem::path& path) {
     const std::string file = path.string();
     if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
+    if (const std::string why = not_a_regular_file(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // we split faces ourselves, keeping their material
     config.vertex_color = false;

@@ -793,6 +793,10 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             return;
         }
         const std::filesystem::path p = std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : dir_ / *file;
+        if (const std::string why = not_a_regular_file(p); !why.empty()) {
+            diag_.error(t.loc(), fmt::format("{}: cannot read '{}': it {}", name, p.string(), why));
+            return;
+        }
         std::ifstream in(p, std::ios::binary);
         if (!in) {
             diag_.error(t.loc(), fmt::format("{}: cannot open '{}': {}", name, p.string(), std::strerror(errno)));

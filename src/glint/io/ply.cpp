@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/mesh_import.h"
 
 namespace glint {
@@ -379,6 +380,8 @@ std::string gunzip(const std::string& bytes, const std::string& name) {
 }  // namespace
 
 ImportedFile import_ply(const std::filesystem::path& path) {
+    if (const std::string why = not_a_regular_file(path); !why.empty())
+        throw IoError(fmt::format("{}: cannot read: it {}", path.string(), why));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno)));
     std::ostringstream s;

@@ -148,7 +148,7 @@ private:
             assign(m.require("to"), c.to, point());
             assign(m.get("up"), c.up, direction("up"));
             assign(m.get("fov"), c.fov, [this](const YAML::Node& n) {
-                return r_.number_in(n, "fov", 0, 180, true);
+                return r_.number_in(n, "fov", 0, 180, true, true);
             });
             if (c.from == c.to && m.has("from") && m.has("to")) {
                 r_.error(*m.get("to"), "look_at camera: 'to' must differ from 'from'");

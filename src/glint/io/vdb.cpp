@@ -6,6 +6,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/image_io.h"
 #include "glint/io/limits.h"
 
@@ -20,6 +21,8 @@ void init() {
 
 void open(const std::filesystem::path& path, openvdb::io::File& file) {
     if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: no such file", path.string()));
+    if (const std::string why = not_a_regular_file(path); !why.empty())
+        throw IoError(fmt::format("{}: cannot read: it {}", path.string(), why));
     try {
         file.open(false);  // no delayed loading: the file may change after we return
     } catch (const std::exception& e) {

@@ -139,16 +139,17 @@ std::optional<Color> YamlReader::color(const YAML::Node& node) {
 }
 
 std::optional<double> YamlReader::number_in(const YAML::Node& node, const char* what, double lo,
-                                            double hi, bool lo_open) {
+                                            double hi, bool lo_open, bool hi_open) {
     const auto v = number(node);
     if (!v) return std::nullopt;
     const bool below = lo_open ? !(*v > lo) : *v < lo;
-    if (below || *v > hi) {
+    const bool above = hi_open ? !(*v < hi) : *v > hi;
+    if (below || above) {
         std::string range;
         if (std::isinf(hi)) {
             range = fmt::format("{} {}", lo_open ? ">" : ">=", lo);
         } else {
-            range = fmt::format("in {}{}, {}]", lo_open ? "(" : "[", lo, hi);
+            range = fmt::format("in {}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
         }
         error(node, fmt::format("{} must be {}, got {}", what, range, node.Scalar()));
         return std::nullopt;

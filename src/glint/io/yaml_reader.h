@@ -38,9 +38,9 @@ public:
     /// Three finite, non-negative numbers.
     std::optional<Color> color(const YAML::Node& node);
 
-    /// A number in [lo, hi] (or (lo, hi] when lo_open); `what` names it in errors.
+    /// A number in [lo, hi] (the ends excluded when lo_open, hi_open); `what` names it in errors.
     std::optional<double> number_in(const YAML::Node& node, const char* what, double lo, double hi,
-                                    bool lo_open = false);
+                                    bool lo_open = false, bool hi_open = false);
     std::optional<long long> integer_in(const YAML::Node& node, const char* what, long long lo,
                                         long long hi);
 
