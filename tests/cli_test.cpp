@@ -493,6 +493,24 @@ TEST_F(LongRender, AdaptiveSamplingWritesTheSampleCounts) {
     for (std::size_t i = 3; i < v.size(); i += 4) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
     EXPECT_EQ(lo, 8.0f);
     EXPECT_GT(hi, 8.0f);
+
+    // The same from the scene file's sampler; out of range is an error at the value.
+    std::string text = read(cornell_);
+    const auto at = text.find("sampler:");
+    ASSERT_NE(at, std::string::npos);
+    text.erase(at, text.find('\n', at) - at);
+    write("adaptive.yaml", text + "sampler: {spp: 512, noise_threshold: 0.05, min_spp: 8}\n");
+    EXPECT_EQ(run("render adaptive.yaml --width 48 --height 36 -q -o b.exr").status, 0);
+    std::vector<float> w(v.size());
+    auto again = OIIO::ImageInput::open((dir_ / "b.exr").string());
+    ASSERT_TRUE(again);
+    ASSERT_EQ(again->spec().nchannels, 4);
+    again->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, w.data());
+    EXPECT_EQ(w, v);  // the same render as the flags gave
+    write("bad.yaml", text + "sampler: {spp: 512, noise_threshold: 2}\n");
+    const Result bad = run("render bad.yaml -o c.exr");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.err.find("noise_threshold must be in [0, 1], got 2"), std::string::npos) << bad.err;
 }
 
 // A viewer: tev's side of the protocol, decoded here from the bytes (independently of glint's

@@ -329,7 +329,8 @@ int run_render(const RenderArgs& args) {
         job.options.noise_threshold = static_cast<float>(*args.noise_threshold);
     }
     if (args.min_spp) {
-        if (!args.noise_threshold) throw glint::IoError("--min-spp goes with --noise-threshold (adaptive sampling)");
+        if (!args.noise_threshold && !(job.options.noise_threshold > 0))
+            throw glint::IoError("--min-spp goes with --noise-threshold or the scene's sampler noise_threshold (adaptive sampling)");
         if (*args.min_spp < 1 || *args.min_spp > job.options.spp)
             throw glint::IoError(fmt::format("--min-spp {}: must be between 1 and the spp ({})", *args.min_spp,
                                              job.options.spp));

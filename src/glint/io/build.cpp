@@ -508,6 +508,8 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     job.options.spp = pick(d.sampler.spp, overrides.spp, "spp", 1, kMaxSpp, diagnostics);
     job.options.seed = overrides.seed.value_or(d.sampler.seed);
     job.options.sampler = d.sampler.type;
+    job.options.noise_threshold = static_cast<float>(d.sampler.noise_threshold);
+    job.options.min_spp = std::min(d.sampler.min_spp, job.options.spp);
     if (overrides.threads) {
         if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
             diagnostics.error(kCommandLine, fmt::format("--threads must be in [0, {}], got {}",

@@ -111,6 +111,8 @@ struct SamplerDesc {
     SamplerType type = SamplerType::kSobol;
     Located<int> spp{1, {}};
     std::uint64_t seed = 0;
+    double noise_threshold = 0;  ///< adaptive sampling (0: off)
+    int min_spp = 0;             ///< adaptive: 0 for Cycles' default
 };
 
 /// A texture as the file describes it: a tree (scale and mix have children), turned into

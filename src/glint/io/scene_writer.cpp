@@ -250,8 +250,11 @@ WrittenScene Writer::run() {
     if (d_.film.scale != 1) y.insert(y.size() - 1, ", scale: " + num(d_.film.scale));
     y += "\n";
     const char* samplers[] = {"sobol", "stratified", "independent"};
-    y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}}}\n", samplers[static_cast<int>(d_.sampler.type)],
+    y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}", samplers[static_cast<int>(d_.sampler.type)],
                      d_.sampler.spp.value, d_.sampler.seed);
+    if (d_.sampler.noise_threshold > 0)
+        y += fmt::format(", noise_threshold: {}, min_spp: {}", d_.sampler.noise_threshold, d_.sampler.min_spp);
+    y += "}\n";
     if (d_.integrator.kind == IntegratorKind::kPath)
         y += fmt::format("integrator: {{type: path, max_depth: {}}}\n", d_.integrator.max_depth.value);
     else

@@ -270,7 +270,7 @@ private:
     }
 
     void sampler(const YAML::Node& node, SamplerDesc& s) {
-        MapReader m(r_, node, "sampler", {"type", "spp", "seed"});
+        MapReader m(r_, node, "sampler", {"type", "spp", "seed", "noise_threshold", "min_spp"});
         if (m.has("type")) {
             const auto type = type_of(node, "sampler", {"sobol", "stratified", "independent"});
             if (type == "sobol") s.type = SamplerType::kSobol;
@@ -284,6 +284,12 @@ private:
         }
         assign(m.get("seed"), s.seed, [this](const YAML::Node& v) {
             return r_.integer_in(v, "seed", 0, std::numeric_limits<long long>::max());
+        });
+        assign(m.get("noise_threshold"), s.noise_threshold, [this](const YAML::Node& v) {
+            return r_.number_in(v, "noise_threshold", 0, 1);
+        });
+        assign(m.get("min_spp"), s.min_spp, [this](const YAML::Node& v) {
+            return r_.integer_in(v, "min_spp", 0, kMaxSpp);
         });
     }
 
