@@ -27,9 +27,12 @@ struct Result {
 class Cli : public ::testing::Test {
 protected:
     static std::string read(const fs::path& p) { return glint::testing::read_file(p); }
-    Result run(const std::string& args) {
-        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && '" + GLINT_CLI + "' " +
-                                args + " >out.txt 2>err.txt </dev/null";
+    // Runs glint in the test's folder; with `limit` seconds > 0 it is killed after that long, so
+    // a regression to a hang fails instead of stalling the suite.
+    Result run(const std::string& args, int limit = 0) {
+        const std::string timeout = limit > 0 ? "timeout " + std::to_string(limit) + " " : "";
+        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && " + timeout + "'" + GLINT_CLI +
+                                "' " + args + " >out.txt 2>err.txt </dev/null";
         const int raw = std::system(cmd.c_str());
         Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "out.txt"),
                  read(dir_ / "err.txt")};
@@ -682,16 +685,7 @@ namespace {
 
 class HostileInput : public Cli {
 protected:
-    // Like run(), but killed after 20 s, so a regression fails instead of hanging the suite.
-    Result run_limited(const std::string& args) {
-        const std::string cmd = std::string("cd '") + dir_.path().string() + "' && timeout 20 '" + GLINT_CLI +
-                                "' " + args + " >out.txt 2>err.txt </dev/null";
-        const int raw = std::system(cmd.c_str());
-        Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "out.txt"), read(dir_ / "err.txt")};
-        fs::remove(dir_ / "out.txt");
-        fs::remove(dir_ / "err.txt");
-        return r;
-    }
+    Result run_limited(const std::string& args) { return run(args, 20); }
 };
 
 TEST_F(HostileInput, DevicesAndFifosAreRefusedNotRead) {
