@@ -708,6 +708,15 @@ TEST_F(HostileInput, DevicesAndFifosAreRefusedNotRead) {
     r = run_limited("render zero.ply -o a.png");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+    // A glTF buffer whose uri names a FIFO (tinygltf's own reader opened it and blocked).
+    ASSERT_EQ(::mkfifo((dir_ / "buf.bin").c_str(), 0600), 0);
+    write("fifo.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "buf.bin", "byteLength": 36}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})");
+    r = run_limited("render fifo.gltf -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("buf.bin' is not a regular file"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
 }
 

@@ -968,12 +968,32 @@ std::optional<std::string> prepare_for_tinygltf(const std::string& bytes, bool g
     return out;
 }
 
+// tinygltf's file callbacks without opening anything but regular files: its own FileExists
+// opens the file (which blocks on a FIFO), its reader would read a device for ever.
+bool file_exists(const std::string& file, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(file, ec);
+}
+
+// tinygltf's file reader, refusing what is not a regular file (see not_a_regular_file).
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+    if (const std::string why = not_a_regular_file(file); !why.empty()) {
+        if (err) *err += fmt::format("'{}' {}", file, why);
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, user);
+}
+
 }  // namespace
 
 ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name) {
     const std::string file = path.string();
     if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
     tinygltf::TinyGLTF loader;
+    // External buffers and images go through tinygltf's own reader, but only from regular files:
+    // a uri naming a FIFO would block for ever, a device never end.
+    loader.SetFsCallbacks({&file_exists, &tinygltf::ExpandFilePath, &read_regular_file,
+                           &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string err, warn;
     const bool glb = mesh_format(path) == MeshFormat::kGlb;
