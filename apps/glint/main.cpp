@@ -305,9 +305,7 @@ glint::ImageMetadata metadata(const RenderArgs& args, int spp, int target, int p
 std::string spp_text(const glint::ProgressiveRender& r) {
     if (!r.adaptive()) return fmt::format("{} spp", r.spp_done());
     const auto& s = r.state().samples;
-    double mean = 0;
-    for (std::uint32_t n : s) mean += n;
-    mean /= static_cast<double>(std::max<std::size_t>(1, s.size()));
+    const double mean = static_cast<double>(r.samples_taken()) / static_cast<double>(std::max<std::size_t>(1, s.size()));
     return fmt::format("{:.1f} spp on average ({} to {} per pixel, {:.1f}% converged)", mean,
                        s.empty() ? 0 : *std::min_element(s.begin(), s.end()),
                        s.empty() ? 0 : *std::max_element(s.begin(), s.end()), 100 * r.converged_fraction());
@@ -355,8 +353,6 @@ int run_render(const RenderArgs& args) {
     const auto pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
     glint::Film film(w, h);
     if (job.aovs) film.enable_aovs();
-    const bool adaptive = job.options.noise_threshold > 0 && job.options.spp > 1;
-    if (adaptive && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();
     glint::Progress progress(mode, stderr, pixels * static_cast<std::uint64_t>(std::max(1, job.options.spp)));
     remember_temporary(0, out);
     if (!checkpoint.empty()) remember_temporary(1, checkpoint);
@@ -382,6 +378,7 @@ int run_render(const RenderArgs& args) {
     }
 
     glint::ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.aovs);
+    if (render.adaptive() && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();
     std::uint64_t fingerprint = 0;
     if (!checkpoint.empty()) {
         fingerprint = glint::render_fingerprint(job, *job.sources, image_settings(args, job));
@@ -398,7 +395,7 @@ int run_render(const RenderArgs& args) {
         } catch (const std::runtime_error& e) {
             throw glint::IoError(fmt::format("{}: does not fit this render: {}", args.resume, e.what()));
         }
-        progress.set_done(render.adaptive() ? 0 : pixels * static_cast<std::uint64_t>(render.spp_done()));
+        progress.set_done(render.samples_taken());
         if (!args.quiet)
             fmt::print(stderr, "glint: resuming {} at {} after {} pass{} ({:.1f} s)\n", args.resume,
                        spp_text(render), render.passes(), render.passes() == 1 ? "" : "es", render.state().seconds);

@@ -103,12 +103,7 @@ void ProgressiveRender::restore(ProgressiveState state) {
     state.check_shape();
     state_ = std::move(state);
     // The pace of the saved passes stands in for this machine's until a pass is measured.
-    double taken = 0;
-    if (state_.adaptive) {
-        for (std::uint32_t n : state_.samples) taken += n;
-    } else {
-        taken = static_cast<double>(state_.pixels()) * state_.spp_done;
-    }
+    const auto taken = static_cast<double>(samples_taken());
     seconds_per_sample_ = taken > 0 ? state_.seconds / taken : 0;
 }
 
@@ -122,6 +117,13 @@ double ProgressiveRender::converged_fraction() const {
     if (!state_.adaptive || state_.active.empty() || state_.spp_done < min_spp_) return 0;
     const auto still = std::count(state_.active.begin(), state_.active.end(), std::uint8_t{1});
     return 1.0 - static_cast<double>(still) / static_cast<double>(state_.active.size());
+}
+
+std::uint64_t ProgressiveRender::samples_taken() const {
+    if (!state_.adaptive) return static_cast<std::uint64_t>(state_.pixels()) * static_cast<std::uint64_t>(state_.spp_done);
+    std::uint64_t n = 0;
+    for (std::uint32_t s : state_.samples) n += s;
+    return n;
 }
 
 std::uint64_t ProgressiveRender::remaining_samples() const {
@@ -162,10 +164,11 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
 }
 
 // Samples [c, c + n) of one pixel, c its count so far, continuing its sums from state_ into
-// next_. The arithmetic is the one-pass loop's, term for term.
+// next_ (n = 0 copies the pixel over); returns the samples taken. The arithmetic is the one-pass
+// loop's, term for term.
 // Flattened: the sampler, filter and camera calls inline into the loop, as they did in the
 // one-pass loop this replaced (7 % of a Whitted render went to the calls otherwise).
-[[gnu::flatten]] void ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter) {
+[[gnu::flatten]] int ProgressiveRender::sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter) {
     const ProgressiveState& in = state_;
     ProgressiveState& out = next_;
     const int spp = in.spp_target;
@@ -231,6 +234,7 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
         out.depth[i] = depth;
         out.hit_weight[i] = hit_weight;
     }
+    return std::max(0, last - first);
 }
 
 bool ProgressiveRender::run_pass(int n, const std::atomic<bool>* cancel, Progress* progress) {
@@ -258,24 +262,9 @@ bool ProgressiveRender::run_pass(int n, const std::atomic<bool>* cancel, Progres
             for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
                 const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
                                       static_cast<std::size_t>(col);
-                if (state_.adaptive && !state_.active[i]) {  // converged: carried over as it is
-                    next_.sum[i] = state_.sum[i];
-                    next_.weight[i] = state_.weight[i];
-                    next_.odd_sum[i] = state_.odd_sum[i];
-                    next_.odd_weight[i] = state_.odd_weight[i];
-                    next_.samples[i] = state_.samples[i];
-                    next_.active[i] = 0;
-                    if (state_.aovs) {
-                        next_.albedo[i] = state_.albedo[i];
-                        next_.normal[i] = state_.normal[i];
-                        next_.depth[i] = state_.depth[i];
-                        next_.hit_weight[i] = state_.hit_weight[i];
-                    }
-                    continue;
-                }
-                const int first = state_.adaptive ? static_cast<int>(state_.samples[i]) : state_.spp_done;
-                taken += static_cast<std::uint64_t>(std::max(0, std::min(n, state_.spp_target - first)));
-                sample_pixel(i, col, row, n, counter);
+                // A converged pixel takes no samples: it is carried over as it is.
+                const bool active = !state_.adaptive || state_.active[i];
+                taken += static_cast<std::uint64_t>(sample_pixel(i, col, row, active ? n : 0, counter));
             }
         }
         rays.fetch_add(counter.rays, std::memory_order_relaxed);

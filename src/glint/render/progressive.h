@@ -83,6 +83,8 @@ public:
     bool finished() const;
     /// The share of pixels that stopped sampling (adaptive; 0 otherwise).
     double converged_fraction() const;
+    /// Pixel samples taken so far, all pixels together.
+    std::uint64_t samples_taken() const;
     /// Pixel samples still to take at most: pixels still sampling x samples they lack.
     std::uint64_t remaining_samples() const;
 
@@ -102,7 +104,7 @@ public:
     void resolve(Film& film) const;
 
 private:
-    void sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter);
+    int sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter);
     void update_convergence();
 
     const Scene& scene_;

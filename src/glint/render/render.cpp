@@ -29,13 +29,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
         }
         r.resolve(film);
         stats.rays = r.state().rays;
-        stats.samples = 0;
-        if (r.adaptive()) {
-            for (std::uint32_t n : r.state().samples) stats.samples += n;
-        } else {
-            stats.samples = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
-                            static_cast<std::uint64_t>(r.spp_done());
-        }
+        stats.samples = r.samples_taken();
         stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return stats;
     }
