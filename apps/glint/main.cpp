@@ -381,7 +381,7 @@ int run_render(const RenderArgs& args) {
     if (render.adaptive() && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();
     std::uint64_t fingerprint = 0;
     if (!checkpoint.empty()) {
-        fingerprint = glint::render_fingerprint(job, *job.sources, image_settings(args, job));
+        fingerprint = glint::render_fingerprint(job, image_settings(args, job));
     }
     if (!args.resume.empty()) {
         glint::Checkpoint c = glint::read_checkpoint(args.resume);

@@ -101,8 +101,7 @@ std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t seed)
     return mix64(h ^ mix64(tail + (size - i)));
 }
 
-std::uint64_t render_fingerprint(const RenderJob& job, const SourceFiles& sources,
-                                 std::string_view settings) {
+std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings) {
     std::uint64_t h = hash_bytes(settings.data(), settings.size());
     const auto add = [&h](const void* data, std::size_t bytes) { h = hash_bytes(data, bytes, h); };
     const auto add_vector = [&add](const auto& v) {
@@ -110,7 +109,8 @@ std::uint64_t render_fingerprint(const RenderJob& job, const SourceFiles& source
         add(&n, sizeof n);
         if (!v.empty()) add(v.data(), v.size() * sizeof(v[0]));
     };
-    for (const auto& [path, text] : sources.texts()) add(text.data(), text.size());  // not the paths
+    if (job.sources)
+        for (const auto& [path, text] : job.sources->texts()) add(text.data(), text.size());  // not the paths
     for (const TriangleMesh& m : job.scene.meshes) {
         add_vector(m.positions);
         add_vector(m.normals);

@@ -31,10 +31,9 @@ namespace glint {
 std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t seed = 0);
 
 /// What a checkpoint must match: `settings` (the options that change the image, as text), the
-/// scene files' text, every mesh's vertex data and indices, every image's texels, the camera
-/// (rays through five film points) and the acceleration backend.
-std::uint64_t render_fingerprint(const RenderJob& job, const SourceFiles& sources,
-                                 std::string_view settings);
+/// scene files' text (job.sources), every mesh's vertex data and indices, every image's texels,
+/// the camera (rays through five film points) and the acceleration backend.
+std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings);
 
 void write_checkpoint(const std::filesystem::path& path, std::uint64_t fingerprint,
                       const ProgressiveState& state);

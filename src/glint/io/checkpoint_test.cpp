@@ -132,7 +132,7 @@ TEST(Checkpoint, FingerprintFollowsTheSceneAndTheSettings) {
         std::ofstream(dir / name) << text;
         auto sources = std::make_shared<SourceFiles>();
         const RenderJob job = build(load_scene_file((dir / name).string(), sources), {}, sources);
-        return render_fingerprint(job, *sources, settings);
+        return render_fingerprint(job, settings);
     };
     const std::uint64_t base = fingerprint(scene, "a.yaml", "spp 4");
     EXPECT_EQ(base, fingerprint(scene, "a.yaml", "spp 4"));
