@@ -1,9 +1,12 @@
 # Thin wrapper: every target installs what is missing, configures (Release) and builds.
 BUILD ?= build
+# The sanitizer build: clang, AddressSanitizer + UndefinedBehaviorSanitizer, libFuzzer's coverage
+# instrumentation; the fuzzers (fuzz/) and the whole test suite again, sanitized.
+FUZZ_BUILD ?= build-fuzz
 JOBS  ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench bench-cycles bench-embree bench-volumes gallery sanitize clean
+.PHONY: all deps configure build demo test test-release test-sanitized fuzz bench bench-cycles bench-embree bench-volumes gallery sanitize clean
 
 all: build
 
@@ -21,8 +24,25 @@ build: configure
 demo: build
 	$(BUILD)/apps/glint/glint render -o glint.png
 
-test: build
+# Every test: the release build's suite, then the sanitizer build's (the same suite under
+# ASan+UBSan, and a regression run of every fuzzer over its corpus).
+test: test-release test-sanitized
+
+test-release: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+$(FUZZ_BUILD)/build.ninja: | deps
+	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DGLINT_SANITIZE=address,undefined -DGLINT_FUZZ=ON -DGLINT_IPO=OFF -DGLINT_BUILD_BENCH=OFF
+
+# The fuzzers, their seed corpora and the sanitized test suite, in $(FUZZ_BUILD)/.
+fuzz: deps $(FUZZ_BUILD)/build.ninja
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+sanitize: test-sanitized
+
+test-sanitized: fuzz
+	cd $(FUZZ_BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench:
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
@@ -46,16 +66,8 @@ bench-volumes:
 bench-embree: build
 	bench/compare_embree.sh $(BUILD) 5
 
-# Every test under AddressSanitizer + UndefinedBehaviorSanitizer (clang), in build-asan/.
-sanitize:
-	GLINT_SANITIZE_DEPS=1 scripts/install-deps.sh
-	CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DGLINT_SANITIZE=address,undefined -DGLINT_IPO=OFF -DGLINT_BUILD_BENCH=OFF
-	cmake --build build-asan -j $(JOBS)
-	cd build-asan && UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
-
 gallery: build
 	scripts/render-gallery.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) $(FUZZ_BUILD)

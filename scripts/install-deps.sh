@@ -22,15 +22,12 @@ packages=(
   python3                  # scripts/make_gltf_scene.py (the glTF test scene)
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  clang libclang-rt-14-dev # libFuzzer and the sanitizers: `make fuzz`, run by `make test`
 )
 # Optional groups, not needed to build or test:
 # peers and timer for `make bench`,
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
   packages+=(povray hyperfine blender)
-fi
-# clang and its sanitizer runtimes for `make sanitize`.
-if [[ "${GLINT_SANITIZE_DEPS:-0}" == 1 ]]; then
-  packages+=(clang libclang-rt-14-dev)
 fi
 
 missing=()

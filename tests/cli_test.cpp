@@ -754,3 +754,74 @@ TEST_F(HostileInput, ByteOrderMarks) {
 }
 
 }  // namespace
+
+// Issue 16: --restrict-paths keeps every read under the scene's folder and the model search path;
+// the limits on what a scene may ask for name the flag that raises them.
+namespace {
+
+class UntrustedScene : public Cli {
+protected:
+    Result run_limited(const std::string& args) { return run(args, 20); }
+};
+
+TEST_F(UntrustedScene, RestrictPathsRefusesFilesOutsideTheScenesFolder) {
+    fs::create_directories(dir_ / "sub");
+    const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    write("outside.bin", std::string(reinterpret_cast<const char*>(tri), sizeof tri));
+    const auto gltf = [](const std::string& uri) {
+        return R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri + R"(", "byteLength": 36}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
+    };
+    write("sub/up.gltf", gltf("../outside.bin"));
+    EXPECT_EQ(run_limited("render sub/up.gltf -q -o a.png").status, 0);  // by default glint reads it
+    Result r = run_limited("render sub/up.gltf --restrict-paths -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("outside.bin' is outside the folders --restrict-paths allows ("), std::string::npos) << r.err;
+    // A symbolic link inside the folder is followed to where it leads.
+    fs::create_symlink(dir_ / "outside.bin", dir_ / "sub" / "link.bin");
+    write("sub/link.gltf", gltf("link.bin"));
+    r = run_limited("render sub/link.gltf --restrict-paths -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("is outside the folders --restrict-paths allows"), std::string::npos) << r.err;
+    // A texture named by a YAML scene, by absolute path.
+    write("sub/tex.yaml", "film: {width: 8, height: 6}\nmaterials:\n  m: {color: {type: image, filename: " +
+                              (dir_ / "outside.png").string() + "}}\n"
+                              "objects:\n  - {type: sphere, center: [0, 0, 3], radius: 1, material: m}\n");
+    write("outside.png", "not read");
+    r = run_limited("render sub/tex.yaml --restrict-paths -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("is outside the folders --restrict-paths allows"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "b.png"));
+    // Inside the folder, all is as before.
+    fs::copy_file(dir_ / "outside.bin", dir_ / "sub" / "inside.bin");
+    write("sub/in.gltf", gltf("inside.bin"));
+    EXPECT_EQ(run_limited("render sub/in.gltf --restrict-paths -q -o c.png").status, 0);
+}
+
+TEST_F(UntrustedScene, LimitsNameTheFlagThatRaisesThem) {
+    write("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+    Result r = run_limited("render quad.obj --limit triangles=1 -o a.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("2 triangles exceed the limit of 1 (raise it with --limit triangles=N)"), std::string::npos) << r.err;
+    EXPECT_EQ(run_limited("render quad.obj --limit triangles=2 -q -o a.png").status, 0);
+    r = run_limited("render quad.obj --limit vertices=3 -o b.png");
+    EXPECT_NE(r.err.find("4 vertices exceed the limit of 3 (raise it with --limit vertices=N)"), std::string::npos) << r.err;
+    // The memory budget: the mesh (4 x 44 + 2 x 80 bytes) fits in 1 kB, the film (64 bytes a pixel) does not.
+    r = run_limited("render quad.obj --width 32 --height 32 --limit memory=1KiB -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("the film needs 0.1 MB; with the 0.0 MB asked for before it, that exceeds the memory limit of "
+                         "0.0 MB (raise it with --limit memory=N)"),
+              std::string::npos) << r.err;
+    r = run_limited("render quad.obj --limit frobs=3 -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("unknown limit 'frobs' (known: film-pixels, texture-pixels, triangles, vertices, grid-voxels, "
+                         "nesting, includes, memory)"), std::string::npos) << r.err;
+    r = run_limited("render quad.obj --limit triangles=lots -o b.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("'lots' is not a whole number of at least 1"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "b.png"));
+}
+
+}  // namespace

@@ -22,6 +22,7 @@
 #include "glint/demo_scene.h"
 #include "glint/film/film.h"
 #include "glint/io/build.h"
+#include "glint/io/limits.h"
 #include "glint/io/checkpoint.h"
 #include "glint/io/tev.h"
 #include "glint/io/pbrt.h"
@@ -549,6 +550,19 @@ int main(int argc, char** argv) {
     bench->add_option("--height", args.height, "Film height (overrides the scene)");
     bench->add_option("--runs", runs, "Repetitions; medians are reported")->check(CLI::Range(1, 100));
 
+    // What a scene may make glint read and allocate (docs/cli.md, "Untrusted scenes").
+    std::vector<std::string> limits;
+    bool restrict_paths = false;
+    const std::string limit_help = "Raise or lower a limit on what the scene may ask for, NAME=N (" +
+                                   glint::limit_names() + "; suffixes k, M, G, KiB, MiB, GiB); repeatable";
+    const char* restrict_help =
+        "Read files only under the scene's folder and the model search path ($GLINT_MODEL_PATH, the "
+        "models folder): for services rendering scenes they did not write";
+    for (CLI::App* sub : {render, info}) {
+        sub->add_option("--limit", limits, limit_help);
+        sub->add_flag("--restrict-paths", restrict_paths, restrict_help);
+    }
+
     std::string convert_out;
     CLI::App* convert = app.add_subcommand(
         "convert", "Write a scene (a pbrt-v4 file, or YAML) as a glint YAML scene; meshes given inline "
@@ -557,6 +571,8 @@ int main(int argc, char** argv) {
     convert->add_option("-o,--output", convert_out, "The YAML file to write")->required();
     convert->add_flag("--strict", args.strict, strict_help);
     convert->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+    convert->add_option("--limit", limits, limit_help);
+    convert->add_flag("--restrict-paths", restrict_paths, restrict_help);
 
     try {
         app.parse(argc, argv);
@@ -565,6 +581,11 @@ int main(int argc, char** argv) {
     }
 
     try {
+        for (const std::string& l : limits) glint::set_limit_from_text(l);
+        if (restrict_paths) {
+            const std::filesystem::path dir = std::filesystem::path(args.scene).parent_path();
+            glint::restrict_reads_to(glint::model_folders(dir));
+        }
         if (info->parsed()) return run_info(args);
         if (convert->parsed()) return run_convert(args, convert_out);
         if (bench->parsed()) {

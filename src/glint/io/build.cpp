@@ -19,6 +19,20 @@
 
 namespace glint {
 
+std::vector<std::filesystem::path> model_folders(const std::filesystem::path& scene_dir) {
+    std::vector<std::filesystem::path> dirs{scene_dir.empty() ? "." : scene_dir};
+    if (const char* env = std::getenv("GLINT_MODEL_PATH")) {
+        std::string list = env;
+        for (std::size_t at = 0; at <= list.size();) {
+            const std::size_t end = std::min(list.find(':', at), list.size());
+            if (end > at) dirs.emplace_back(list.substr(at, end - at));
+            at = end + 1;
+        }
+    }
+    if (std::string(GLINT_DEFAULT_MODEL_DIR).size() > 0) dirs.emplace_back(GLINT_DEFAULT_MODEL_DIR);
+    return dirs;
+}
+
 namespace {
 
 const SourceLoc kCommandLine{"<command line>", 0, 0};
@@ -40,16 +54,7 @@ struct FoundModel {
 FoundModel find_model(const std::string& name, const std::filesystem::path& scene_dir) {
     const std::filesystem::path p = name;
     if (p.is_absolute()) return {std::filesystem::exists(p) ? std::optional(p) : std::nullopt, p.string()};
-    std::vector<std::filesystem::path> dirs{scene_dir.empty() ? "." : scene_dir};
-    if (const char* env = std::getenv("GLINT_MODEL_PATH")) {
-        std::string list = env;
-        for (std::size_t at = 0; at <= list.size();) {
-            const std::size_t end = std::min(list.find(':', at), list.size());
-            if (end > at) dirs.emplace_back(list.substr(at, end - at));
-            at = end + 1;
-        }
-    }
-    if (std::string(GLINT_DEFAULT_MODEL_DIR).size() > 0) dirs.emplace_back(GLINT_DEFAULT_MODEL_DIR);
+    const std::vector<std::filesystem::path> dirs = model_folders(scene_dir);
     FoundModel f;
     for (const auto& d : dirs) {
         f.looked += (f.looked.empty() ? "" : ", ") + d.string();
@@ -468,11 +473,13 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     job.width = pick(d.film.width, overrides.width, "width", 1, kMaxFilmSide, diagnostics);
     job.height = pick(d.film.height, overrides.height, "height", 1, kMaxFilmSide, diagnostics);
     const long long pixels = static_cast<long long>(job.width) * job.height;
-    if (pixels > kMaxFilmPixels) {
-        const SourceLoc loc = overrides.width || overrides.height ? kCommandLine : d.film.width.loc;
-        diagnostics.error(loc, fmt::format("a film of {} x {} = {} pixels is larger than the limit "
-                                           "of {} pixels",
-                                           job.width, job.height, pixels, kMaxFilmPixels));
+    const SourceLoc film_loc = overrides.width || overrides.height ? kCommandLine : d.film.width.loc;
+    if (pixels > limit(Limit::kFilmPixels)) {
+        diagnostics.error(film_loc, fmt::format("a film of {} x {}: {}", job.width, job.height,
+                                                over_limit(Limit::kFilmPixels, pixels)));
+    } else if (const std::string e = charge_memory(pixels * 64, "the film"); !e.empty()) {
+        // 64 bytes a pixel: the progressive sums and sample counts, the film, the output image.
+        diagnostics.error(film_loc, e);
     }
     job.film_width = job.width;
     job.film_height = job.height;

@@ -45,6 +45,10 @@ struct RenderJob {
     std::shared_ptr<SourceFiles> sources;
 };
 
+/// Where mesh files named by a scene are looked for, in order: the scene's folder, each folder of
+/// $GLINT_MODEL_PATH (colon-separated), then the models folder found at configure time.
+std::vector<std::filesystem::path> model_folders(const std::filesystem::path& scene_dir);
+
 RenderJob build(const SceneDescription& description, const Overrides& overrides,
                 std::shared_ptr<SourceFiles> sources);
 

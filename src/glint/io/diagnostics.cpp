@@ -110,8 +110,46 @@ SceneError::SceneError(std::vector<Diagnostic> diagnostics, const SourceFiles& s
       }()),
       diagnostics_(std::move(diagnostics)) {}
 
-std::string not_a_regular_file(const std::filesystem::path& path) {
+namespace {
+std::vector<std::filesystem::path>& roots() {
+    static std::vector<std::filesystem::path> folders;
+    return folders;
+}
+
+// Whether `inner` is `outer` or lies inside it, component by component (both resolved).
+bool within(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+    auto i = inner.begin();
+    for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+        if (o->empty()) continue;  // a trailing separator
+        if (i == inner.end() || *i != *o) return false;
+    }
+    return true;
+}
+}  // namespace
+
+void restrict_reads_to(const std::vector<std::filesystem::path>& folders) {
+    roots().clear();
+    for (const auto& f : folders) {
+        std::error_code ec;
+        auto resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(f), ec);
+        roots().push_back(ec ? std::filesystem::absolute(f).lexically_normal() : resolved);
+    }
+}
+
+const std::vector<std::filesystem::path>& read_roots() { return roots(); }
+
+std::string why_not_readable(const std::filesystem::path& path) {
     std::error_code ec;
+    if (!roots().empty()) {
+        const auto resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+        const bool allowed = !ec && std::any_of(roots().begin(), roots().end(),
+                                                [&](const auto& root) { return within(resolved, root); });
+        if (!allowed) {
+            std::string list;
+            for (const auto& root : roots()) list += (list.empty() ? "" : ", ") + root.string();
+            return fmt::format("is outside the folders --restrict-paths allows ({})", list);
+        }
+    }
     const auto status = std::filesystem::status(path, ec);  // follows symbolic links
     if (ec || !std::filesystem::exists(status) || std::filesystem::is_regular_file(status)) return {};
     if (std::filesystem::is_directory(status)) return "is a folder";
@@ -119,7 +157,7 @@ std::string not_a_regular_file(const std::filesystem::path& path) {
 }
 
 std::string read_scene_text(const std::string& path, const std::shared_ptr<SourceFiles>& sources) {
-    if (const std::string why = not_a_regular_file(path); !why.empty()) {
+    if (const std::string why = why_not_readable(path); !why.empty()) {
         Diagnostics d(sources);
         d.error({path, 0, 0}, fmt::format("cannot read scene file: it {}", why));
         d.throw_if_errors();

@@ -27,12 +27,20 @@ struct Diagnostic {
     std::string message;
 };
 
-/// The text of the files diagnostics point into, so that messages can quote the line.
-/// Why glint must not read `path`: it names a folder, a device, a FIFO or a socket (reading
-/// those blocks or never ends), as "is a folder" or "is not a regular file (a device, FIFO or
-/// socket)"; empty for a regular file or a path that does not exist (opening it says so).
-std::string not_a_regular_file(const std::filesystem::path& path);
+/// Why glint must not read `path`, as the end of a sentence starting "it ": it lies outside the
+/// folders given to restrict_reads_to ("is outside the folders --restrict-paths allows (...)"),
+/// or it names a folder, a device, a FIFO or a socket (reading those blocks or never ends): "is
+/// a folder", "is not a regular file (a device, FIFO or socket)". Empty for a regular file, or
+/// for a path that does not exist (opening it says so). Every file glint reads is asked first.
+std::string why_not_readable(const std::filesystem::path& path);
 
+/// --restrict-paths: from now on only files under `folders` (resolved: symbolic links and ".."
+/// followed) may be read; an empty list lifts the restriction. Set once, before reading starts.
+void restrict_reads_to(const std::vector<std::filesystem::path>& folders);
+/// The folders reads are restricted to (resolved), empty when unrestricted.
+const std::vector<std::filesystem::path>& read_roots();
+
+/// The text of the files diagnostics point into, so that messages can quote the line.
 class SourceFiles {
 public:
     void add(const std::string& path, std::string text);

@@ -256,9 +256,11 @@ struct Importer {
         const std::string at = fmt::format("/images/{}", index);
         if (im.width <= 0 || im.height <= 0 || im.image.empty())
             fail_at(at, fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
-        if (static_cast<long long>(im.width) * im.height > kMaxTexturePixels)
-            fail_at(at, fmt::format("image {} is {} x {} pixels; the limit is {} pixels", index, im.width, im.height,
-                                    kMaxTexturePixels));
+        if (static_cast<long long>(im.width) * im.height > limit(Limit::kTexturePixels))
+            fail_at(at, fmt::format("image {} is {} x {} pixels: {}", index, im.width, im.height,
+                                    over_limit(Limit::kTexturePixels, static_cast<long long>(im.width) * im.height)));
+        if (const std::string e = charge_memory(static_cast<long long>(im.width) * im.height * 16, fmt::format("image {}", index)); !e.empty())
+            fail_at(at, e);
         const int comps = im.component, bytes = im.bits == 16 ? 2 : 1;
         if (comps < 1 || comps > 4 || im.image.size() < static_cast<std::size_t>(im.width) * im.height * comps * bytes)
             fail_at(at, fmt::format("image {} has an unexpected pixel layout", index));
@@ -975,9 +977,9 @@ bool file_exists(const std::string& file, void*) {
     return std::filesystem::exists(file, ec);
 }
 
-// tinygltf's file reader, refusing what is not a regular file (see not_a_regular_file).
+// tinygltf's file reader, refusing what is not a regular file (see why_not_readable).
 bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
-    if (const std::string why = not_a_regular_file(file); !why.empty()) {
+    if (const std::string why = why_not_readable(file); !why.empty()) {
         if (err) *err += fmt::format("'{}' {}", file, why);
         return false;
     }
@@ -999,7 +1001,7 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     const bool glb = mesh_format(path) == MeshFormat::kGlb;
     // The file is read once, here; tinygltf parses it from memory (adjusted when it uses the
     // compression extensions).
-    if (const std::string why = not_a_regular_file(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
+    if (const std::string why = why_not_readable(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open", file));
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -59,6 +59,10 @@ RawImage read_pfm(const fs::path& path, long long max_pixels) {
         throw IoError(fmt::format("cannot read image '{}': {} bytes is more than a map of the limit of {} pixels "
                                   "can hold", path.string(), file_size, max_pixels));
     }
+    if (const std::string e = charge_memory(static_cast<long long>(file_size) * 2, "image '" + path.string() + "'"); !e.empty()) {
+        std::fclose(f);
+        throw IoError(e);
+    }
     std::string bytes;
     char buf[65536];
     for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
@@ -94,8 +98,9 @@ RawImage read_pfm(const fs::path& path, long long max_pixels) {
     } catch (const std::exception&) {
         throw bad("the header needs a width, a height and a scale");
     }
-    if (w <= 0 || h <= 0 || w * h > max_pixels)
-        throw bad(fmt::format("{} x {} pixels; the limit is {} pixels", w, h, max_pixels));
+    if (w <= 0 || h <= 0 || w > max_pixels || h > max_pixels || w * h > max_pixels)
+        throw bad(fmt::format("{} x {} pixels: {}", w, h,
+                              over_limit(Limit::kTexturePixels, w > max_pixels || h > max_pixels ? std::max(w, h) : w * h, max_pixels)));
     if (!(scale != 0) || !std::isfinite(scale)) throw bad("the scale must be a finite non-zero number");
     ++pos;  // the single whitespace byte that ends the header
     const std::size_t count = static_cast<std::size_t>(w * h) * static_cast<std::size_t>(raw.channels);
@@ -130,9 +135,11 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
     const OIIO::ImageSpec& spec = in->spec();
     const long long pixels = static_cast<long long>(spec.width) * spec.height;
     if (spec.width <= 0 || spec.height <= 0 || pixels > max_pixels) {
-        throw IoError(fmt::format("image '{}' is {} x {} pixels; the limit is {} pixels",
-                                  path.string(), spec.width, spec.height, max_pixels));
+        throw IoError(fmt::format("image '{}' is {} x {} pixels: {}", path.string(), spec.width, spec.height,
+                                  over_limit(Limit::kTexturePixels, pixels, max_pixels)));
     }
+    if (const std::string e = charge_memory(pixels * 4 * std::max(spec.nchannels, 3), "image '" + path.string() + "'"); !e.empty())
+        throw IoError(e);
     RawImage raw;
     raw.width = spec.width;
     raw.height = spec.height;
@@ -150,7 +157,8 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
 }  // namespace
 
 Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
-    if (const std::string why = not_a_regular_file(path); !why.empty())
+    if (max_pixels <= 0) max_pixels = limit(Limit::kTexturePixels);
+    if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': it {}", path.string(), why));
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),

@@ -31,9 +31,9 @@ float srgb_decode(float v);
 
 /// Reads an image file through OpenImageIO as linear RGB (grey is replicated, alpha dropped).
 /// Throws IoError, naming the file, if it cannot be opened or read, or if it has more than
-/// kMaxTexturePixels pixels (checked from the header, before reading).
-Image read_image(const std::filesystem::path& path, ImageEncoding encoding,
-                 long long max_pixels = kMaxTexturePixels);
+/// `max_pixels` pixels (default: the texture-pixels limit; checked from the header, before
+/// reading) or more than the memory budget allows.
+Image read_image(const std::filesystem::path& path, ImageEncoding encoding, long long max_pixels = 0);
 
 /// The format for a path's extension (.png, .exr, .ppm, case-insensitive); throws IoError
 /// naming the supported ones otherwise.

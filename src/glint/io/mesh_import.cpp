@@ -1,5 +1,7 @@
 #include "glint/io/mesh_import.h"
 
+#include "glint/io/limits.h"
+
 #include <cctype>
 
 #include <fmt/format.h>
@@ -19,6 +21,14 @@ std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
     if (ext == ".gltf") return MeshFormat::kGltf;
     if (ext == ".glb") return MeshFormat::kGlb;
     return std::nullopt;
+}
+
+std::string mesh_size_error(long long vertices, long long triangles) {
+    if (vertices > limit(Limit::kVertices)) return over_limit(Limit::kVertices, vertices);
+    if (triangles > limit(Limit::kTriangles)) return over_limit(Limit::kTriangles, triangles);
+    // 44 bytes a vertex (position, normal, uv, colour), 80 a triangle (indices, material, the
+    // BVH's share, the intersection kernels' copy).
+    return charge_memory(44 * vertices + 80 * triangles, fmt::format("a mesh of {} vertices and {} triangles", vertices, triangles));
 }
 
 ImportedFile import_mesh_file(const std::filesystem::path& path) {

@@ -63,7 +63,14 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
 ImportedFile import_ply(const std::filesystem::path& path);
 ImportedFile import_obj(const std::filesystem::path& path);
 
+/// Whether one mesh of `vertices` and `triangles` may be read: the vertices and triangles limits,
+/// then its share of the memory budget (vertex attributes, indices, the acceleration structure),
+/// charged here. Returns the error text, or empty.
+std::string mesh_size_error(long long vertices, long long triangles);
+
 /// The PLY reader on bytes already in memory (`name` is used in messages); for tests and fuzzing.
 ImportedFile parse_ply(const std::string& bytes, const std::string& name);
+/// The OBJ reader on text already in memory; `mtllib` files and texture maps are looked for in `dir`.
+ImportedFile parse_obj(const std::string& text, const std::string& name, const std::filesystem::path& dir);
 
 }  // namespace glint

@@ -2,6 +2,8 @@
 // of, on corrupted bytes, and on the Stanford bunny in both formats.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -140,19 +142,21 @@ TEST(Ply, EveryFailureNamesTheFileAndThePlace) {
               "bad.ply:3: element 'vertex' claims 4000000000 entries, more than the 4 bytes after the header can hold");
     EXPECT_EQ(err("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                   "end_header\n0 0 zero\n"),
-              "bad.ply:8: expected a number, got 'zero'");
+              "bad.ply:8: vertex 0: expected a number, got 'zero'");
     EXPECT_EQ(err("ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nend_header\n0\n"),
               "bad.ply:3: the vertex element needs properties x, y and z");
     EXPECT_EQ(err("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
-              "bad.ply:13: face 0 uses vertex 7, but there are 3 vertices");
+              "bad.ply:13: face 0: vertex index 7 out of range (3 vertices)");
     std::string truncated = binary_ply(false);
     truncated.resize(truncated.size() - 5);
-    EXPECT_EQ(err(truncated), "bad.ply: at byte 387: list 'vertex_indices' claims 3 entries past the end of the file");
-    for (std::size_t cut = 1; cut < 14; ++cut) {  // every cut into the last face: the byte is named
+    // The byte where the value being read starts (the last face's count, a uchar, at 386), and the element.
+    EXPECT_EQ(err(truncated), "bad.ply: byte 386: face 1: list 'vertex_indices' claims 3 entries past the end of the file");
+    for (std::size_t cut = 1; cut < 14; ++cut) {  // every cut into the last face: the byte and the face are named
         std::string t = binary_ply(false);
         t.resize(t.size() - cut);
-        EXPECT_EQ(err(t).rfind("bad.ply: at byte ", 0), 0u) << err(t);
+        EXPECT_EQ(err(t).rfind("bad.ply: byte ", 0), 0u) << err(t);
+        EXPECT_NE(err(t).find(": face 1: "), std::string::npos) << err(t);
     }
     EXPECT_EQ(error_of([] { import_ply("/nonexistent/x.ply"); }), "/nonexistent/x.ply: cannot open: No such file or directory");
 }
@@ -238,10 +242,10 @@ TEST(Obj, MissingFilesAndBadFacesAreErrorsNamingThem) {
     EXPECT_NE(missing_texture.find("planks.png"), std::string::npos) << missing_texture;
     write(dir / "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\n\nf 1 3 2\nf 1 2 9\n");
     EXPECT_EQ(error_of([&] { import_obj(dir / "c.obj"); }),
-              (dir / "c.obj").string() + ":9: a face uses vertex 9, but there are 3 vertices");
+              (dir / "c.obj").string() + ":9:7: vertex index 9 is out of range (3 vertices)");
     write(dir / "c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");
     EXPECT_EQ(error_of([&] { import_obj(dir / "c.obj"); }),
-              (dir / "c.obj").string() + ":5: normal index 4 out of range (1 normals)");
+              (dir / "c.obj").string() + ":5:16: normal index 4 is out of range (1 normals)");
     EXPECT_EQ(error_of([&] { import_obj(dir / "none.obj"); }), (dir / "none.obj").string() + ": cannot open: no such file");
     write(dir / "d.obj", "# nothing\n");
     EXPECT_EQ(error_of([&] { import_obj(dir / "d.obj"); }), (dir / "d.obj").string() + ": no faces");
@@ -287,4 +291,41 @@ TEST(MeshFiles, TheBunnyReadsTheSameFromPlyAndObj) {
 }
 
 }  // namespace
+}  // namespace glint
+
+namespace glint {
+
+// Issue 16: OBJ indices are checked by glint before tinyobjloader sees them, as written (64-bit:
+// tinyobjloader's int overflowed, 4000000000 was reported as -294967292), at line and column.
+TEST(Obj, IndicesAreCheckedAsWrittenAtTheirColumn) {
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const auto err = [&](const std::string& faces) {
+        return error_of([&] { parse_obj(tri + faces, "big.obj", "."); });
+    };
+    EXPECT_EQ(err("f 1 2 4000000000\n"), "big.obj:4:7: vertex index 4000000000 is out of range (3 vertices)");
+    EXPECT_EQ(err("f 1 2 99999999999999999999\n"), "big.obj:4:7: vertex index 99999999999999999999 is out of range");
+    EXPECT_EQ(err("f 1 2 0\n"), "big.obj:4:7: vertex index 0: OBJ indices start at 1");
+    EXPECT_EQ(err("f -1 -2 -4\n"), "big.obj:4:9: vertex index -4 is out of range (3 vertices before this line)");
+    EXPECT_EQ(err("f 1 2 x3\n"), "big.obj:4:7: 'x3' is not a vertex index");
+    EXPECT_EQ(err("vt 0 0\nf 1/1 2/1 3/2\n"), "big.obj:5:13: texture coordinate index 2 is out of range (1 texture coordinates)");
+    EXPECT_EQ(err("f 1/1/1/1 2 3\n"), "big.obj:4:7: a corner has more than three indices");
+    EXPECT_EQ(err("l 1 5\n"), "big.obj:4:5: vertex index 5 is out of range (3 vertices)");
+    std::string wide = "f";
+    for (int i = 0; i < 300; ++i) wide += " " + std::to_string(1 + i % 3);
+    EXPECT_EQ(err(wide + "\n"), "big.obj:4:1: a face with 300 corners (at most 255; split it)");
+    // Indices written before the vertices they name are fine (OBJ allows it), negative ones count back.
+    const ImportedFile ok = parse_obj("f 1 2 3\n" + tri + "f -3 -2 -1\n", "ok.obj", ".");
+    ASSERT_EQ(ok.meshes.size(), 1u);
+    EXPECT_EQ(ok.meshes[0].indices.size(), 6u);
+}
+
+TEST(Obj, MaterialLibrariesAreReadOnlyWhenTheyAreRegularFiles) {
+    testing::TempDir dir;
+    ASSERT_EQ(::mkfifo((dir / "m.mtl").c_str(), 0600), 0);
+    write(dir / "a.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string e = error_of([&] { import_obj(dir / "a.obj"); });
+    EXPECT_NE(e.find("material library 'm.mtl'"), std::string::npos) << e;
+    EXPECT_NE(e.find("it is not a regular file"), std::string::npos) << e;
+}
+
 }  // namespace glint

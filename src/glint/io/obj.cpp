@@ -16,10 +16,14 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
 #include <map>
 #include <tuple>
 
 #include "glint/io/diagnostics.h"
+#include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
 
 namespace glint {
@@ -82,54 +86,172 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     return d;
 }
 
+// What tinyobjloader would otherwise report in its own words, or get wrong: every index of an
+// `f`, `l` or `p` line checked here first, read as written (in 64 bits: an index of 4000000000
+// is reported as that), located at line and column. Returns the line of every face, in order.
+std::vector<long long> check_obj_indices(const std::string& text, const std::string& file) {
+    struct Use {
+        long long value;  // as written
+        long long line, column;
+        int kind;  // 0 vertex, 1 texture coordinate, 2 normal
+    };
+    long long count[3] = {0, 0, 0};
+    long long triangles = 0;
+    std::vector<Use> positive;  // checked once the totals are known
+    std::vector<long long> face_line;
+    const auto fail = [&](long long line, long long column, const std::string& what) -> void {
+        throw IoError(fmt::format("{}:{}:{}: {}", file, line, column, what));
+    };
+    static constexpr const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    static constexpr const char* kWhats[3] = {"vertices", "texture coordinates", "normals"};
+    long long line_no = 0;
+    for (std::size_t at = 0; at < text.size();) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string::npos) end = text.size();
+        ++line_no;
+        std::string_view line(text.data() + at, end - at);
+        at = end + 1;
+        if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+        const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+        std::size_t i = 0;
+        while (i < line.size() && blank(line[i])) ++i;
+        std::size_t k = i;
+        while (k < line.size() && !blank(line[k])) ++k;
+        const std::string_view key = line.substr(i, k - i);
+        if (key == "v") ++count[0];
+        if (key == "vt") ++count[1];
+        if (key == "vn") ++count[2];
+        if (key != "f" && key != "l" && key != "p") continue;
+        int corners = 0;
+        for (i = k;;) {
+            while (i < line.size() && blank(line[i])) ++i;
+            if (i >= line.size()) break;
+            ++corners;
+            // One corner: v, v/vt, v//vn or v/vt/vn.
+            for (int kind = 0; kind < 3 && i < line.size() && !blank(line[i]); ++kind) {
+                const std::size_t column = i + 1;
+                if (line[i] == '/') {
+                    if (kind == 0) fail(line_no, column, "a corner without a vertex index");
+                    ++i;
+                    if (kind == 2) fail(line_no, column, "a corner has more than three indices");
+                    continue;
+                }
+                const std::size_t from = i;
+                bool negative = false;
+                if (line[i] == '-' || line[i] == '+') negative = line[i++] == '-';
+                long long value = 0;
+                bool digits = false, overflow = false;
+                for (; i < line.size() && line[i] >= '0' && line[i] <= '9'; ++i) {
+                    digits = true;
+                    if (value > (std::numeric_limits<long long>::max() - 9) / 10) overflow = true;
+                    else value = 10 * value + (line[i] - '0');
+                }
+                std::size_t to = i;
+                while (to < line.size() && !blank(line[to]) && line[to] != '/') ++to;
+                const std::string written(line.substr(from, to - from));
+                if (!digits || to != i)
+                    fail(line_no, column, fmt::format("'{}' is not a {} index", written, kWhat[kind]));
+                if (overflow) fail(line_no, column, fmt::format("{} index {} is out of range", kWhat[kind], written));
+                if (value == 0) fail(line_no, column, fmt::format("{} index 0: OBJ indices start at 1", kWhat[kind]));
+                if (negative && value > count[kind])
+                    fail(line_no, column, fmt::format("{} index {} is out of range ({} {} before this line)", kWhat[kind],
+                                                      written, count[kind], kWhats[kind]));
+                if (!negative) positive.push_back({value, line_no, static_cast<long long>(column), kind});
+                if (i < line.size() && line[i] == '/') {
+                    ++i;
+                    if (kind == 0 && i < line.size() && line[i] == '/') {  // v//vn
+                        ++i;
+                        ++kind;
+                    }
+                    if (kind == 2) fail(line_no, column, "a corner has more than three indices");
+                }
+            }
+        }
+        if (key == "f") {
+            triangles += std::max(corners - 2, 0);
+            if (corners > 255)
+                fail(line_no, 1, fmt::format("a face with {} corners (at most 255; split it)", corners));
+            face_line.push_back(line_no);
+        }
+    }
+    if (const std::string e = mesh_size_error(count[0], triangles); !e.empty()) throw IoError(fmt::format("{}: {}", file, e));
+    for (const Use& u : positive)
+        if (u.value > count[u.kind])
+            fail(u.line, u.column, fmt::format("{} index {} is out of range ({} {})", kWhat[u.kind], u.value,
+                                               count[u.kind], kWhats[u.kind]));
+    return face_line;
+}
+
+// tinyobjloader's `mtllib` reader, replaced: a material library is read only if glint may read it
+// (why_not_readable: a FIFO would block, --restrict-paths may forbid it), and a missing one is
+// an error, not a warning.
+class MtlReader : public tinyobj::MaterialReader {
+public:
+    MtlReader(std::filesystem::path dir, std::string file) : dir_(std::move(dir)), file_(std::move(file)) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string* warn, std::string* err) override {
+        const std::filesystem::path mtl = dir_ / name;
+        const auto refuse = [&](const std::string& why) {
+            if (err) *err += fmt::format("material library '{}' ({}): {}", name, mtl.string(), why);
+            return false;
+        };
+        if (const std::string why = why_not_readable(mtl); !why.empty()) return refuse("cannot read: it " + why);
+        std::ifstream in(mtl, std::ios::binary);
+        if (!in) return refuse("no such file");
+        std::string mtl_warn, mtl_err;
+        tinyobj::LoadMtl(names, materials, &in, &mtl_warn, &mtl_err);
+        if (warn && !mtl_warn.empty()) *warn += mtl_warn;
+        if (!mtl_err.empty()) return refuse(mtl_err);
+        return true;
+    }
+
+private:
+    std::filesystem::path dir_;
+    std::string file_;
+};
+
 }  // namespace
 
 ImportedFile import_obj(const std::filesystem::path& path) {
     const std::string file = path.string();
-    if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
-    if (const std::string why = not_a_regular_file(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = false;  // we split faces ourselves, keeping their material
-    config.vertex_color = false;
-    config.mtl_search_path = path.parent_path().string();
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(file, config)) {
-        std::string e = reader.Error();
-        while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
-        throw IoError(fmt::format("{}: {}", file, e.empty() ? "cannot parse" : e));
+    if (const std::string why = why_not_readable(path); !why.empty()) throw IoError(fmt::format("{}: cannot read: it {}", file, why));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(fmt::format("{}: cannot open: no such file", file));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw IoError(fmt::format("{}: cannot read", file));
+    return parse_obj(text, file, path.parent_path());
+}
+
+ImportedFile parse_obj(const std::string& text, const std::string& file, const std::filesystem::path& dir) {
+    const std::vector<long long> face_line = check_obj_indices(text, file);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning, error;
+    {
+        std::istringstream stream(text);
+        MtlReader mtl(dir, file);
+        // Faces are split into triangles by us, keeping their material; no vertex colours.
+        const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream, &mtl,
+                                         /*triangulate=*/false, /*default_vcols_fallback=*/false);
+        while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
+        if (!error.empty()) throw IoError(fmt::format("{}: {}", file, error));
+        if (!ok) throw IoError(fmt::format("{}: cannot parse", file));
     }
     ImportedFile out;
-    if (!reader.Warning().empty()) {
-        std::string w = reader.Warning();
-        while (!w.empty() && w.back() == '\n') w.pop_back();
-        // A missing .mtl is a warning in tinyobjloader; for us it is missing input.
-        if (w.find("Material file") != std::string::npos || w.find("material file") != std::string::npos)
-            throw IoError(fmt::format("{}: {}", file, w));
-        out.notes.push_back(fmt::format("{}: {}", file, w));
-    }
-    // The line of every face, in file order (tinyobjloader keeps faces in that order across its
-    // shapes), so that a bad face is reported at its line.
-    std::vector<int> face_line;
-    {
-        std::ifstream in(path);
-        std::string line;
-        for (int n = 1; std::getline(in, line); ++n) {
-            const std::size_t at = line.find_first_not_of(" \t");
-            if (at != std::string::npos && line[at] == 'f' && at + 1 < line.size() &&
-                (line[at + 1] == ' ' || line[at + 1] == '\t'))
-                face_line.push_back(n);
-        }
+    if (!warning.empty()) {
+        while (!warning.empty() && warning.back() == '\n') warning.pop_back();
+        out.notes.push_back(fmt::format("{}: {}", file, warning));
     }
     std::size_t face_base = 0;
     const auto where = [&](std::size_t face) {
         const std::size_t k = face_base + face;
         return k < face_line.size() ? fmt::format("{}:{}", file, face_line[k]) : file;
     };
-    const tinyobj::attrib_t& a = reader.GetAttrib();
-    for (const tinyobj::material_t& m : reader.GetMaterials())
-        out.materials.push_back({m.name, map_material(m, path.parent_path(), file, out), std::nullopt});
+    const tinyobj::attrib_t& a = attrib;
+    for (const tinyobj::material_t& m : materials) out.materials.push_back({m.name, map_material(m, dir, file, out), std::nullopt});
 
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& sm = shape.mesh;
         if (sm.num_face_vertices.empty()) continue;
         TriangleMesh mesh;

@@ -413,7 +413,6 @@ private:
     std::deque<std::string> unescaped_;  ///< strings with escapes, unescaped
 };
 
-constexpr int kMaxIncludeDepth = 32;
 
 void Parser::check_unused(ParamList& pl, const std::string& what) {
     for (Param& p : pl.params)
@@ -788,12 +787,12 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
     } else if (name == "Include" || name == "Import") {
         const auto file = string_arg(s, t);
         if (!file) return;
-        if (depth >= kMaxIncludeDepth) {
-            diag_.error(t.loc(), fmt::format("{} nested deeper than {} files", name, kMaxIncludeDepth));
+        if (depth >= limit(Limit::kIncludes)) {
+            diag_.error(t.loc(), fmt::format("{}: {}", name, over_limit(Limit::kIncludes, depth + 1)));
             return;
         }
         const std::filesystem::path p = std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : dir_ / *file;
-        if (const std::string why = not_a_regular_file(p); !why.empty()) {
+        if (const std::string why = why_not_readable(p); !why.empty()) {
             diag_.error(t.loc(), fmt::format("{}: cannot read '{}': it {}", name, p.string(), why));
             return;
         }
@@ -1742,8 +1741,10 @@ void Parser::medium(const Token& t, const std::string& name, ParamList pl) {
         const SourceLoc at = pl.find("density") ? pl.find("density")->loc : t.loc();
         if (!density) {
             diag_.error(t.loc(), "uniformgrid: needs \"float density\"");
-        } else if (nx < 1 || ny < 1 || nz < 1 || double(nx) * double(ny) * double(nz) > double(kMaxGridVoxels)) {
-            diag_.error(at, fmt::format("uniformgrid: nx, ny, nz must be at least 1 with at most {} voxels", kMaxGridVoxels));
+        } else if (nx < 1 || ny < 1 || nz < 1) {
+            diag_.error(at, "uniformgrid: nx, ny, nz must be at least 1");
+        } else if (double(nx) * double(ny) * double(nz) > double(limit(Limit::kGridVoxels))) {
+            diag_.error(at, fmt::format("uniformgrid: {}", over_limit(Limit::kGridVoxels, static_cast<long long>(double(nx) * double(ny) * double(nz)))));
         } else if (static_cast<long long>(density->size()) != nx * ny * nz) {
             diag_.error(at, fmt::format("uniformgrid: {} density values for nx x ny x nz = {}", density->size(), nx * ny * nz));
         } else if (!(p1[0] > p0[0] && p1[1] > p0[1] && p1[2] > p0[2])) {
@@ -1819,6 +1820,7 @@ bool is_pbrt_file(const std::string& path) {
 
 SceneDescription parse_pbrt(const std::string& text, const std::string& path, std::shared_ptr<SourceFiles> sources,
                             const PbrtOptions& options) {
+    reset_memory_budget();  // a new scene
     SceneDescription d;
     d.path = path;
     // pbrt's defaults where they differ from glint's: a path tracer of depth 5, 16 spp, a

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "glint/io/diagnostics.h"
+#include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
 
 namespace glint {
@@ -79,9 +80,11 @@ public:
             } else if (e.name == "face") {
                 read_faces(e, counts, polygon, mesh.positions.size());
             } else {
-                for (std::uint64_t i = 0; i < e.count; ++i)
+                elem_ = &e;
+                for (index_ = 0; index_ < e.count; ++index_)
                     for (const Property& p : e.properties) skip(p);
             }
+            elem_ = nullptr;
         }
         if (mesh.positions.empty()) fail(0, "no vertex element with x, y and z");
         triangulate_fans(counts, polygon, mesh.indices);
@@ -100,9 +103,12 @@ private:
     [[noreturn]] void fail(int line, const std::string& what) const {
         throw IoError(line > 0 ? fmt::format("{}:{}: {}", name_, line, what) : fmt::format("{}: {}", name_, what));
     }
+    // An error in the body: at the line (ASCII) or the byte offset (binary) of the value being
+    // read, naming the element and its index: "bunny.ply: byte 1048592: face 12: ...".
     [[noreturn]] void fail_body(const std::string& what) const {
-        if (format_ == Format::kAscii) fail(line_, what);
-        throw IoError(fmt::format("{}: at byte {}: {}", name_, pos_, what));
+        const std::string element = elem_ ? fmt::format("{} {}: ", elem_->name, index_) : "";
+        if (format_ == Format::kAscii) fail(line_, element + what);
+        throw IoError(fmt::format("{}: byte {}: {}{}", name_, value_at_, element, what));
     }
 
     // One header line, without its end of line; false at the end of the bytes.
@@ -182,6 +188,16 @@ private:
                 fail(e.line, fmt::format("element '{}' claims {} entries, more than the {} bytes after the header can hold",
                                          e.name, e.count, left));
         }
+        // The limits, from the counts the header states (a face is at least one triangle).
+        std::uint64_t vertices = 0, faces = 0;
+        int vertex_line = 0;
+        for (const Element& e : elements_) {
+            if (e.name == "vertex") vertices += e.count, vertex_line = e.line;
+            if (e.name == "face") faces += e.count;
+        }
+        if (const std::string why = mesh_size_error(static_cast<long long>(vertices), static_cast<long long>(faces));
+            !why.empty())
+            fail(vertex_line, why);
     }
 
     static std::uint64_t min_binary_size(const Element& e) {
@@ -193,6 +209,7 @@ private:
     // --- values ---
     double value(PlyType t) {
         if (format_ == Format::kAscii) return ascii_value(t);
+        value_at_ = pos_;
         const int n = std::min(type_size(t), 8);
         if (b_.size() - pos_ < static_cast<std::size_t>(n)) fail_body("unexpected end of file");
         unsigned char raw[8] = {};
@@ -224,6 +241,7 @@ private:
             if (b_[pos_] == '\n') ++line_;
             ++pos_;
         }
+        value_at_ = pos_;
         if (pos_ >= b_.size()) fail_body("unexpected end of file");
         std::size_t end = pos_;
         while (end < b_.size() && !std::isspace(static_cast<unsigned char>(b_[end]))) ++end;
@@ -280,7 +298,9 @@ private:
         if (uvs) mesh.uvs.resize(e.count);
         if (has_colors) mesh.colors.resize(e.count);
         double v[11] = {};
+        elem_ = &e;
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            index_ = i;
             for (std::size_t k = 0; k < e.properties.size(); ++k) {
                 if (slot[k] < 0) {
                     skip(e.properties[k]);
@@ -308,7 +328,9 @@ private:
             if (e.properties[k].list && (e.properties[k].name == "vertex_indices" || e.properties[k].name == "vertex_index"))
                 which = static_cast<int>(k);
         if (which < 0) fail(e.line, "the face element needs a list property vertex_indices");
+        elem_ = &e;
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            index_ = i;
             for (std::size_t k = 0; k < e.properties.size(); ++k) {
                 if (static_cast<int>(k) != which) {
                     skip(e.properties[k]);
@@ -319,7 +341,7 @@ private:
                 for (std::uint64_t j = 0; j < n; ++j) {
                     const double ix = value(e.properties[k].type);
                     if (!(ix >= 0) || ix >= static_cast<double>(vertex_count) || ix != std::floor(ix))
-                        fail_body(fmt::format("face {} uses vertex {}, but there are {} vertices", i, ix, vertex_count));
+                        fail_body(fmt::format("vertex index {} out of range ({} vertices)", ix, vertex_count));
                     polygon.push_back(static_cast<std::uint32_t>(ix));
                 }
             }
@@ -332,6 +354,9 @@ private:
     int line_ = 0;
     Format format_ = Format::kAscii;
     std::vector<Element> elements_;
+    const Element* elem_ = nullptr;  // the element and index being read, for messages
+    std::uint64_t index_ = 0;
+    std::size_t value_at_ = 0;  // where the value being read starts
 };
 
 }  // namespace
@@ -380,7 +405,7 @@ std::string gunzip(const std::string& bytes, const std::string& name) {
 }  // namespace
 
 ImportedFile import_ply(const std::filesystem::path& path) {
-    if (const std::string why = not_a_regular_file(path); !why.empty())
+    if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("{}: cannot read: it {}", path.string(), why));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno)));

@@ -1034,6 +1034,7 @@ private:
 
 SceneDescription parse_scene(const std::string& text, const std::string& path,
                              std::shared_ptr<SourceFiles> sources) {
+    reset_memory_budget();  // a new scene
     sources->add(path, text);
     Diagnostics diagnostics(sources);
     SceneDescription scene;

@@ -144,8 +144,8 @@ TEST(SceneYaml, UnknownTopLevelKeyIsAnError) {
 
 TEST(SceneYaml, AbsurdFilmIsRefusedBeforeAllocation) {
     EXPECT_EQ(errors_of("film: {width: 60000, height: 60000}\n"),
-              "scene.yaml:1:15: error: a film of 60000 x 60000 = 3600000000 pixels is larger "
-              "than the limit of 134217728 pixels\n"
+              "scene.yaml:1:15: error: a film of 60000 x 60000: 3600000000 film pixels exceed the limit of "
+              "134217728 (raise it with --limit film-pixels=N)\n"
               "    film: {width: 60000, height: 60000}\n" +
                   caret(15, 5));
     Overrides huge;

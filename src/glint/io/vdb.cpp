@@ -21,7 +21,7 @@ void init() {
 
 void open(const std::filesystem::path& path, openvdb::io::File& file) {
     if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: no such file", path.string()));
-    if (const std::string why = not_a_regular_file(path); !why.empty())
+    if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("{}: cannot read: it {}", path.string(), why));
     try {
         file.open(false);  // no delayed loading: the file may change after we return
@@ -101,9 +101,11 @@ VdbGrid read_vdb_grid(const std::filesystem::path& path, const std::string& name
         throw IoError(fmt::format("{}: grid '{}' spans {} x {} x {} voxels, more than the limit of {}",
                                   path.string(), name, dim.x(), dim.y(), dim.z(), kMaxGridBoxVoxels));
     const auto active = static_cast<long long>(grid->activeVoxelCount());
-    if (active > kMaxGridVoxels)
-        throw IoError(fmt::format("{}: grid '{}' has {} active voxels, more than the limit of {}",
-                                  path.string(), name, active, kMaxGridVoxels));
+    if (active > limit(Limit::kGridVoxels))
+        throw IoError(fmt::format("{}: grid '{}': {}", path.string(), name, over_limit(Limit::kGridVoxels, active)));
+    if (const std::string e = charge_memory(box_voxels / 64 + active * 4, fmt::format("{}: grid '{}'", path.string(), name));
+        !e.empty())
+        throw IoError(e);
     out.grid = VoxelGrid({lo.x(), lo.y(), lo.z()}, {dim.x(), dim.y(), dim.z()});
     for (auto it = grid->cbeginValueOn(); it; ++it) {
         const float v = *it;
