@@ -26,6 +26,38 @@ void write_rgb(const std::filesystem::path& path, int w, int h, OIIO::TypeDesc t
     out->close();
 }
 
+// Every format textures come in: values written
+// (8-bit ones exactly representable, read as linear), read back within each format's precision.
+TEST(ImageRead, EveryFormatByItsExtension) {
+    testing::TempDir dir;
+    const std::vector<float> rgb{0, 51 / 255.0f, 1, 102 / 255.0f, 153 / 255.0f, 204 / 255.0f,
+                                 1, 0, 51 / 255.0f, 204 / 255.0f, 1, 0};  // 2 x 2
+    struct Case {
+        const char* ext;
+        OIIO::TypeDesc type;
+        float tolerance;
+    };
+    for (const Case c : {Case{".png", OIIO::TypeDesc::UINT8, 1e-6f}, Case{".tga", OIIO::TypeDesc::UINT8, 1e-6f},
+                         Case{".tif", OIIO::TypeDesc::UINT8, 1e-6f}, Case{".ppm", OIIO::TypeDesc::UINT8, 1e-6f},
+                         Case{".exr", OIIO::TypeDesc::FLOAT, 0}, Case{".hdr", OIIO::TypeDesc::FLOAT, 0.01f}}) {
+        SCOPED_TRACE(c.ext);
+        const auto path = dir / (std::string("a") + c.ext);
+        write_rgb(path, 2, 2, c.type, rgb);
+        const Image im = read_image(path, ImageEncoding::kLinear);
+        ASSERT_EQ(im.width, 2);
+        ASSERT_EQ(im.height, 2);
+        for (int i = 0; i < 4; ++i) {
+            const Color& t = im.texel(i % 2, i / 2);
+            EXPECT_NEAR(t.r, rgb[3 * i], c.tolerance);
+            EXPECT_NEAR(t.g, rgb[3 * i + 1], c.tolerance);
+            EXPECT_NEAR(t.b, rgb[3 * i + 2], c.tolerance);
+        }
+    }
+    // JPEG (lossy, its colours subsampled): a flat grey, within a level or two.
+    write_rgb(dir / "a.jpg", 2, 2, OIIO::TypeDesc::UINT8, std::vector<float>(12, 102 / 255.0f));
+    for (const Color& t : read_image(dir / "a.jpg", ImageEncoding::kLinear).texels) EXPECT_NEAR(t.g, 102 / 255.0f, 2 / 255.0f);
+}
+
 TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
     for (float v : {0.0f, 0.001f, 0.2f, 0.5f, 1.0f}) EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-5);
     EXPECT_NEAR(srgb_decode(0.5f), 0.21404, 1e-4);
