@@ -908,6 +908,52 @@ struct Importer {
     }
 };
 
+/// The container of a .glb checked by glint, so that a broken one is reported at its byte offset
+/// in glint's words (tinygltf says "Invalid glTF binary."): the 12-byte header (magic "glTF",
+/// version 2, the total length), the JSON chunk (length, type "JSON", within the file, padded to
+/// 4 bytes), then an optional BIN chunk the same way. Returns the error text, or empty.
+std::string glb_container_error(const std::string& bytes) {
+    const auto u32 = [&](std::size_t at) {
+        std::uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;  // little-endian, as the machines glint builds for
+    };
+    const std::size_t size = bytes.size();
+    if (size < 12) return fmt::format("byte 0: {} bytes, too short for the 12-byte header of a binary glTF", size);
+    if (bytes.compare(0, 4, "glTF") != 0) return "byte 0: not a binary glTF (it does not start with 'glTF')";
+    if (u32(4) != 2) return fmt::format("byte 4: version {}; glint reads glTF 2", u32(4));
+    if (u32(8) != size) return fmt::format("byte 8: the header gives the length as {} bytes; the file has {}", u32(8), size);
+    if (size < 20) return fmt::format("byte 12: the JSON chunk's header is cut short ({} bytes)", size);
+    const std::uint32_t json = u32(12);
+    if (bytes.compare(16, 4, "JSON") != 0) return "byte 16: the first chunk must be of type 'JSON'";
+    if (json > size - 20) return fmt::format("byte 12: the JSON chunk's length {} runs past the end of the file ({} bytes)", json, size);
+    if (json % 4 != 0) return fmt::format("byte 12: the JSON chunk's length {} is not a multiple of 4", json);
+    const std::size_t bin = 20 + std::size_t{json};
+    if (bin == size) return {};
+    if (size - bin < 8) return fmt::format("byte {}: a chunk header is cut short ({} bytes left)", bin, size - bin);
+    const std::uint32_t n = u32(bin);
+    if (bytes.compare(bin + 4, 4, std::string("BIN\0", 4)) != 0) return fmt::format("byte {}: the second chunk must be of type 'BIN'", bin + 4);
+    if (n > size - bin - 8) return fmt::format("byte {}: the BIN chunk's length {} runs past the end of the file ({} bytes)", bin, n, size);
+    return {};
+}
+
+/// tinygltf's messages for what glint does not check first, in glint's form: no trailing periods
+/// or line breaks, a lower-case start, "File read error : X : why" as "cannot read 'X': why".
+std::string tinygltf_message(std::string why) {
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ' || why.back() == '.')) why.pop_back();
+    static const std::regex read_error(R"(File (?:read|open) error : (.*?) : (.*))");
+    std::smatch m;
+    if (std::regex_search(why, m, read_error)) return fmt::format("cannot read '{}': {}", m[1].str(), m[2].str());
+    static const std::regex open_error(R"(File open error : ([^\n]*))");
+    if (std::regex_search(why, m, open_error)) return fmt::format("cannot open '{}'", m[1].str());
+    for (std::size_t at = 0; (at = why.find(".\n", at)) != std::string::npos;) why.replace(at, 2, "; ");
+    for (char& c : why)
+        if (c == '\n') c = ' ';
+    if (why.size() > 1 && std::isupper(static_cast<unsigned char>(why[0])) && std::islower(static_cast<unsigned char>(why[1])))
+        why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
+    return why;
+}
+
 /// Two things tinygltf (built without the extensions) refuses in files that use them, and which
 /// glint's importer does not read anyway: gltfpack's EXT_meshopt_compression fallback buffers (a
 /// length and no data: tinygltf would look for a file) become a 4-byte data URI, and the index
@@ -980,7 +1026,7 @@ bool file_exists(const std::string& file, void*) {
 // tinygltf's file reader, refusing what is not a regular file (see why_not_readable).
 bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
     if (const std::string why = why_not_readable(file); !why.empty()) {
-        if (err) *err += fmt::format("'{}' {}", file, why);
+        if (err) *err += "it " + why;  // tinygltf adds "File read error : FILE : "
         return false;
     }
     return tinygltf::ReadWholeFile(out, err, file, user);
@@ -1005,6 +1051,8 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open", file));
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (glb)
+        if (const std::string why = glb_container_error(bytes); !why.empty()) throw IoError(fmt::format("{}: {}", file, why));
     if (auto patched = prepare_for_tinygltf(bytes, glb)) bytes = std::move(*patched);
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw IoError(fmt::format("{}: too large", file));
     const auto size = static_cast<unsigned int>(bytes.size());
@@ -1024,10 +1072,10 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         static const std::regex located(R"(parse error at line (\d+), column (\d+): (.*))");
         if (std::regex_search(why, m, located))
             throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
-        throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : why));
+        throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : tinygltf_message(why)));
     }
     Importer im{model, file, glb, {}, {}, {}, {}, {}, std::nullopt, camera_name, {}};
-    if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, trim(warn)));
+    if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, tinygltf_message(warn)));
     im.check_extensions();
     im.vertex_colored.assign(model.materials.size(), false);
     for (const tinygltf::Mesh& mesh : model.meshes)

@@ -446,3 +446,44 @@ TEST_F(Gltf, VolumeMaterialBecomesAnInteriorMediumOfItsSurfaces) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+
+// Issue 16: a broken .glb container is reported by glint at its byte offset, and what tinygltf
+// still reports comes in glint's form.
+TEST(GltfHardening, BrokenBinaryContainersAreReportedAtTheirByte) {
+    testing::TempDir dir;
+    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string json = R"({"asset": {"version": "2.0"}}   )";  // 32 bytes: a multiple of 4
+    ASSERT_EQ(json.size() % 4, 0u);
+    const auto glb = [&](std::uint32_t version, std::int64_t length, std::uint32_t json_length, const std::string& type,
+                         const std::string& tail) {
+        std::string body = u32(json_length) + type + json + tail;
+        const std::uint32_t total = length >= 0 ? static_cast<std::uint32_t>(length) : static_cast<std::uint32_t>(12 + body.size());
+        return "glTF" + u32(version) + u32(total) + body;
+    };
+    const auto err = [&](const std::string& bytes) {
+        std::ofstream(dir / "x.glb", std::ios::binary) << bytes;
+        try {
+            import_gltf(dir / "x.glb");
+        } catch (const IoError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string f = (dir / "x.glb").string() + ": ";
+    EXPECT_EQ(err("glTF"), f + "byte 0: 4 bytes, too short for the 12-byte header of a binary glTF");
+    EXPECT_EQ(err("GLTF" + u32(2) + u32(12)), f + "byte 0: not a binary glTF (it does not start with 'glTF')");
+    EXPECT_EQ(err(glb(1, -1, 32, "JSON", "")), f + "byte 4: version 1; glint reads glTF 2");
+    EXPECT_EQ(err(glb(2, 1000, 32, "JSON", "")), f + "byte 8: the header gives the length as 1000 bytes; the file has 52");
+    EXPECT_EQ(err(glb(2, -1, 32, "JSOX", "")), f + "byte 16: the first chunk must be of type 'JSON'");
+    EXPECT_EQ(err(glb(2, -1, 36, "JSON", "")), f + "byte 12: the JSON chunk's length 36 runs past the end of the file (52 bytes)");
+    EXPECT_EQ(err(glb(2, -1, 32, "JSON", u32(8) + "BIX" + std::string(1, '\0') + "12345678")),
+              f + "byte 56: the second chunk must be of type 'BIN'");
+    EXPECT_EQ(err(glb(2, -1, 32, "JSON", u32(800) + "BIN" + std::string(1, '\0') + "12345678")),
+              f + "byte 52: the BIN chunk's length 800 runs past the end of the file (68 bytes)");
+    // A well-formed container with nothing to draw is not a container error.
+    EXPECT_EQ(err(glb(2, -1, 32, "JSON", "")).find("byte"), std::string::npos);
+}
+
+}  // namespace glint
