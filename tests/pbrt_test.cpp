@@ -13,6 +13,7 @@
 
 #include "glint/background.h"
 #include "glint/io/build.h"
+#include "glint/io/limits.h"
 #include "glint/io/mesh_import.h"
 #include "glint/io/pbrt.h"
 #include "glint/io/scene_writer.h"
@@ -652,4 +653,27 @@ AttributeEnd
 }
 
 }  // namespace
+}  // namespace glint
+
+namespace glint {
+
+// Issue 16: nesting is a limit with a name and a flag, in pbrt files (AttributeBegin,
+// TransformBegin) and glTF node trees alike.
+TEST(PbrtLimits, NestingDeeperThanTheLimitIsAnErrorAtTheBlock) {
+    const long long saved = limit(Limit::kNesting);
+    set_limit(Limit::kNesting, 3);
+    auto sources = std::make_shared<SourceFiles>();
+    try {
+        parse_pbrt("WorldBegin\nAttributeBegin\nTransformBegin\nAttributeBegin\n  AttributeBegin\n", "deep.pbrt", sources);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("deep.pbrt:5:3: error: AttributeBegin: 4 levels of nesting exceed the limit "
+                                             "of 3 (raise it with --limit nesting=N)"),
+                  std::string::npos) << e.what();
+    }
+    EXPECT_NO_THROW(parse_pbrt("WorldBegin\nAttributeBegin\nTransformBegin\nAttributeBegin\nAttributeEnd\nTransformEnd\n"
+                               "AttributeEnd\n", "ok.pbrt", sources));
+    set_limit(Limit::kNesting, saved);
+}
+
 }  // namespace glint

@@ -834,7 +834,8 @@ struct Importer {
     // reached: each of its nodes has its parent in the cycle, so none is a root. The depth limit
     // only keeps the recursion's stack small.
     void visit(int index, const Matrix34& parent, int depth) {
-        if (depth > 256) fail_at(fmt::format("/nodes/{}", index), "the node hierarchy is deeper than 256 levels");
+        if (depth >= limit(Limit::kNesting))
+            fail_at(fmt::format("/nodes/{}", index), "the node hierarchy: " + over_limit(Limit::kNesting, depth + 1));
         const tinygltf::Node& n = model.nodes[index];
         const Matrix34 world = parent * node_matrix(n);  // glTF space
         // To glint: M' = F M F with F = diag(1, 1, -1).

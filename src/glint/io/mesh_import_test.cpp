@@ -329,3 +329,23 @@ TEST(Obj, MaterialLibrariesAreReadOnlyWhenTheyAreRegularFiles) {
 }
 
 }  // namespace glint
+
+namespace glint {
+
+// Found by fuzz_ply: an element with no properties and a huge count was skipped entry by entry
+// (2^63 of them: for ever). It holds no bytes, so it is not read at all.
+TEST(Ply, AnElementOfNoPropertiesIsNotLoopedOver) {
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement junk 9223372036854775807\nelement vertex 3\n"
+                      "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+    const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::int32_t f[3] = {0, 1, 2};
+    ply.append(reinterpret_cast<const char*>(v), sizeof v);
+    ply += '\3';
+    ply.append(reinterpret_cast<const char*>(f), sizeof f);
+    const ImportedFile file = parse_ply(ply, "junk.ply");
+    ASSERT_EQ(file.meshes.size(), 1u);
+    EXPECT_EQ(file.meshes[0].indices, (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+}  // namespace glint

@@ -766,8 +766,15 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         }
     } else if (name == "ReverseOrientation") {
         gs_.reverse_orientation = !gs_.reverse_orientation;
-    } else if (name == "AttributeBegin") {
-        stack_.push_back({gs_, t.loc()});
+    } else if (name == "AttributeBegin" || name == "TransformBegin") {
+        // Nesting is policy (the nesting limit), not the memory of the state stack.
+        const auto depth = static_cast<long long>(stack_.size() + transform_stack_.size()) + 1;
+        if (depth > limit(Limit::kNesting)) {
+            diag_.error(t.loc(), fmt::format("{}: {}", name, over_limit(Limit::kNesting, depth)));
+            diag_.throw_if_errors();
+        }
+        if (name == "AttributeBegin") stack_.push_back({gs_, t.loc()});
+        else transform_stack_.push_back({gs_.ctm, t.loc()});
     } else if (name == "AttributeEnd") {
         if (stack_.empty()) {
             diag_.error(t.loc(), "AttributeEnd without AttributeBegin");
@@ -775,8 +782,6 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
             gs_ = stack_.back().first;
             stack_.pop_back();
         }
-    } else if (name == "TransformBegin") {
-        transform_stack_.push_back({gs_.ctm, t.loc()});
     } else if (name == "TransformEnd") {
         if (transform_stack_.empty()) {
             diag_.error(t.loc(), "TransformEnd without TransformBegin");

@@ -79,7 +79,7 @@ public:
                 read_vertices(e, mesh, has_colors);
             } else if (e.name == "face") {
                 read_faces(e, counts, polygon, mesh.positions.size());
-            } else {
+            } else if (!e.properties.empty()) {  // an element of no properties holds no bytes, whatever its count
                 elem_ = &e;
                 for (index_ = 0; index_ < e.count; ++index_)
                     for (const Property& p : e.properties) skip(p);

@@ -1039,6 +1039,34 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
     Diagnostics diagnostics(sources);
     SceneDescription scene;
     scene.path = path;
+    // Flow collections nested deeper than the nesting limit, found before yaml-cpp recurses
+    // into them (its own guard, at 2000 levels, reports only "bad file").
+    {
+        int line = 1, column = 0;
+        long long depth = 0;
+        char quote = 0;
+        bool comment = false;
+        for (const char c : text) {
+            ++column;
+            if (c == '\n') {
+                ++line, column = 0, comment = false;
+                if (quote == '\'') quote = 0;  // plain YAML allows multi-line quotes; good enough for a bound
+                continue;
+            }
+            if (comment) continue;
+            if (quote) {
+                if (c == quote) quote = 0;
+                continue;
+            }
+            if (c == '"' || c == '\'') quote = c;
+            else if (c == '#') comment = true;
+            else if (c == ']' || c == '}') depth = std::max(0LL, depth - 1);
+            else if ((c == '[' || c == '{') && ++depth > limit(Limit::kNesting)) {
+                diagnostics.error({path, line, column}, over_limit(Limit::kNesting, depth));
+                diagnostics.throw_if_errors();
+            }
+        }
+    }
     YAML::Node root;
     try {
         root = YAML::Load(text);

@@ -352,3 +352,14 @@ TEST(SceneYaml, PathTracerMistakesAreReported) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+
+TEST(SceneYamlLimits, FlowCollectionsNestedTooDeeplyAreAnErrorAtTheBracket) {
+    const std::string e = errors_of("objects: " + std::string(300, '[') + std::string(300, ']') + "\n");
+    EXPECT_EQ(e.rfind("scene.yaml:1:266: error: 257 levels of nesting exceed the limit of 256 (raise it with --limit nesting=N)", 0), 0u) << e.substr(0, 200);
+    // Brackets inside quotes and comments are not nesting.
+    EXPECT_EQ(errors_of("# " + std::string(300, '[') + "\nfilm: {width: 8, height: 6}\n"), "");
+}
+
+}  // namespace glint
