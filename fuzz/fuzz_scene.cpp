@@ -1,16 +1,27 @@
-// The YAML scene reader, from text through to the built scene (meshes, textures and media it
-// names are looked for in the scratch folder only). The film is overridden small: the size
-// limits themselves are the subject of tests, and the fuzzer looks for what the text can do.
+// A scene reader from text through to the built scene: the YAML reader (fuzz_scene), or the
+// pbrt-v4 reader when built with GLINT_FUZZ_PBRT (fuzz_pbrt). Meshes, textures, media and
+// included files it names are looked for in the scratch folder only. The film is overridden
+// small: the size limits themselves are the subject of tests, and the fuzzer looks for what the
+// text can do.
 #include "fuzz_common.h"
 #include "glint/io/build.h"
+#include "glint/io/pbrt.h"
 #include "glint/io/scene_yaml.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;
+#ifdef GLINT_FUZZ_PBRT
+    const std::string path = (fuzz::scratch() / "scene.pbrt").string();
+    constexpr auto parse = [](const std::string& text, const std::string& p, std::shared_ptr<SourceFiles> s) {
+        return parse_pbrt(text, p, std::move(s));
+    };
+#else
     const std::string path = (fuzz::scratch() / "scene.yaml").string();
+    constexpr auto parse = &parse_scene;
+#endif
     fuzz::expect_located_errors([&] {
         auto sources = std::make_shared<SourceFiles>();
-        const SceneDescription d = parse_scene(std::string(fuzz::as_text(data, size)), path, sources);
+        const SceneDescription d = parse(std::string(fuzz::as_text(data, size)), path, sources);
         Overrides o;
         o.width = 8;
         o.height = 8;
