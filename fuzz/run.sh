@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs one fuzz target of a GLINT_FUZZ build (make fuzz) under its policy: ASan+UBSan (built in),
-# 2 GB of memory (-rss_limit_mb, and no single allocation above it), 10 s per input; a crash,
+# 2 GB of memory (-rss_limit_mb; no single allocation above 1.2 GB: the harness gives scenes a
+# 1 GB memory limit), 10 s per input; a crash,
 # a sanitizer report, an uncaught exception, a slow input or running out of memory all fail.
 #
 #   fuzz/run.sh BUILD TARGET regression   every seed and fuzz/regressions/TARGET once, then a fixed
@@ -19,7 +20,7 @@ regressions=$src/regressions/$target
 [[ -x $bin ]] || { echo "run.sh: no $bin: build it with 'make fuzz'" >&2; exit 2; }
 [[ -d $seeds ]] || { echo "run.sh: no seed corpus $seeds: build it with 'make fuzz'" >&2; exit 2; }
 mkdir -p "$regressions"
-flags=(-rss_limit_mb=2048 -timeout=10 -max_len=65536 -print_final_stats=1)
+flags=(-rss_limit_mb=2048 -malloc_limit_mb=1200 -timeout=10 -max_len=65536 -print_final_stats=1)
 [[ -f $src/dict/$target.dict ]] && flags+=(-dict="$src/dict/$target.dict")
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$src/lsan.supp:print_suppressions=0}

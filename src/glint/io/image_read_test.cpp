@@ -1,9 +1,11 @@
 // Reading texture images through OpenImageIO: real files written here, then read back.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <bit>
 
@@ -56,6 +58,34 @@ TEST(ImageRead, EveryFormatByItsExtension) {
     // JPEG (lossy, its colours subsampled): a flat grey, within a level or two.
     write_rgb(dir / "a.jpg", 2, 2, OIIO::TypeDesc::UINT8, std::vector<float>(12, 102 / 255.0f));
     for (const Color& t : read_image(dir / "a.jpg", ImageEncoding::kLinear).texels) EXPECT_NEAR(t.g, 102 / 255.0f, 2 / 255.0f);
+}
+
+// Found by fuzz_image: OpenEXR allocates what a header attribute declares, before glint could
+// check anything (1.9 GB for a 1.4 KB file). glint checks the sizes against the file first.
+TEST(ImageRead, AnExrAttributeLargerThanTheFileIsRefusedAtItsByte) {
+    testing::TempDir dir;
+    write_rgb(dir / "ok.exr", 2, 2, OIIO::TypeDesc::HALF, std::vector<float>(12, 0.5f));
+    std::string bytes;
+    {
+        std::ifstream in(dir / "ok.exr", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The first attribute starts at byte 8: its name, its type, then its 4-byte size.
+    const std::size_t name_end = bytes.find('\0', 8), type_end = bytes.find('\0', name_end + 1);
+    const std::string name = bytes.substr(8, name_end - 8);
+    const std::uint32_t huge = 0x70000000;
+    std::memcpy(bytes.data() + type_end + 1, &huge, 4);
+    std::ofstream(dir / "bad.exr", std::ios::binary) << bytes;
+    try {
+        read_image(dir / "bad.exr", ImageEncoding::kLinear);
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find(fmt::format("bad.exr': byte {}: OpenEXR header attribute '{}' claims 1879048192 bytes, "
+                                                         "more than the {} bytes left in the file",
+                                                         type_end + 1, name, bytes.size() - (type_end + 5))),
+                  std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_image(dir / "ok.exr", ImageEncoding::kLinear).width, 2);  // a good file is untouched
 }
 
 TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
