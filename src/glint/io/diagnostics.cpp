@@ -136,8 +136,6 @@ void restrict_reads_to(const std::vector<std::filesystem::path>& folders) {
     }
 }
 
-const std::vector<std::filesystem::path>& read_roots() { return roots(); }
-
 std::string why_not_readable(const std::filesystem::path& path) {
     std::error_code ec;
     if (!roots().empty()) {

@@ -37,8 +37,6 @@ std::string why_not_readable(const std::filesystem::path& path);
 /// --restrict-paths: from now on only files under `folders` (resolved: symbolic links and ".."
 /// followed) may be read; an empty list lifts the restriction. Set once, before reading starts.
 void restrict_reads_to(const std::vector<std::filesystem::path>& folders);
-/// The folders reads are restricted to (resolved), empty when unrestricted.
-const std::vector<std::filesystem::path>& read_roots();
 
 /// The text of the files diagnostics point into, so that messages can quote the line.
 class SourceFiles {

@@ -39,7 +39,7 @@ TEST(ImageRead, EveryFormatByItsExtension) {
         OIIO::TypeDesc type;
         float tolerance;
     };
-    for (const Case c : {Case{".png", OIIO::TypeDesc::UINT8, 1e-6f}, Case{".tga", OIIO::TypeDesc::UINT8, 1e-6f},
+    for (const Case& c : {Case{".png", OIIO::TypeDesc::UINT8, 1e-6f}, Case{".tga", OIIO::TypeDesc::UINT8, 1e-6f},
                          Case{".tif", OIIO::TypeDesc::UINT8, 1e-6f}, Case{".ppm", OIIO::TypeDesc::UINT8, 1e-6f},
                          Case{".exr", OIIO::TypeDesc::FLOAT, 0}, Case{".hdr", OIIO::TypeDesc::FLOAT, 0.01f}}) {
         SCOPED_TRACE(c.ext);

@@ -187,7 +187,7 @@ std::vector<long long> check_obj_indices(const std::string& text, const std::str
 // an error, not a warning.
 class MtlReader : public tinyobj::MaterialReader {
 public:
-    MtlReader(std::filesystem::path dir, std::string file) : dir_(std::move(dir)), file_(std::move(file)) {}
+    explicit MtlReader(std::filesystem::path dir) : dir_(std::move(dir)) {}
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* names, std::string* warn, std::string* err) override {
         const std::filesystem::path mtl = dir_ / name;
@@ -207,7 +207,6 @@ public:
 
 private:
     std::filesystem::path dir_;
-    std::string file_;
 };
 
 }  // namespace
@@ -230,7 +229,7 @@ ImportedFile parse_obj(const std::string& text, const std::string& file, const s
     std::string warning, error;
     {
         std::istringstream stream(text);
-        MtlReader mtl(dir, file);
+        MtlReader mtl(dir);
         // Faces are split into triangles by us, keeping their material; no vertex colours.
         const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream, &mtl,
                                          /*triangulate=*/false, /*default_vcols_fallback=*/false);

@@ -768,9 +768,9 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
         gs_.reverse_orientation = !gs_.reverse_orientation;
     } else if (name == "AttributeBegin" || name == "TransformBegin") {
         // Nesting is policy (the nesting limit), not the memory of the state stack.
-        const auto depth = static_cast<long long>(stack_.size() + transform_stack_.size()) + 1;
-        if (depth > limit(Limit::kNesting)) {
-            diag_.error(t.loc(), fmt::format("{}: {}", name, over_limit(Limit::kNesting, depth)));
+        const auto nesting = static_cast<long long>(stack_.size() + transform_stack_.size()) + 1;
+        if (nesting > limit(Limit::kNesting)) {
+            diag_.error(t.loc(), fmt::format("{}: {}", name, over_limit(Limit::kNesting, nesting)));
             diag_.throw_if_errors();
         }
         if (name == "AttributeBegin") stack_.push_back({gs_, t.loc()});
