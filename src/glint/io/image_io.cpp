@@ -99,9 +99,9 @@ RawImage read_pfm(const fs::path& path, long long max_pixels) {
     } catch (const std::exception&) {
         throw bad("the header needs a width, a height and a scale");
     }
-    if (w <= 0 || h <= 0 || w > max_pixels || h > max_pixels || w * h > max_pixels)
+    if (w <= 0 || h <= 0 || static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(max_pixels))
         throw bad(fmt::format("{} x {} pixels: {}", w, h,
-                              over_limit(Limit::kTexturePixels, w > max_pixels || h > max_pixels ? std::max(w, h) : w * h, max_pixels)));
+                              over_limit(Limit::kTexturePixels, static_cast<long long>(std::min(9.0e18, double(w) * double(h))), max_pixels)));
     if (!(scale != 0) || !std::isfinite(scale)) throw bad("the scale must be a finite non-zero number");
     ++pos;  // the single whitespace byte that ends the header
     const std::size_t count = static_cast<std::size_t>(w * h) * static_cast<std::size_t>(raw.channels);
@@ -162,10 +162,12 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
 // magic number) are left alone; only the first megabyte is looked at.
 std::string exr_header_error(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
-    std::string head(1 << 20, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<std::size_t>(in.gcount()));
-    if (head.size() < 8 || head.compare(0, 4, "\x76\x2f\x31\x01") != 0) return {};
+    std::string head(8, '\0');
+    in.read(head.data(), 8);
+    if (in.gcount() < 8 || head.compare(0, 4, "\x76\x2f\x31\x01") != 0) return {};
+    head.resize(1 << 20);  // an EXR: its header, up to a megabyte
+    in.read(head.data() + 8, static_cast<std::streamsize>(head.size() - 8));
+    head.resize(8 + static_cast<std::size_t>(in.gcount()));
     std::error_code ec;
     const auto file_size = static_cast<std::uint64_t>(fs::file_size(path, ec));
     if (ec) return {};
