@@ -308,7 +308,7 @@ TEST(Obj, IndicesAreCheckedAsWrittenAtTheirColumn) {
     EXPECT_EQ(err("f -1 -2 -4\n"), "big.obj:4:9: vertex index -4 is out of range (3 vertices before this line)");
     EXPECT_EQ(err("f 1 2 x3\n"), "big.obj:4:7: 'x3' is not a vertex index");
     EXPECT_EQ(err("vt 0 0\nf 1/1 2/1 3/2\n"), "big.obj:5:13: texture coordinate index 2 is out of range (1 texture coordinates)");
-    EXPECT_EQ(err("f 1/1/1/1 2 3\n"), "big.obj:4:7: a corner has more than three indices");
+    EXPECT_EQ(err("vt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3\n"), "big.obj:6:7: a corner has more than three indices");
     EXPECT_EQ(err("l 1 5\n"), "big.obj:4:5: vertex index 5 is out of range (3 vertices)");
     std::string wide = "f";
     for (int i = 0; i < 300; ++i) wide += " " + std::to_string(1 + i % 3);

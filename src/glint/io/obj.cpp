@@ -90,40 +90,46 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
 // `f`, `l` or `p` line checked here first, read as written (in 64 bits: an index of 4000000000
 // is reported as that), located at line and column. Returns the line of every face, in order.
 std::vector<long long> check_obj_indices(const std::string& text, const std::string& file) {
-    struct Use {
-        long long value;  // as written
-        long long line, column;
-        int kind;  // 0 vertex, 1 texture coordinate, 2 normal
-    };
-    long long count[3] = {0, 0, 0};
-    long long triangles = 0;
-    std::vector<Use> positive;  // checked once the totals are known
-    std::vector<long long> face_line;
-    const auto fail = [&](long long line, long long column, const std::string& what) -> void {
+    const auto fail = [&](long long line, std::size_t column, const std::string& what) -> void {
         throw IoError(fmt::format("{}:{}:{}: {}", file, line, column, what));
     };
     static constexpr const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
     static constexpr const char* kWhats[3] = {"vertices", "texture coordinates", "normals"};
-    long long line_no = 0;
-    for (std::size_t at = 0; at < text.size();) {
-        std::size_t end = text.find('\n', at);
-        if (end == std::string::npos) end = text.size();
-        ++line_no;
-        std::string_view line(text.data() + at, end - at);
-        at = end + 1;
-        if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-        const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
-        std::size_t i = 0;
-        while (i < line.size() && blank(line[i])) ++i;
-        std::size_t k = i;
-        while (k < line.size() && !blank(line[k])) ++k;
-        const std::string_view key = line.substr(i, k - i);
+    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    // Calls f(line number, line without its comment, where its keyword ends, keyword) per line.
+    const auto each_line = [&](auto&& f) {
+        long long line_no = 0;
+        for (std::size_t at = 0; at < text.size();) {
+            std::size_t end = text.find('\n', at);
+            if (end == std::string::npos) end = text.size();
+            std::string_view line(text.data() + at, end - at);
+            at = end + 1;
+            if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+            std::size_t i = 0;
+            while (i < line.size() && blank(line[i])) ++i;
+            std::size_t k = i;
+            while (k < line.size() && !blank(line[k])) ++k;
+            f(++line_no, line, k, line.substr(i, k - i));
+        }
+    };
+    // The totals first, so that every index is checked where it is written (OBJ lets a face name
+    // vertices defined after it); negative indices count back from the line.
+    long long total[3] = {0, 0, 0};
+    each_line([&](long long, std::string_view, std::size_t, std::string_view key) {
+        if (key == "v") ++total[0];
+        if (key == "vt") ++total[1];
+        if (key == "vn") ++total[2];
+    });
+    long long count[3] = {0, 0, 0};
+    long long triangles = 0;
+    std::vector<long long> face_line;
+    each_line([&](long long line_no, std::string_view line, std::size_t i, std::string_view key) {
         if (key == "v") ++count[0];
         if (key == "vt") ++count[1];
         if (key == "vn") ++count[2];
-        if (key != "f" && key != "l" && key != "p") continue;
+        if (key != "f" && key != "l" && key != "p") return;
         int corners = 0;
-        for (i = k;;) {
+        for (;;) {
             while (i < line.size() && blank(line[i])) ++i;
             if (i >= line.size()) break;
             ++corners;
@@ -156,7 +162,9 @@ std::vector<long long> check_obj_indices(const std::string& text, const std::str
                 if (negative && value > count[kind])
                     fail(line_no, column, fmt::format("{} index {} is out of range ({} {} before this line)", kWhat[kind],
                                                       written, count[kind], kWhats[kind]));
-                if (!negative) positive.push_back({value, line_no, static_cast<long long>(column), kind});
+                if (!negative && value > total[kind])
+                    fail(line_no, column, fmt::format("{} index {} is out of range ({} {})", kWhat[kind], value,
+                                                      total[kind], kWhats[kind]));
                 if (i < line.size() && line[i] == '/') {
                     ++i;
                     if (kind == 0 && i < line.size() && line[i] == '/') {  // v//vn
@@ -173,12 +181,8 @@ std::vector<long long> check_obj_indices(const std::string& text, const std::str
                 fail(line_no, 1, fmt::format("a face with {} corners (at most 255; split it)", corners));
             face_line.push_back(line_no);
         }
-    }
-    if (const std::string e = mesh_size_error(count[0], triangles); !e.empty()) throw IoError(fmt::format("{}: {}", file, e));
-    for (const Use& u : positive)
-        if (u.value > count[u.kind])
-            fail(u.line, u.column, fmt::format("{} index {} is out of range ({} {})", kWhat[u.kind], u.value,
-                                               count[u.kind], kWhats[u.kind]));
+    });
+    if (const std::string e = mesh_size_error(total[0], triangles); !e.empty()) throw IoError(fmt::format("{}: {}", file, e));
     return face_line;
 }
 
