@@ -4,11 +4,13 @@
 # both measured in the same run by hyperfine. Prints a Markdown table of medians and ratios.
 #
 #   bench/compare_povray.sh [BUILD_DIR] [RUNS]
+#   W=3840 H=2160 bench/compare_povray.sh build 5     # the 4K variant
+#   GLINT=/path/to/other/glint ...                      # another glint binary
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 runs=${2:-7}
-glint="$build/apps/glint/glint"
+glint=${GLINT:-$build/apps/glint/glint}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
@@ -17,7 +19,7 @@ for tool in hyperfine povray python3; do
 done
 [ -x "$glint" ] || { echo "missing $glint: run make build" >&2; exit 1; }
 
-W=1920 H=1080
+W=${W:-1920} H=${H:-1080}
 for t in 1 2; do
   hyperfine --style basic --warmup 1 --runs "$runs" --export-json "$out/t$t.json" \
     -n "glint-$t" "$glint render scenes/seed/fig14-reflections.yaml --width $W --height $H --spp 1 --threads $t -q -o $out/glint.png" \
@@ -39,7 +41,8 @@ python3 - "$out" "$runs" <<'PY'
 import json, statistics, sys, platform, subprocess
 out, runs = sys.argv[1], sys.argv[2]
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
-print(f"Figure 14, 1920x1080, 1 spp, whole process; median of {runs} runs (hyperfine), {cpu}\n")
+import os
+print(f"Figure 14, {os.environ.get('W', 1920)}x{os.environ.get('H', 1080)}, 1 spp, whole process; median of {runs} runs (hyperfine), {cpu}\n")
 print("| threads | glint (s) | POV-Ray 3.7 (s) | POV-Ray / glint |")
 print("|---|---|---|---|")
 for t in (1, 2):

@@ -27,7 +27,7 @@ packages=(
 # Optional groups, not needed to build or test:
 # peers and timer for `make bench`,
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
-  packages+=(povray hyperfine blender)
+  packages+=(povray hyperfine blender time)
 fi
 
 missing=()

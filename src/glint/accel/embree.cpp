@@ -1,5 +1,6 @@
 #include "glint/accel/embree.h"
 
+#include <dlfcn.h>
 #include <embree3/rtcore.h>
 
 #include <atomic>
@@ -16,6 +17,57 @@
 namespace glint {
 
 namespace {
+
+// Embree is loaded with dlopen on the first use of --accel embree, not linked: its 44 MB stay out
+// of every process that does not ask for it (the start-up measured in docs/benchmarks.md).
+#define GLINT_EMBREE_FUNCTIONS(X) \
+    X(rtcAttachGeometryByID) \
+    X(rtcCommitGeometry) \
+    X(rtcCommitScene) \
+    X(rtcGetDeviceError) \
+    X(rtcIntersect1) \
+    X(rtcNewDevice) \
+    X(rtcNewGeometry) \
+    X(rtcNewScene) \
+    X(rtcOccluded1) \
+    X(rtcReleaseDevice) \
+    X(rtcReleaseGeometry) \
+    X(rtcReleaseScene) \
+    X(rtcSetDeviceMemoryMonitorFunction) \
+    X(rtcSetGeometryBoundsFunction) \
+    X(rtcSetGeometryBuildQuality) \
+    X(rtcSetGeometryInstancedScene) \
+    X(rtcSetGeometryIntersectFilterFunction) \
+    X(rtcSetGeometryIntersectFunction) \
+    X(rtcSetGeometryOccludedFilterFunction) \
+    X(rtcSetGeometryOccludedFunction) \
+    X(rtcSetGeometryTransform) \
+    X(rtcSetGeometryUserData) \
+    X(rtcSetGeometryUserPrimitiveCount) \
+    X(rtcSetNewGeometryBuffer) \
+    X(rtcSetSceneBuildQuality) \
+
+struct EmbreeLibrary {
+#define GLINT_EMBREE_POINTER(f) decltype(&::f) f = nullptr;
+    GLINT_EMBREE_FUNCTIONS(GLINT_EMBREE_POINTER)
+#undef GLINT_EMBREE_POINTER
+};
+
+const EmbreeLibrary& embree() {
+    static const EmbreeLibrary library = [] {
+        void* handle = dlopen("libembree3.so.3", RTLD_NOW | RTLD_LOCAL);
+        if (!handle) throw std::runtime_error(fmt::format("cannot load Embree (libembree3.so.3): {}", dlerror()));
+        EmbreeLibrary l;
+#define GLINT_EMBREE_LOOKUP(f)                                                                      \
+    l.f = reinterpret_cast<decltype(&::f)>(dlsym(handle, #f));                                     \
+    if (!l.f) throw std::runtime_error("cannot load Embree (libembree3.so.3): it has no " #f);
+        GLINT_EMBREE_FUNCTIONS(GLINT_EMBREE_LOOKUP)
+#undef GLINT_EMBREE_LOOKUP
+        return l;
+    }();
+    return library;
+}
+
 
 // Top-level geometry ids: fixed slots for the shape arrays, then one per instance.
 constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3, kFirstInstanceId = 4;
@@ -102,14 +154,14 @@ struct EmbreeAccel::Impl {
 
     void check(const char* what) const {
         // Reading the error clears it: read once.
-        if (const RTCError e = rtcGetDeviceError(device); e != RTC_ERROR_NONE)
+        if (const RTCError e = embree().rtcGetDeviceError(device); e != RTC_ERROR_NONE)
             throw std::runtime_error(fmt::format("Embree: {} failed: {}", what, error_name(e)));
     }
     ~Impl() {
         for (RTCScene s : mesh_scenes)
-            if (s) rtcReleaseScene(s);
-        if (top) rtcReleaseScene(top);
-        if (device) rtcReleaseDevice(device);
+            if (s) embree().rtcReleaseScene(s);
+        if (top) embree().rtcReleaseScene(top);
+        if (device) embree().rtcReleaseDevice(device);
     }
 };
 
@@ -141,35 +193,35 @@ bool count_memory(void* user, ssize_t bytes, bool) {
 
 RTCGeometry triangle_geometry(RTCDevice device, const std::vector<Point3>& positions,
                               const std::vector<std::uint32_t>& indices) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = embree().rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    embree().rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
     // Copies (rtcSetNewGeometryBuffer pads the buffers as Embree's SIMD loads need).
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+    auto* v = static_cast<float*>(embree().rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), positions.size()));
     for (std::size_t i = 0; i < positions.size(); ++i) {
         v[3 * i] = positions[i].x;
         v[3 * i + 1] = positions[i].y;
         v[3 * i + 2] = positions[i].z;
     }
-    auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+    auto* ix = static_cast<unsigned*>(embree().rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), indices.size() / 3));
     std::memcpy(ix, indices.data(), indices.size() * sizeof(unsigned));
-    rtcCommitGeometry(g);
+    embree().rtcCommitGeometry(g);
     return g;
 }
 
 template <typename Shape>
 void attach_user(RTCDevice device, RTCScene scene, UserShapes<Shape>& user, unsigned id) {
     if (user.shapes->empty()) return;
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(user.shapes->size()));
-    rtcSetGeometryUserData(g, &user);
-    rtcSetGeometryBoundsFunction(g, shape_bounds<Shape>, nullptr);
-    rtcSetGeometryIntersectFunction(g, shape_intersect<Shape>);
-    rtcSetGeometryOccludedFunction(g, shape_occluded<Shape>);
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene, g, id);
-    rtcReleaseGeometry(g);
+    RTCGeometry g = embree().rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    embree().rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(user.shapes->size()));
+    embree().rtcSetGeometryUserData(g, &user);
+    embree().rtcSetGeometryBoundsFunction(g, shape_bounds<Shape>, nullptr);
+    embree().rtcSetGeometryIntersectFunction(g, shape_intersect<Shape>);
+    embree().rtcSetGeometryOccludedFunction(g, shape_occluded<Shape>);
+    embree().rtcCommitGeometry(g);
+    embree().rtcAttachGeometryByID(scene, g, id);
+    embree().rtcReleaseGeometry(g);
 }
 
 }  // namespace
@@ -177,33 +229,33 @@ void attach_user(RTCDevice device, RTCScene scene, UserShapes<Shape>& user, unsi
 EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
     try {
         Impl& m = *impl_;
-        m.device = rtcNewDevice(nullptr);
+        m.device = embree().rtcNewDevice(nullptr);
         if (!m.device) throw std::runtime_error("Embree: could not create a device");
-        rtcSetDeviceMemoryMonitorFunction(m.device, count_memory, &m.bytes);
+        embree().rtcSetDeviceMemoryMonitorFunction(m.device, count_memory, &m.bytes);
         std::vector<bool> masked(scene.meshes.size(), false);
         for (const Instance& inst : scene.instances)
             if (inst.alpha >= 0) masked[inst.mesh] = true;
         for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
             const TriangleMesh& mesh = scene.meshes[k];
-            RTCScene s = rtcNewScene(m.device);
+            RTCScene s = embree().rtcNewScene(m.device);
             m.mesh_scenes.push_back(s);
-            rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+            embree().rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
             if (mesh.indices.empty()) {
-                rtcCommitScene(s);
+                embree().rtcCommitScene(s);
                 continue;
             }
             RTCGeometry g = triangle_geometry(m.device, mesh.positions, mesh.indices);
             if (masked[k]) {  // the filter asks the instance, which may have no mask: then it keeps
-                rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
-                rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
-                rtcCommitGeometry(g);
+                embree().rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+                embree().rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+                embree().rtcCommitGeometry(g);
             }
-            rtcAttachGeometryByID(s, g, 0);
-            rtcReleaseGeometry(g);
-            rtcCommitScene(s);
+            embree().rtcAttachGeometryByID(s, g, 0);
+            embree().rtcReleaseGeometry(g);
+            embree().rtcCommitScene(s);
         }
         m.check("building the meshes");
-        m.top = rtcNewScene(m.device);
+        m.top = embree().rtcNewScene(m.device);
         if (!scene.triangles.empty()) {
             std::vector<Point3> p;
             std::vector<std::uint32_t> ix;
@@ -213,8 +265,8 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
                 p.insert(p.end(), {t.p0, t.p1, t.p2});
             }
             RTCGeometry g = triangle_geometry(m.device, p, ix);
-            rtcAttachGeometryByID(m.top, g, kTrianglesId);
-            rtcReleaseGeometry(g);
+            embree().rtcAttachGeometryByID(m.top, g, kTrianglesId);
+            embree().rtcReleaseGeometry(g);
         }
         m.spheres = {&scene.spheres};
         m.quads = {&scene.quads};
@@ -224,17 +276,17 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
         attach_user(m.device, m.top, m.disks, kDisksId);
         for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
             const Instance& inst = scene.instances[i];
-            RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
-            rtcSetGeometryInstancedScene(g, m.mesh_scenes[inst.mesh]);
+            RTCGeometry g = embree().rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
+            embree().rtcSetGeometryInstancedScene(g, m.mesh_scenes[inst.mesh]);
             float xfm[12];
             for (int r = 0; r < 3; ++r)
                 for (int c = 0; c < 4; ++c) xfm[4 * r + c] = inst.transform.to_world.m[r][c];
-            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
-            rtcCommitGeometry(g);
-            rtcAttachGeometryByID(m.top, g, kFirstInstanceId + i);
-            rtcReleaseGeometry(g);
+            embree().rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+            embree().rtcCommitGeometry(g);
+            embree().rtcAttachGeometryByID(m.top, g, kFirstInstanceId + i);
+            embree().rtcReleaseGeometry(g);
         }
-        rtcCommitScene(m.top);
+        embree().rtcCommitScene(m.top);
         m.check("building the scene");
     } catch (...) {
         delete impl_;
@@ -261,7 +313,7 @@ void EmbreeAccel::closest(const Scene& scene, Ray& ray, std::optional<Hit>& best
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->top, &context, &rh);
+    embree().rtcIntersect1(impl_->top, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     // Embree counts hits up to tfar inclusive; glint's convention excludes t_max.
     if (!(rh.ray.tfar < ray.t_max)) return;
@@ -291,7 +343,7 @@ bool EmbreeAccel::occluded(const Scene& scene, const Ray& ray) const {
     // Embree's interval is closed at tfar; glint's excludes t_max: shrink by one ulp.
     r.tfar = std::nextafter(ray.t_max, 0.0f);
     r.mask = 0xffffffffu;
-    rtcOccluded1(impl_->top, &context, &r);
+    embree().rtcOccluded1(impl_->top, &context, &r);
     return r.tfar < 0;
 }
 

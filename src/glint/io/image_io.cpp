@@ -1,11 +1,14 @@
 #include "glint/io/image_io.h"
 
 #include "glint/io/diagnostics.h"
+#include "glint/io/image_formats.h"
+#include "glint/io/module.h"
+#include "glint/io/oiio_module.h"
 #include "glint/io/limits.h"
 
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -39,121 +42,6 @@ float srgb_decode(float v) {
 }
 
 namespace {
-
-// Portable float maps (pbrt's PFM textures; OpenImageIO here has no reader for them): "PF"
-// (RGB) or "Pf" (grey), "width height", a scale whose sign gives the byte order (negative:
-// little endian) and whose magnitude multiplies the values, then the rows bottom to top.
-struct RawImage {
-    int width = 0, height = 0, channels = 0;
-    bool is_float = false;
-    std::vector<float> data;  ///< top row first
-};
-
-RawImage read_pfm(const fs::path& path, long long max_pixels) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), std::strerror(errno)));
-    // Nothing is read beyond what the largest allowed map needs (the header is checked below).
-    std::error_code size_error;
-    const auto file_size = fs::file_size(path, size_error);
-    if (!size_error && static_cast<double>(file_size) > static_cast<double>(max_pixels) * 12 + 4096) {
-        std::fclose(f);
-        throw IoError(fmt::format("cannot read image '{}': {} bytes is more than a map of the limit of {} pixels "
-                                  "can hold", path.string(), file_size, max_pixels));
-    }
-    if (const std::string e = charge_memory(static_cast<long long>(file_size) * 2, "image '" + path.string() + "'"); !e.empty()) {
-        std::fclose(f);
-        throw IoError(e);
-    }
-    std::string bytes;
-    char buf[65536];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
-    std::fclose(f);
-    std::size_t pos = 0;
-    const auto token = [&]() {
-        while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
-        const std::size_t start = pos;
-        while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
-        return bytes.substr(start, pos - start);
-    };
-    const auto bad = [&](const std::string& why) {
-        return IoError(fmt::format("cannot read image '{}': byte {}: {}", path.string(), pos, why));
-    };
-    const std::string magic = token();
-    if (magic != "PF" && magic != "Pf") throw bad("not a PFM file (expected 'PF' or 'Pf')");
-    RawImage raw;
-    raw.channels = magic == "PF" ? 3 : 1;
-    raw.is_float = true;
-    long long w = 0, h = 0;
-    double scale = 0;
-    try {
-        std::size_t used = 0;
-        std::string t = token();
-        w = std::stoll(t, &used);
-        if (used != t.size()) throw std::invalid_argument(t);
-        t = token();
-        h = std::stoll(t, &used);
-        if (used != t.size()) throw std::invalid_argument(t);
-        t = token();
-        scale = std::stod(t, &used);
-        if (used != t.size()) throw std::invalid_argument(t);
-    } catch (const std::exception&) {
-        throw bad("the header needs a width, a height and a scale");
-    }
-    if (w <= 0 || h <= 0 || static_cast<double>(w) * static_cast<double>(h) > static_cast<double>(max_pixels))
-        throw bad(fmt::format("{} x {} pixels: {}", w, h,
-                              over_limit(Limit::kTexturePixels, static_cast<long long>(std::min(9.0e18, double(w) * double(h))), max_pixels)));
-    if (!(scale != 0) || !std::isfinite(scale)) throw bad("the scale must be a finite non-zero number");
-    ++pos;  // the single whitespace byte that ends the header
-    const std::size_t count = static_cast<std::size_t>(w * h) * static_cast<std::size_t>(raw.channels);
-    if (bytes.size() < pos || bytes.size() - pos < count * 4)
-        throw bad(fmt::format("{} bytes of data for {} floats", bytes.size() < pos ? 0 : bytes.size() - pos, count));
-    raw.width = static_cast<int>(w);
-    raw.height = static_cast<int>(h);
-    raw.data.resize(count);
-    const bool little = scale < 0;
-    const float factor = static_cast<float>(std::abs(scale));
-    const std::size_t row = static_cast<std::size_t>(w) * static_cast<std::size_t>(raw.channels);
-    for (std::size_t i = 0; i < count; ++i) {
-        unsigned char b[4];
-        std::memcpy(b, bytes.data() + pos + 4 * i, 4);
-        if (!little) std::swap(b[0], b[3]), std::swap(b[1], b[2]);  // the file is big endian
-        std::uint32_t u = 0;
-        for (int k = 3; k >= 0; --k) u = (u << 8) | b[k];
-        const float v = std::bit_cast<float>(u) * factor;
-        const std::size_t y = i / row, x = i % row;  // rows bottom to top
-        raw.data[(static_cast<std::size_t>(h) - 1 - y) * row + x] = v;
-    }
-    return raw;
-}
-
-RawImage read_oiio(const fs::path& path, long long max_pixels) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) {
-        std::string why = OIIO::geterror();
-        if (why.empty()) why = "cannot open it";
-        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    const long long pixels = static_cast<long long>(spec.width) * spec.height;
-    if (spec.width <= 0 || spec.height <= 0 || pixels > max_pixels) {
-        throw IoError(fmt::format("image '{}' is {} x {} pixels: {}", path.string(), spec.width, spec.height,
-                                  over_limit(Limit::kTexturePixels, pixels, max_pixels)));
-    }
-    if (const std::string e = charge_memory(pixels * 4 * std::max(spec.nchannels, 3), "image '" + path.string() + "'"); !e.empty())
-        throw IoError(e);
-    RawImage raw;
-    raw.width = spec.width;
-    raw.height = spec.height;
-    raw.channels = spec.nchannels;
-    raw.data.resize(static_cast<std::size_t>(pixels) * static_cast<std::size_t>(raw.channels));
-    if (!in->read_image(0, 0, 0, raw.channels, OIIO::TypeDesc::FLOAT, raw.data.data())) {
-        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), in->geterror()));
-    }
-    raw.is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
-                   spec.format.basetype == OIIO::TypeDesc::HALF ||
-                   spec.format.basetype == OIIO::TypeDesc::DOUBLE;
-    return raw;
-}
 
 // An OpenEXR file's header attributes, checked before OpenEXR reads them: OpenEXR 3.1 allocates
 // whatever size an attribute declares (found by fuzz_image: a 1.4 KB file asked for 1.9 GB).
@@ -198,6 +86,48 @@ std::string exr_header_error(const fs::path& path) {
 
 }  // namespace
 
+std::string image_admission_error(const fs::path& path, long long width, long long height, long long max_pixels,
+                                  int bytes_per_pixel) {
+    if (width <= 0 || height <= 0 || static_cast<double>(width) * static_cast<double>(height) > static_cast<double>(max_pixels)) {
+        const double pixels = std::min(9.0e18, std::max(0.0, static_cast<double>(width) * static_cast<double>(height)));
+        return fmt::format("image '{}' is {} x {} pixels: {}", path.string(), width, height,
+                           width <= 0 || height <= 0 ? std::string("an empty image")
+                                                     : over_limit(Limit::kTexturePixels, static_cast<long long>(pixels), max_pixels));
+    }
+    return charge_memory(width * height * bytes_per_pixel, "image '" + path.string() + "'");
+}
+
+void admit_image(const fs::path& path, long long width, long long height, long long max_pixels, int bytes_per_pixel) {
+    if (std::string e = image_admission_error(path, width, height, max_pixels, bytes_per_pixel); !e.empty())
+        throw IoError(std::move(e));
+}
+
+RawImage read_oiio(const fs::path& path, long long max_pixels) {
+    const auto* oiio = reinterpret_cast<const OiioModule* (*)()>(module_entry("oiio"))();
+    if (oiio->abi != kOiioModuleAbi) throw IoError("glint's module libglint_oiio.so is from another build of glint");
+    char error[1024] = "";
+    OiioImageSpec spec;
+    void* image = oiio->open(path.c_str(), &spec, error, sizeof error);
+    if (!image) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), error));
+    struct Closer {
+        const OiioModule* m;
+        void* image;
+        ~Closer() { m->close(image); }
+    } closer{oiio, image};
+    admit_image(path, spec.width, spec.height, max_pixels, 4 * std::max(spec.channels, 3) * 2);
+    if (spec.channels <= 0) throw IoError(fmt::format("cannot read image '{}': it has no channels", path.string()));
+    RawImage raw;
+    raw.width = spec.width;
+    raw.height = spec.height;
+    raw.channels = spec.channels;
+    raw.is_float = spec.is_float;
+    raw.data.resize(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+                    static_cast<std::size_t>(spec.channels));
+    if (!oiio->read(image, raw.data.data(), error, sizeof error))
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), error));
+    return raw;
+}
+
 Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
     if (max_pixels <= 0) max_pixels = limit(Limit::kTexturePixels);
     if (const std::string why = why_not_readable(path); !why.empty())
@@ -207,7 +137,22 @@ Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pix
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (const std::string why = exr_header_error(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
-    const RawImage raw = ext == ".pfm" ? read_pfm(path, max_pixels) : read_oiio(path, max_pixels);
+    RawImage raw;
+    if (ext == ".pfm") {
+        raw = read_pfm(path, max_pixels);
+    } else if (ext == ".png") {
+        raw = read_png(path, max_pixels);
+    } else if (ext == ".exr") {
+        raw = read_exr(path, max_pixels);
+    } else if (ext == ".hdr" || ext == ".rgbe" || ext == ".pic") {
+        raw = read_hdr(path, max_pixels);
+    } else if (ext == ".ppm" || ext == ".pgm" || ext == ".pnm") {
+        raw = read_pnm(path, max_pixels);
+    } else if (ext == ".jpg" || ext == ".jpeg" || ext == ".jpe") {
+        if (!read_jpeg(path, max_pixels, raw)) raw = read_oiio(path, max_pixels);  // CMYK
+    } else {
+        raw = read_oiio(path, max_pixels);
+    }
     const long long pixels = static_cast<long long>(raw.width) * raw.height;
     const int channels = raw.channels;
     const std::vector<float>& data = raw.data;
@@ -253,42 +198,50 @@ fs::path temporary_path(const fs::path& target) {
     return dir / fmt::format(".{}.glint-{}.tmp", target.filename().string(), ::getpid());
 }
 
+namespace {
+
+// Writes `bytes` to the temporary file beside `path`, then renames it over `path`.
+void write_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+    const fs::path tmp = temporary_path(path);
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), std::strerror(errno)));
+    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const int write_errno = errno;
+    if (std::fclose(f) != 0 || !ok) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), std::strerror(ok ? errno : write_errno)));
+    }
+}
+
+void move_into_place(const fs::path& tmp, const fs::path& path) {
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw IoError(fmt::format("{}: cannot move the finished image into place: {}", path.string(), ec.message()));
+    }
+}
+
+}  // namespace
+
 void write_image(const fs::path& path, const Film& film, const DisplaySettings& display,
                  const ImageMetadata& metadata) {
     const ImageFormat format = image_format_for(path);
     const int w = film.width(), h = film.height();
     const fs::path tmp = temporary_path(path);
-    const auto annotate = [&metadata](OIIO::ImageSpec& spec) {
-        for (const auto& [name, value] : metadata) spec.attribute(name, value);
-    };
-
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) {
-        throw IoError(fmt::format("{}: cannot create an image writer: {}", path.string(),
-                                  OIIO::geterror()));
-    }
-    bool ok = false;
-    std::vector<float> floats;
-    std::vector<std::uint8_t> bytes;
     const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (format == ImageFormat::kExr) {
         // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names, then
         // the sample counts.
         const bool counts = film.has_sample_counts();
-        const int channels = (film.has_aovs() ? 10 : 3) + (counts ? 1 : 0);
-        OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
-        spec.attribute("compression", "zip");
-        spec.channelnames = {"R", "G", "B"};
-        if (film.has_aovs()) {
-            spec.channelnames.insert(spec.channelnames.end(),
-                                     {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
-            spec.z_channel = 9;
-        }
-        if (counts) spec.channelnames.push_back("spp");
-        annotate(spec);
-        const auto stride = static_cast<std::size_t>(channels);
-        floats.resize(n * stride);
-        for (std::size_t i = 0; i < n; ++i) {
+        std::vector<std::string> names = {"R", "G", "B"};
+        if (film.has_aovs()) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
+        if (counts) names.emplace_back("spp");
+        const std::size_t stride = names.size();
+        std::vector<float> floats(n * stride);
+        tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
             float* px = &floats[i * stride];
             const Color c = film.pixels()[i];
             px[0] = c.r, px[1] = c.g, px[2] = c.b;
@@ -299,37 +252,33 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
                 px[6] = nn.x, px[7] = nn.y, px[8] = nn.z;
                 px[9] = film.depth()[i];
             }
-            if (counts) px[channels - 1] = film.sample_counts()[i];
+            if (counts) px[stride - 1] = film.sample_counts()[i];
+        });
+        try {
+            write_exr(tmp, w, h, names, floats.data(), metadata);
+        } catch (const IoError& e) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), e.what()));
         }
-        ok = out->open(tmp.string(), spec) &&
-             out->write_image(OIIO::TypeDesc::FLOAT, floats.data());
-    } else {
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", display.encoding == Encoding::kSrgb ? "sRGB" : "Linear");
-        annotate(spec);
-        bytes.resize(n * 3);
-        for (std::size_t i = 0; i < n; ++i) {
+        move_into_place(tmp, path);
+        return;
+    }
+    std::vector<std::uint8_t> bytes(n * 3);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
             const Color c = film.pixels()[i];
-            for (int k = 0; k < 3; ++k) bytes[3 * i + k] = encode_8bit(c[k], display);
+            for (int k = 0; k < 3; ++k) bytes[3 * i + static_cast<std::size_t>(k)] = encode_8bit(c[k], display);
         }
-        ok = out->open(tmp.string(), spec) &&
-             out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    });
+    if (format == ImageFormat::kPng) {
+        write_atomically(path, encode_png(bytes.data(), w, h, display.encoding == Encoding::kSrgb, metadata));
+    } else {  // binary PPM: no place for metadata
+        const std::string header = fmt::format("P6\n{} {}\n255\n", w, h);
+        bytes.insert(bytes.begin(), header.begin(), header.end());
+        write_atomically(path, bytes);
     }
-    ok = out->close() && ok;
-    if (!ok) {
-        const std::string why = out->geterror();
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), why));
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw IoError(fmt::format("{}: cannot move the finished image into place: {}",
-                                  path.string(), ec.message()));
-    }
+    move_into_place(tmp, path);
 }
 
 }  // namespace glint

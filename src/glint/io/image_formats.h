@@ -1,0 +1,64 @@
+#pragma once
+// The image file formats glint reads and writes itself, each through the field's own library
+// (libspng, OpenEXR, libjpeg-turbo, zlib) or directly (Radiance HDR, PFM, PPM); the long tail
+// of texture formats goes to OpenImageIO in a module loaded only when needed (oiio_module.h).
+// Internal to image_io.cpp and its tests.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "glint/io/image_io.h"
+
+namespace glint {
+
+/// Decoded pixels, top row first, `channels` floats per pixel: integer formats scaled to [0, 1]
+/// (is_float false), floating-point ones as stored.
+struct RawImage {
+    int width = 0, height = 0, channels = 0;
+    bool is_float = false;
+    std::vector<float> data;
+};
+
+/// Called by every reader once it knows the size, before it allocates the pixels: throws IoError
+/// if width x height exceeds `max_pixels` or the memory budget refuses `bytes_per_pixel` bytes a
+/// pixel. (Defined in image_io.cpp.)
+void admit_image(const std::filesystem::path& path, long long width, long long height, long long max_pixels,
+                 int bytes_per_pixel);
+/// The same check's message, or "" when the image is admitted (and its memory charged).
+std::string image_admission_error(const std::filesystem::path& path, long long width, long long height,
+                                  long long max_pixels, int bytes_per_pixel);
+
+RawImage read_png(const std::filesystem::path& path, long long max_pixels);
+RawImage read_exr(const std::filesystem::path& path, long long max_pixels);
+/// Returns false (nothing read) for a JPEG libjpeg cannot convert to RGB (CMYK): the caller
+/// offers it to OpenImageIO.
+bool read_jpeg(const std::filesystem::path& path, long long max_pixels, RawImage& out);
+RawImage read_hdr(const std::filesystem::path& path, long long max_pixels);
+RawImage read_pfm(const std::filesystem::path& path, long long max_pixels);
+RawImage read_pnm(const std::filesystem::path& path, long long max_pixels);
+RawImage read_oiio(const std::filesystem::path& path, long long max_pixels);
+
+/// How a PNG is compressed: zlib's level and strategy (Z_DEFAULT_STRATEGY 0, Z_FILTERED 1,
+/// Z_RLE 3), and the scanline filter (0 none, 1 sub, 2 up, 3 average, 4 Paeth).
+struct PngOptions {
+    int level = 1;
+    int strategy = 3;
+    int filter = 1;
+};
+
+/// A whole PNG file (8-bit RGB, rows top first) with text chunks for `metadata` (tEXt, or iTXt
+/// when a value is not ASCII) and the colour encoding (sRGB chunk, or gAMA 1.0 when `srgb` is
+/// false). The rows are filtered and deflated in strips of kPngStripRows rows in parallel, each
+/// strip primed with the previous strip's last 32 KiB (pigz's method), so the bytes do not
+/// depend on the number of threads.
+inline constexpr int kPngStripRows = 32;
+std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
+                                     const ImageMetadata& metadata, const PngOptions& options = {});
+
+/// Writes `channels` named float channels (interleaved in `data`) as a ZIP-compressed OpenEXR
+/// file, with `metadata` as string attributes. Throws IoError.
+void write_exr(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& names,
+               const float* data, const ImageMetadata& metadata);
+
+}  // namespace glint

@@ -1,0 +1,191 @@
+// PNG: read through libspng; written by glint's own strip-parallel encoder over zlib (the PNG
+// container is a handful of chunks; the cost is all in filtering and deflating, which libpng and
+// libspng do on one thread). Both checked against OpenImageIO's reader in the tests.
+#include <fmt/core.h>
+#include <spng.h>
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+#include "glint/io/image_formats.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+RawImage read_png(const fs::path& path, long long max_pixels) {
+    const auto fail = [&](const std::string& why) {
+        return IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
+    };
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) throw fail(std::strerror(errno));
+    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(0), &spng_ctx_free);
+    if (!ctx) throw fail("out of memory");
+    // Ancillary chunks (text, ICC profiles) are skipped past a megabyte; the image's size is
+    // checked against the limits below, before any pixel is decoded.
+    spng_set_chunk_limits(ctx.get(), 1u << 20, 1u << 22);
+    if (int e = spng_set_png_file(ctx.get(), file.get()); e != 0) throw fail(spng_strerror(e));
+    spng_ihdr ihdr{};
+    if (int e = spng_get_ihdr(ctx.get(), &ihdr); e != 0) throw fail(spng_strerror(e));
+    admit_image(path, ihdr.width, ihdr.height, max_pixels, 4 * 3 + (ihdr.bit_depth > 8 ? 8 : 4));
+    const bool wide = ihdr.bit_depth > 8;
+    const int fmt = wide ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8;
+    std::size_t size = 0;
+    if (int e = spng_decoded_image_size(ctx.get(), fmt, &size); e != 0) throw fail(spng_strerror(e));
+    std::vector<unsigned char> pixels(size);
+    if (int e = spng_decode_image(ctx.get(), pixels.data(), size, fmt, SPNG_DECODE_TRNS); e != 0)
+        throw fail(spng_strerror(e));
+    RawImage raw;
+    raw.width = static_cast<int>(ihdr.width);
+    raw.height = static_cast<int>(ihdr.height);
+    raw.channels = 3;
+    const std::size_t n = static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
+    raw.data.resize(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (wide) {
+                std::uint16_t v;
+                std::memcpy(&v, &pixels[(4 * i + k) * 2], 2);  // SPNG_FMT_RGBA16 is host-endian
+                raw.data[3 * i + k] = static_cast<float>(v) / 65535.0f;
+            } else {
+                raw.data[3 * i + k] = static_cast<float>(pixels[4 * i + k]) / 255.0f;
+            }
+        }
+    }
+    return raw;
+}
+
+namespace {
+
+void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(v >> s));
+}
+
+void chunk(std::vector<std::uint8_t>& out, const char type[4], const std::uint8_t* data, std::size_t size) {
+    put32(out, static_cast<std::uint32_t>(size));
+    const std::size_t start = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data, data + size);
+    put32(out, static_cast<std::uint32_t>(
+                   crc32_z(0, out.data() + start, static_cast<z_size_t>(out.size() - start))));
+}
+
+void chunk(std::vector<std::uint8_t>& out, const char type[4], const std::string& data) {
+    chunk(out, type, reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+}
+
+std::uint8_t paeth(int a, int b, int c) {
+    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    return static_cast<std::uint8_t>(pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
+}
+
+// One scanline: the filter type byte, then each byte minus its predictor (a: the byte one pixel
+// to the left, b: the byte above, c: above-left; 0 outside the image).
+void filter_row(const std::uint8_t* x, const std::uint8_t* prev, std::size_t n, int filter, std::uint8_t* out) {
+    out[0] = static_cast<std::uint8_t>(filter);
+    ++out;
+    constexpr std::size_t bpp = 3;
+    for (std::size_t i = 0; i < n; ++i) {
+        const int a = i >= bpp ? x[i - bpp] : 0;
+        const int b = prev ? prev[i] : 0;
+        const int c = i >= bpp && prev ? prev[i - bpp] : 0;
+        int p = 0;
+        switch (filter) {
+            case 1: p = a; break;
+            case 2: p = b; break;
+            case 3: p = (a + b) / 2; break;
+            case 4: p = paeth(a, b, c); break;
+            default: break;
+        }
+        out[i] = static_cast<std::uint8_t>(x[i] - p);
+    }
+}
+
+bool is_ascii(const std::string& s) {
+    return std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
+                                     const ImageMetadata& metadata, const PngOptions& options) {
+    const std::size_t row = static_cast<std::size_t>(width) * 3, line = row + 1;
+    const auto h = static_cast<std::size_t>(height);
+    std::vector<std::uint8_t> filtered(line * h);
+    const std::size_t strips = (h + kPngStripRows - 1) / kPngStripRows;
+    std::vector<std::vector<std::uint8_t>> parts(strips);
+    std::vector<uLong> adlers(strips);
+    std::vector<int> status(strips, Z_OK);
+    tbb::parallel_for(std::size_t{0}, h, [&](std::size_t y) {
+        filter_row(rgb + y * row, y > 0 ? rgb + (y - 1) * row : nullptr, row, options.filter, &filtered[y * line]);
+    });
+    tbb::parallel_for(std::size_t{0}, strips, [&](std::size_t s) {
+        const std::size_t y0 = s * kPngStripRows, y1 = std::min(h, y0 + kPngStripRows);
+        const std::uint8_t* begin = &filtered[y0 * line];
+        const std::size_t size = (y1 - y0) * line;
+        adlers[s] = adler32_z(adler32_z(0, nullptr, 0), begin, size);
+        z_stream zs{};
+        if ((status[s] = deflateInit2(&zs, options.level, Z_DEFLATED, -15, 8, options.strategy)) != Z_OK) return;
+        if (s > 0) {  // primed with the 32 KiB before the strip, as one deflate stream would be
+            const std::size_t dict = std::min<std::size_t>(32768, y0 * line);
+            deflateSetDictionary(&zs, begin - dict, static_cast<uInt>(dict));
+        }
+        std::vector<std::uint8_t>& out = parts[s];
+        out.resize(deflateBound(&zs, size) + 64);
+        zs.next_in = const_cast<Bytef*>(begin);
+        zs.avail_in = static_cast<uInt>(size);
+        zs.next_out = out.data();
+        zs.avail_out = static_cast<uInt>(out.size());
+        const bool last = s + 1 == strips;
+        const int r = deflate(&zs, last ? Z_FINISH : Z_SYNC_FLUSH);
+        status[s] = (last ? r == Z_STREAM_END : r == Z_OK && zs.avail_in == 0 && zs.avail_out > 0) ? Z_OK : Z_BUF_ERROR;
+        out.resize(zs.total_out);
+        deflateEnd(&zs);
+    });
+    for (int s : status)
+        if (s != Z_OK) throw IoError(fmt::format("PNG encoding failed (zlib error {})", s));
+    uLong adler = strips ? adlers[0] : adler32_z(0, nullptr, 0);
+    for (std::size_t s = 1; s < strips; ++s) {
+        const std::size_t rows = std::min(h, (s + 1) * kPngStripRows) - s * kPngStripRows;
+        adler = adler32_combine(adler, adlers[s], static_cast<z_off_t>(rows * line));
+    }
+
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    std::vector<std::uint8_t> ihdr;
+    put32(ihdr, static_cast<std::uint32_t>(width));
+    put32(ihdr, static_cast<std::uint32_t>(height));
+    ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // 8 bits, RGB, deflate, adaptive filtering, no interlace
+    chunk(png, "IHDR", ihdr.data(), ihdr.size());
+    std::vector<std::uint8_t> gamma;
+    put32(gamma, srgb ? 45455 : 100000);  // 1/2.2 beside the sRGB chunk, as the PNG spec advises; 1.0: linear
+    if (srgb) chunk(png, "sRGB", std::string(1, '\0'));  // rendering intent: perceptual
+    chunk(png, "gAMA", gamma.data(), gamma.size());
+    for (const auto& [key, value] : metadata) {
+        const std::string k = key.substr(0, 79);  // keywords are 1-79 Latin-1 characters
+        if (k.empty() || !is_ascii(k)) continue;
+        if (is_ascii(value)) {
+            chunk(png, "tEXt", k + '\0' + value);
+        } else {  // UTF-8 (a scene path, say): uncompressed iTXt, no language tag
+            chunk(png, "iTXt", k + std::string("\0\0\0\0\0", 5) + value);
+        }
+    }
+    std::size_t zsize = 2 + 4;
+    for (const auto& p : parts) zsize += p.size();
+    std::vector<std::uint8_t> z;
+    z.reserve(zsize);
+    z.insert(z.end(), {0x78, 0x01});  // deflate, 32 KiB window, no dictionary, "fastest"
+    for (const auto& p : parts) z.insert(z.end(), p.begin(), p.end());
+    put32(z, static_cast<std::uint32_t>(adler));
+    png.reserve(png.size() + z.size() + 32);
+    chunk(png, "IDAT", z.data(), z.size());
+    chunk(png, "IEND", nullptr, 0);
+    return png;
+}
+
+}  // namespace glint
