@@ -830,3 +830,54 @@ TEST_F(UntrustedScene, LimitsNameTheFlagThatRaisesThem) {
 }
 
 }  // namespace
+
+namespace {
+
+// The shared objects the dynamic loader reports loading while glint runs `args` in `dir`
+// (LD_DEBUG=files names each one as it is opened, dlopen included).
+std::string libraries_loaded(const fs::path& dir, const std::string& args) {
+    const std::string cmd = "cd '" + dir.string() + "' && LD_DEBUG=files '" + GLINT_CLI + "' " + args +
+                            " >/dev/null 2>ld.txt </dev/null";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << glint::testing::read_file(dir / "ld.txt").substr(0, 2000);
+    return glint::testing::read_file(dir / "ld.txt");
+}
+
+}  // namespace
+
+// Issue 17's lean start: OpenImageIO, OpenVDB and Embree are loaded only by the processes that
+// need them: not by --version or a render to PNG/EXR, yes by a TGA texture (OpenImageIO), a .vdb
+// grid (OpenVDB) and --accel embree.
+TEST_F(Cli, HeavyLibrariesAreLoadedOnlyWhenNeeded) {
+    const auto loads = [](const std::string& log, const char* lib) { return log.find(lib) != std::string::npos; };
+    for (const std::string args : {std::string("--version"), "render " + seed("fig14-reflections.yaml") +
+                                                                 " --width 32 --height 18 -q -o a.png",
+                                   "render " + seed("fig14-reflections.yaml") + " --width 32 --height 18 -q -o a.exr"}) {
+        const std::string log = libraries_loaded(dir_.path(), args);
+        EXPECT_FALSE(loads(log, "libOpenImageIO")) << args;
+        EXPECT_FALSE(loads(log, "libopenvdb")) << args;
+        EXPECT_FALSE(loads(log, "libembree")) << args;
+        EXPECT_TRUE(loads(log, "libtbb")) << args;  // the log is real: a library glint does load
+    }
+    {
+        OIIO::ImageSpec spec(2, 2, 3, OIIO::TypeDesc::UINT8);
+        auto out = OIIO::ImageOutput::create((dir_ / "t.tga").string());
+        ASSERT_TRUE(out && out->open((dir_ / "t.tga").string(), spec));
+        const std::uint8_t px[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px));
+        out->close();
+    }
+    write("tga.yaml",
+          "camera: {position: [0, 0, -3], direction: [0, 0, 1]}\n"
+          "materials:\n  m: {color: {type: image, filename: t.tga}}\n"
+          "lights: [{type: directional, direction: [0, 0, 1], intensity: [1, 1, 1]}]\n"
+          "objects: [{type: sphere, center: [0, 0, 0], radius: 1, material: m}]\n");
+    EXPECT_TRUE(loads(libraries_loaded(dir_.path(), "render tga.yaml --width 8 --height 8 -q -o t.png"), "libOpenImageIO"));
+#if GLINT_EMBREE
+    EXPECT_TRUE(loads(libraries_loaded(dir_.path(), "render " + seed("fig14-reflections.yaml") +
+                                                        " --width 8 --height 8 --accel embree -q -o e.png"),
+                      "libembree3"));
+#endif
+    EXPECT_TRUE(loads(libraries_loaded(dir_.path(), "render " + std::string(GLINT_SOURCE_DIR) +
+                                                        "/scenes/volumes/cloud.yaml --width 8 --height 8 --spp 1 -q -o v.png"),
+                      "libopenvdb"));
+}

@@ -133,7 +133,7 @@ TEST(MeshScene, BvhAndEmbreeRenderTheSameImage) {
         render(job.scene, job.camera, *job.integrator, job.options, film, nullptr);
         return film.pixels();
     };
-    const auto rmse = [](const std::vector<Color>& a, const std::vector<Color>& b) {
+    const auto rmse = [](const BigVector<Color>& a, const BigVector<Color>& b) {
         double s = 0;
         for (std::size_t i = 0; i < a.size(); ++i) {
             const Color d = a[i] - b[i];

@@ -96,6 +96,12 @@ void Scene::commit() {
     mesh_bvhs_.assign(ours ? meshes.size() : 0, MeshBvh{});
     const SimdIsa isa = mesh_isa ? *mesh_isa : default_simd_isa();
     for (std::size_t m = 0; m < mesh_bvhs_.size(); ++m) mesh_bvhs_[m].build(meshes[m], mesh_options, isa);
+    // Spheres alone (beside planes), a few dozen at most: every sphere tested at once in SIMD
+    // lanes, no traversal (accel/sphere_set.h).
+    sphere_set_ = SphereSet{};
+    if (ours && !spheres.empty() && spheres.size() <= SphereSet::kMaxSpheres && quads.empty() && disks.empty() &&
+        triangles.empty() && instances.empty())
+        sphere_set_.build(spheres, isa);
     const auto mesh_bounds = [&](std::uint32_t m) {
         if (ours) return mesh_bvhs_[m].bounds();
         Bounds3 b;  // the triangles' (as the BVH's; unused vertices left out)
@@ -298,6 +304,12 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
         return best;
     }
 #endif
+    if (!sphere_set_.empty()) {
+        float t;
+        std::uint32_t i;
+        if (sphere_set_.closest(ray, t, i)) best = Hit{t, ShapeKind::kSphere, i};
+        return best;
+    }
     if (top_.empty()) return best;
     // The lone triangles' shared set-up (a mesh's triangles have their own, in object space).
     const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
@@ -313,6 +325,7 @@ bool Scene::occluded(const Ray& ray) const {
 #if GLINT_EMBREE
     if (embree_) return embree_->occluded(*this, ray);
 #endif
+    if (!sphere_set_.empty()) return sphere_set_.any(ray);
     if (top_.empty()) return false;
     const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
     return top_.any(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {

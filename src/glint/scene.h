@@ -15,6 +15,7 @@
 
 #include "glint/accel/bvh.h"
 #include "glint/accel/mesh_bvh.h"
+#include "glint/accel/sphere_set.h"
 
 #include "glint/background.h"
 #include "glint/math/bounds.h"
@@ -98,6 +99,8 @@ struct Scene {
         return i.material ? *i.material : meshes[i.mesh].material_of(prim);
     }
     const std::vector<MeshBvh>& mesh_bvhs() const { return mesh_bvhs_; }
+    /// The SIMD sphere set, if commit() chose it over the BVH (spheres and planes alone).
+    const SphereSet& sphere_set() const { return sphere_set_; }
     /// Bytes held by the acceleration structures (either backend).
     std::size_t accel_memory_bytes() const;
     Bounds3 bounds() const { return bounds_; }
@@ -183,6 +186,7 @@ private:
     Bvh4 top_;
     std::vector<std::uint32_t> top_refs_;  ///< leaf order
     std::vector<MeshBvh> mesh_bvhs_;
+    SphereSet sphere_set_;  ///< replaces top_ for scenes of spheres (and planes) alone
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
     /// texture() for the textures that are neither constants nor checkers (out of line, so that
     /// the two common cases stay small enough to inline).

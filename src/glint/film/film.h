@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "glint/film/big_buffer.h"
 #include "glint/math/color.h"
 #include "glint/math/vector.h"
 
@@ -19,7 +20,7 @@ public:
     int height() const { return height_; }
     Color& at(int col, int row) { return pixels_[index(col, row)]; }
     const Color& at(int col, int row) const { return pixels_[index(col, row)]; }
-    const std::vector<Color>& pixels() const { return pixels_; }
+    const BigVector<Color>& pixels() const { return pixels_; }
 
     /// Allocates the AOV planes (albedo, normal, depth), before rendering.
     void enable_aovs() {
@@ -31,15 +32,15 @@ public:
     Color& albedo(int col, int row) { return albedo_[index(col, row)]; }
     Normal3& normal(int col, int row) { return normal_[index(col, row)]; }
     float& depth(int col, int row) { return depth_[index(col, row)]; }
-    const std::vector<Color>& albedo() const { return albedo_; }
-    const std::vector<Normal3>& normal() const { return normal_; }
-    const std::vector<float>& depth() const { return depth_; }
+    const BigVector<Color>& albedo() const { return albedo_; }
+    const BigVector<Normal3>& normal() const { return normal_; }
+    const BigVector<float>& depth() const { return depth_; }
 
     /// Allocates the per-pixel sample-count plane (adaptive sampling writes it).
     void enable_sample_counts() { samples_.assign(pixels_.size(), 0); }
     bool has_sample_counts() const { return !samples_.empty(); }
     float& sample_count(int col, int row) { return samples_[index(col, row)]; }
-    const std::vector<float>& sample_counts() const { return samples_; }
+    const BigVector<float>& sample_counts() const { return samples_; }
 
 private:
     std::size_t index(int col, int row) const {
@@ -47,11 +48,11 @@ private:
                static_cast<std::size_t>(col);
     }
     int width_, height_;
-    std::vector<Color> pixels_;
-    std::vector<Color> albedo_;
-    std::vector<Normal3> normal_;
-    std::vector<float> depth_;
-    std::vector<float> samples_;
+    BigVector<Color> pixels_;
+    BigVector<Color> albedo_;
+    BigVector<Normal3> normal_;
+    BigVector<float> depth_;
+    BigVector<float> samples_;
 };
 
 }  // namespace glint

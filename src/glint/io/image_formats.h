@@ -5,6 +5,7 @@
 // Internal to image_io.cpp and its tests.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,16 +44,22 @@ RawImage read_oiio(const std::filesystem::path& path, long long max_pixels);
 /// Z_RLE 3), and the scanline filter (0 none, 1 sub, 2 up, 3 average, 4 Paeth).
 struct PngOptions {
     int level = 1;
-    int strategy = 3;
+    int strategy = 0;
     int filter = 1;
 };
 
 /// A whole PNG file (8-bit RGB, rows top first) with text chunks for `metadata` (tEXt, or iTXt
 /// when a value is not ASCII) and the colour encoding (sRGB chunk, or gAMA 1.0 when `srgb` is
-/// false). The rows are filtered and deflated in strips of kPngStripRows rows in parallel, each
-/// strip primed with the previous strip's last 32 KiB (pigz's method), so the bytes do not
-/// depend on the number of threads.
-inline constexpr int kPngStripRows = 32;
+/// false). The rows are filtered and deflated in parallel in strips of about kPngStripBytes
+/// (png_strip_rows: whole rows, by the width alone), each strip primed with the 32 KiB before it
+/// (pigz's method), so the bytes do not depend on the number of threads.
+inline constexpr std::size_t kPngStripBytes = 256 * 1024;
+std::size_t png_strip_rows(int width);
+/// `rows(y, out)` writes row y's width x 3 bytes to out; it is called from several threads, and
+/// for some rows more than once.
+using PngRows = std::function<void(int y, std::uint8_t* out)>;
+std::vector<std::uint8_t> encode_png(const PngRows& rows, int width, int height, bool srgb,
+                                     const ImageMetadata& metadata, const PngOptions& options = {});
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options = {});
 

@@ -264,18 +264,18 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
         move_into_place(tmp, path);
         return;
     }
-    std::vector<std::uint8_t> bytes(n * 3);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            const Color c = film.pixels()[i];
-            for (int k = 0; k < 3; ++k) bytes[3 * i + static_cast<std::size_t>(k)] = encode_8bit(c[k], display);
-        }
-    });
+    const auto row_bytes = [&](int y, std::uint8_t* out) {
+        const Color* px = &film.pixels()[static_cast<std::size_t>(y) * static_cast<std::size_t>(w)];
+        for (int x = 0; x < w; ++x)
+            for (int k = 0; k < 3; ++k) out[3 * x + k] = encode_8bit(px[x][k], display);
+    };
     if (format == ImageFormat::kPng) {
-        write_atomically(path, encode_png(bytes.data(), w, h, display.encoding == Encoding::kSrgb, metadata));
+        write_atomically(path, encode_png(row_bytes, w, h, display.encoding == Encoding::kSrgb, metadata));
     } else {  // binary PPM: no place for metadata
         const std::string header = fmt::format("P6\n{} {}\n255\n", w, h);
-        bytes.insert(bytes.begin(), header.begin(), header.end());
+        std::vector<std::uint8_t> bytes(header.size() + n * 3);
+        std::memcpy(bytes.data(), header.data(), header.size());
+        tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &bytes[header.size() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
         write_atomically(path, bytes);
     }
     move_into_place(tmp, path);

@@ -86,24 +86,36 @@ std::uint8_t paeth(int a, int b, int c) {
 }
 
 // One scanline: the filter type byte, then each byte minus its predictor (a: the byte one pixel
-// to the left, b: the byte above, c: above-left; 0 outside the image).
+// to the left, b: the byte above, c: above-left; 0 outside the image). One loop per filter.
 void filter_row(const std::uint8_t* x, const std::uint8_t* prev, std::size_t n, int filter, std::uint8_t* out) {
     out[0] = static_cast<std::uint8_t>(filter);
     ++out;
     constexpr std::size_t bpp = 3;
-    for (std::size_t i = 0; i < n; ++i) {
-        const int a = i >= bpp ? x[i - bpp] : 0;
-        const int b = prev ? prev[i] : 0;
-        const int c = i >= bpp && prev ? prev[i - bpp] : 0;
-        int p = 0;
-        switch (filter) {
-            case 1: p = a; break;
-            case 2: p = b; break;
-            case 3: p = (a + b) / 2; break;
-            case 4: p = paeth(a, b, c); break;
-            default: break;
-        }
-        out[i] = static_cast<std::uint8_t>(x[i] - p);
+    static const std::vector<std::uint8_t> zeros(1 << 16);
+    std::vector<std::uint8_t> zero_row;
+    if (!prev) {
+        if (n > zeros.size()) zero_row.assign(n, 0);
+        prev = n > zeros.size() ? zero_row.data() : zeros.data();
+    }
+    const std::size_t head = std::min(bpp, n);
+    switch (filter) {
+        case 1:
+            std::memcpy(out, x, head);
+            for (std::size_t i = bpp; i < n; ++i) out[i] = static_cast<std::uint8_t>(x[i] - x[i - bpp]);
+            break;
+        case 2:
+            for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<std::uint8_t>(x[i] - prev[i]);
+            break;
+        case 3:
+            for (std::size_t i = 0; i < head; ++i) out[i] = static_cast<std::uint8_t>(x[i] - prev[i] / 2);
+            for (std::size_t i = bpp; i < n; ++i) out[i] = static_cast<std::uint8_t>(x[i] - (x[i - bpp] + prev[i]) / 2);
+            break;
+        case 4:
+            for (std::size_t i = 0; i < head; ++i) out[i] = static_cast<std::uint8_t>(x[i] - prev[i]);  // Paeth(0, b, 0) = b
+            for (std::size_t i = bpp; i < n; ++i)
+                out[i] = static_cast<std::uint8_t>(x[i] - paeth(x[i - bpp], prev[i], prev[i - bpp]));
+            break;
+        default: std::memcpy(out, x, n); break;
     }
 }
 
@@ -113,46 +125,64 @@ bool is_ascii(const std::string& s) {
 
 }  // namespace
 
+std::size_t png_strip_rows(int width) {
+    const std::size_t line = static_cast<std::size_t>(width) * 3 + 1;
+    return std::max<std::size_t>(1, (kPngStripBytes + line - 1) / line);
+}
+
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
+                                     const ImageMetadata& metadata, const PngOptions& options) {
+    const std::size_t row = static_cast<std::size_t>(width) * 3;
+    return encode_png([&](int y, std::uint8_t* out) { std::memcpy(out, rgb + static_cast<std::size_t>(y) * row, row); },
+                      width, height, srgb, metadata, options);
+}
+
+std::vector<std::uint8_t> encode_png(const PngRows& rows, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options) {
     const std::size_t row = static_cast<std::size_t>(width) * 3, line = row + 1;
     const auto h = static_cast<std::size_t>(height);
-    std::vector<std::uint8_t> filtered(line * h);
-    const std::size_t strips = (h + kPngStripRows - 1) / kPngStripRows;
+    const std::size_t strip_rows = png_strip_rows(width);
+    const std::size_t strips = (h + strip_rows - 1) / strip_rows;
     std::vector<std::vector<std::uint8_t>> parts(strips);
     std::vector<uLong> adlers(strips);
     std::vector<int> status(strips, Z_OK);
-    tbb::parallel_for(std::size_t{0}, h, [&](std::size_t y) {
-        filter_row(rgb + y * row, y > 0 ? rgb + (y - 1) * row : nullptr, row, options.filter, &filtered[y * line]);
-    });
+    // Each strip is made whole by one task: its rows (and the few before it that its dictionary
+    // covers) produced, filtered and deflated in buffers the thread keeps, so that nothing the
+    // size of the image is allocated or touched.
     tbb::parallel_for(std::size_t{0}, strips, [&](std::size_t s) {
-        const std::size_t y0 = s * kPngStripRows, y1 = std::min(h, y0 + kPngStripRows);
-        const std::uint8_t* begin = &filtered[y0 * line];
+        const std::size_t y0 = s * strip_rows, y1 = std::min(h, y0 + strip_rows);
+        const std::size_t dict = std::min<std::size_t>(32768, y0 * line);  // primed as one stream would be
+        const std::size_t r0 = (y0 * line - dict) / line;   // the first row the dictionary reaches into
+        const std::size_t first_raw = r0 > 0 ? r0 - 1 : 0;  // and the row above it, its predictor
+        thread_local std::vector<std::uint8_t> raw, filtered, deflated;
+        raw.resize((y1 - first_raw) * row);
+        filtered.resize((y1 - r0) * line);
+        for (std::size_t y = first_raw; y < y1; ++y) rows(static_cast<int>(y), &raw[(y - first_raw) * row]);
+        for (std::size_t y = r0; y < y1; ++y)
+            filter_row(&raw[(y - first_raw) * row], y > 0 ? &raw[(y - 1 - first_raw) * row] : nullptr, row,
+                       options.filter, &filtered[(y - r0) * line]);
+        const std::uint8_t* begin = &filtered[(y0 - r0) * line];
         const std::size_t size = (y1 - y0) * line;
         adlers[s] = adler32_z(adler32_z(0, nullptr, 0), begin, size);
         z_stream zs{};
         if ((status[s] = deflateInit2(&zs, options.level, Z_DEFLATED, -15, 8, options.strategy)) != Z_OK) return;
-        if (s > 0) {  // primed with the 32 KiB before the strip, as one deflate stream would be
-            const std::size_t dict = std::min<std::size_t>(32768, y0 * line);
-            deflateSetDictionary(&zs, begin - dict, static_cast<uInt>(dict));
-        }
-        std::vector<std::uint8_t>& out = parts[s];
-        out.resize(deflateBound(&zs, size) + 64);
+        if (dict > 0) deflateSetDictionary(&zs, begin - dict, static_cast<uInt>(dict));
+        deflated.resize(deflateBound(&zs, size) + 64);
         zs.next_in = const_cast<Bytef*>(begin);
         zs.avail_in = static_cast<uInt>(size);
-        zs.next_out = out.data();
-        zs.avail_out = static_cast<uInt>(out.size());
+        zs.next_out = deflated.data();
+        zs.avail_out = static_cast<uInt>(deflated.size());
         const bool last = s + 1 == strips;
         const int r = deflate(&zs, last ? Z_FINISH : Z_SYNC_FLUSH);
         status[s] = (last ? r == Z_STREAM_END : r == Z_OK && zs.avail_in == 0 && zs.avail_out > 0) ? Z_OK : Z_BUF_ERROR;
-        out.resize(zs.total_out);
+        parts[s].assign(deflated.data(), deflated.data() + zs.total_out);
         deflateEnd(&zs);
     });
-    for (int s : status)
-        if (s != Z_OK) throw IoError(fmt::format("PNG encoding failed (zlib error {})", s));
+    for (int st : status)
+        if (st != Z_OK) throw IoError(fmt::format("PNG encoding failed (zlib error {})", st));
     uLong adler = strips ? adlers[0] : adler32_z(0, nullptr, 0);
     for (std::size_t s = 1; s < strips; ++s) {
-        const std::size_t rows = std::min(h, (s + 1) * kPngStripRows) - s * kPngStripRows;
+        const std::size_t rows = std::min(h, (s + 1) * strip_rows) - s * strip_rows;
         adler = adler32_combine(adler, adlers[s], static_cast<z_off_t>(rows * line));
     }
 

@@ -35,8 +35,8 @@ Film film_for(const RenderJob& job, bool counts = false) {
 }
 
 template <typename T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+bool same_bytes(const T& a, const T& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
 void expect_same(const Film& a, const Film& b) {

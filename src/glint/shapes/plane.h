@@ -14,7 +14,12 @@ namespace glint {
 inline std::optional<Float> intersect_plane(const Ray& ray, Point3 point, Normal3 n) {
     const Float denom = dot(n, ray.direction);
     if (std::abs(denom) < Float(1e-9)) return std::nullopt;
-    const Float t = dot(n, point - ray.origin) / denom;
+    const Float num = dot(n, point - ray.origin);
+    // t = num / denom is positive only when the two have the same sign: skip the division for the
+    // rays that move away from the plane (half the sky rays of the article's scenes). t is 0 or
+    // negative exactly when this test fails, so no hit changes.
+    if ((num > 0) != (denom > 0) || num == 0) return std::nullopt;
+    const Float t = num / denom;
     if (t >= kRayTMin && t < ray.t_max) return t;
     return std::nullopt;
 }
