@@ -103,7 +103,12 @@ void admit_image(const fs::path& path, long long width, long long height, long l
 }
 
 RawImage read_oiio(const fs::path& path, long long max_pixels) {
-    const auto* oiio = reinterpret_cast<const OiioModule* (*)()>(module_entry("oiio"))();
+    const OiioModule* oiio = nullptr;
+    try {
+        oiio = reinterpret_cast<const OiioModule* (*)()>(module_entry("oiio"))();
+    } catch (const IoError& e) {
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), e.what()));
+    }
     if (oiio->abi != kOiioModuleAbi) throw IoError("glint's module libglint_oiio.so is from another build of glint");
     char error[1024] = "";
     OiioImageSpec spec;
