@@ -22,12 +22,7 @@ namespace glint {
 std::vector<std::filesystem::path> model_folders(const std::filesystem::path& scene_dir) {
     std::vector<std::filesystem::path> dirs{scene_dir.empty() ? "." : scene_dir};
     if (const char* env = std::getenv("GLINT_MODEL_PATH")) {
-        std::string list = env;
-        for (std::size_t at = 0; at <= list.size();) {
-            const std::size_t end = std::min(list.find(':', at), list.size());
-            if (end > at) dirs.emplace_back(list.substr(at, end - at));
-            at = end + 1;
-        }
+        for (auto& d : split_search_path(env)) dirs.push_back(std::move(d));
     }
     if (std::string(GLINT_DEFAULT_MODEL_DIR).size() > 0) dirs.emplace_back(GLINT_DEFAULT_MODEL_DIR);
     return dirs;

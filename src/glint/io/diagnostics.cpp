@@ -136,6 +136,16 @@ void restrict_reads_to(const std::vector<std::filesystem::path>& folders) {
     }
 }
 
+std::vector<std::filesystem::path> split_search_path(const std::string& list) {
+    std::vector<std::filesystem::path> dirs;
+    for (std::size_t at = 0; at <= list.size();) {
+        const std::size_t end = std::min(list.find(':', at), list.size());
+        if (end > at) dirs.emplace_back(list.substr(at, end - at));
+        at = end + 1;
+    }
+    return dirs;
+}
+
 std::string why_not_readable(const std::filesystem::path& path) {
     std::error_code ec;
     if (!roots().empty()) {

@@ -32,6 +32,10 @@ struct Diagnostic {
 /// or it names a folder, a device, a FIFO or a socket (reading those blocks or never ends): "is
 /// a folder", "is not a regular file (a device, FIFO or socket)". Empty for a regular file, or
 /// for a path that does not exist (opening it says so). Every file glint reads is asked first.
+/// The folders of a search-path list ("a:b:c"; empty entries skipped), e.g. from an environment
+/// variable.
+std::vector<std::filesystem::path> split_search_path(const std::string& list);
+
 std::string why_not_readable(const std::filesystem::path& path);
 
 /// --restrict-paths: from now on only files under `folders` (resolved: symbolic links and ".."

@@ -19,9 +19,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The whole file, if it is at most `max_bytes` long (checked from its size, before reading) and
+// The whole file, if it is at most `max_bytes` long (what an image of `max_pixels` can take) (checked from its size, before reading) and
 // the memory budget allows it.
-std::string file_bytes(const fs::path& path, double max_bytes) {
+std::string file_bytes(const fs::path& path, double max_bytes, long long max_pixels) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), std::strerror(errno)));
     std::error_code size_error;
@@ -29,7 +29,7 @@ std::string file_bytes(const fs::path& path, double max_bytes) {
     if (!size_error && static_cast<double>(file_size) > max_bytes) {
         std::fclose(f);
         throw IoError(fmt::format("cannot read image '{}': {} bytes is more than an image of the limit of {} "
-                                  "pixels can hold", path.string(), file_size, limit(Limit::kTexturePixels)));
+                                  "pixels can hold", path.string(), file_size, max_pixels));
     }
     if (const std::string e = charge_memory(static_cast<long long>(file_size), "image '" + path.string() + "'");
         !e.empty()) {
@@ -70,24 +70,12 @@ struct Tokens {
 }  // namespace
 
 RawImage read_pfm(const fs::path& path, long long max_pixels) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw IoError(fmt::format("cannot read image '{}': {}", path.string(), std::strerror(errno)));
-    // Nothing is read beyond what the largest allowed map needs (the header is checked below).
-    std::error_code size_error;
-    const auto file_size = fs::file_size(path, size_error);
-    if (!size_error && static_cast<double>(file_size) > static_cast<double>(max_pixels) * 12 + 4096) {
-        std::fclose(f);
-        throw IoError(fmt::format("cannot read image '{}': {} bytes is more than a map of the limit of {} pixels "
-                                  "can hold", path.string(), file_size, max_pixels));
-    }
-    if (const std::string e = charge_memory(static_cast<long long>(file_size) * 2, "image '" + path.string() + "'"); !e.empty()) {
-        std::fclose(f);
+    // Nothing is read beyond what the largest allowed map needs (the header is checked below);
+    // the file's bytes and the floats decoded from them are charged to the memory budget.
+    const std::string bytes = file_bytes(path, static_cast<double>(max_pixels) * 12 + 4096, max_pixels);
+    if (const std::string e = charge_memory(static_cast<long long>(bytes.size()), "image '" + path.string() + "'");
+        !e.empty())
         throw IoError(e);
-    }
-    std::string bytes;
-    char buf[65536];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
-    std::fclose(f);
     std::size_t pos = 0;
     const auto token = [&]() {
         while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
@@ -147,9 +135,9 @@ RawImage read_pfm(const fs::path& path, long long max_pixels) {
 }
 
 RawImage read_hdr(const fs::path& path, long long max_pixels) {
-    // A flat RGBE file is 4 bytes a pixel; run-length encoding only shrinks it (by at most a
-    // factor of 64), so 4 bytes a pixel plus a header bounds any file worth reading.
-    const std::string bytes = file_bytes(path, 4.0 * static_cast<double>(max_pixels) + 65536);
+    // A flat RGBE file is 4 bytes a pixel; run-length encoding adds at most a count byte per 128
+    // literal bytes and 4 bytes per row of 8 or more pixels: under 5 bytes a pixel in all.
+    const std::string bytes = file_bytes(path, 5.0 * static_cast<double>(max_pixels) + 65536, max_pixels);
     std::size_t pos = 0;
     const auto bad = [&](const std::string& why) {
         return IoError(fmt::format("cannot read image '{}': byte {}: {}", path.string(), pos, why));
@@ -255,7 +243,7 @@ RawImage read_hdr(const fs::path& path, long long max_pixels) {
 }
 
 RawImage read_pnm(const fs::path& path, long long max_pixels) {
-    const std::string bytes = file_bytes(path, 6.0 * static_cast<double>(max_pixels) * 8 + 65536);
+    const std::string bytes = file_bytes(path, 6.0 * static_cast<double>(max_pixels) * 8 + 65536, max_pixels);
     Tokens t{bytes, 0, true};
     const auto bad = [&](const std::string& why) {
         return IoError(fmt::format("cannot read image '{}': byte {}: {}", path.string(), t.pos, why));

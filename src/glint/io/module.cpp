@@ -9,6 +9,7 @@
 #include <mutex>
 #include <vector>
 
+#include "glint/io/diagnostics.h"
 #include "glint/io/image_io.h"
 
 namespace glint {
@@ -19,14 +20,7 @@ namespace {
 
 std::vector<fs::path> module_folders() {
     std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("GLINT_MODULE_PATH")) {
-        std::string s = env;
-        for (std::size_t start = 0; start <= s.size();) {
-            const std::size_t end = std::min(s.find(':', start), s.size());
-            if (end > start) dirs.emplace_back(s.substr(start, end - start));
-            start = end + 1;
-        }
-    }
+    if (const char* env = std::getenv("GLINT_MODULE_PATH")) dirs = split_search_path(env);
     Dl_info info{};
     if (dladdr(reinterpret_cast<void*>(&module_entry), &info) != 0 && info.dli_fname) {
         std::error_code ec;
