@@ -855,7 +855,9 @@ TEST_F(Cli, HeavyLibrariesAreLoadedOnlyWhenNeeded) {
         const std::string log = libraries_loaded(dir_.path(), args);
         EXPECT_FALSE(loads(log, "libOpenImageIO")) << args;
         EXPECT_FALSE(loads(log, "libopenvdb")) << args;
+#if !GLINT_EMBREE_LINKED  // the sanitizer build links Embree (src/CMakeLists.txt says why)
         EXPECT_FALSE(loads(log, "libembree")) << args;
+#endif
         EXPECT_TRUE(loads(log, "libtbb")) << args;  // the log is real: a library glint does load
     }
     {

@@ -55,12 +55,16 @@ struct EmbreeLibrary {
 
 const EmbreeLibrary& embree() {
     static const EmbreeLibrary library = [] {
+        EmbreeLibrary l;
+#if GLINT_EMBREE_DLOPEN
         void* handle = dlopen("libembree3.so.3", RTLD_NOW | RTLD_LOCAL);
         if (!handle) throw std::runtime_error(fmt::format("cannot load Embree (libembree3.so.3): {}", dlerror()));
-        EmbreeLibrary l;
 #define GLINT_EMBREE_LOOKUP(f)                                                                      \
     l.f = reinterpret_cast<decltype(&::f)>(dlsym(handle, #f));                                     \
     if (!l.f) throw std::runtime_error("cannot load Embree (libembree3.so.3): it has no " #f);
+#else  // linked (the sanitizer build: LeakSanitizer's tracer crashes on a dlopen'ed Embree at exit)
+#define GLINT_EMBREE_LOOKUP(f) l.f = &::f;
+#endif
         GLINT_EMBREE_FUNCTIONS(GLINT_EMBREE_LOOKUP)
 #undef GLINT_EMBREE_LOOKUP
         return l;
