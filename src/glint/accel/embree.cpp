@@ -45,7 +45,7 @@ namespace {
     X(rtcSetGeometryUserData) \
     X(rtcSetGeometryUserPrimitiveCount) \
     X(rtcSetNewGeometryBuffer) \
-    X(rtcSetSceneBuildQuality) \
+    X(rtcSetSceneBuildQuality)
 
 struct EmbreeLibrary {
 #define GLINT_EMBREE_POINTER(f) decltype(&::f) f = nullptr;
@@ -71,7 +71,6 @@ const EmbreeLibrary& embree() {
     }();
     return library;
 }
-
 
 // Top-level geometry ids: fixed slots for the shape arrays, then one per instance.
 constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3, kFirstInstanceId = 4;

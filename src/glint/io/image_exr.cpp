@@ -89,7 +89,7 @@ void write_exr(const fs::path& path, int width, int height, const std::vector<st
         file.setFrameBuffer(fb);
         file.writePixels(height);
     } catch (const std::exception& e) {
-        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), e.what()));
+        throw IoError(e.what());  // the caller names the file
     }
 }
 

@@ -64,7 +64,8 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int hei
                                      const ImageMetadata& metadata, const PngOptions& options = {});
 
 /// Writes `channels` named float channels (interleaved in `data`) as a ZIP-compressed OpenEXR
-/// file, with `metadata` as string attributes. Throws IoError.
+/// file, with `metadata` as string attributes. Throws IoError with OpenEXR's reason (the caller
+/// names the file).
 void write_exr(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& names,
                const float* data, const ImageMetadata& metadata);
 

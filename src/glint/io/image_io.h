@@ -1,7 +1,8 @@
 #pragma once
-// Writing images through OpenImageIO, atomically: the image goes to a temporary file in the
-// destination folder, which is renamed over the destination only once it is complete. A failed
-// or killed run never leaves a truncated image and never clobbers an existing one.
+// Reading and writing image files (the formats and their libraries: image_formats.h). Writes are
+// atomic: the image goes to a temporary file in the destination folder, which is renamed over the
+// destination only once it is complete. A failed or killed run never leaves a truncated image and
+// never clobbers an existing one.
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -29,7 +30,8 @@ enum class ImageEncoding { kAuto, kSrgb, kLinear };
 /// The inverse of the sRGB transfer curve.
 float srgb_decode(float v);
 
-/// Reads an image file through OpenImageIO as linear RGB (grey is replicated, alpha dropped).
+/// Reads an image file as linear RGB (grey is replicated, alpha dropped): PNG, EXR, JPEG, HDR,
+/// PFM and PPM/PGM by glint's own readers, anything else through the OpenImageIO module.
 /// Throws IoError, naming the file, if it cannot be opened or read, or if it has more than
 /// `max_pixels` pixels (default: the texture-pixels limit; checked from the header, before
 /// reading) or more than the memory budget allows.

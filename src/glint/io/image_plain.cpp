@@ -69,6 +69,9 @@ struct Tokens {
 
 }  // namespace
 
+// Portable float maps (pbrt's PFM textures): "PF" (RGB) or "Pf" (grey), "width height", a scale
+// whose sign gives the byte order (negative: little endian) and whose magnitude multiplies the
+// values, then the rows bottom to top.
 RawImage read_pfm(const fs::path& path, long long max_pixels) {
     // Nothing is read beyond what the largest allowed map needs (the header is checked below);
     // the file's bytes and the floats decoded from them are charged to the memory budget.

@@ -906,7 +906,7 @@ private:
         Transform total;
         bool ok = true;
         const auto step = [&](const YAML::Node& st) {
-            if (!st.IsMap() || st.size() != 1) {
+            if (!st.IsMap() || st.size() != 1 || !st.begin()->first.IsScalar()) {
                 r_.error(st, fmt::format("transform: expected a one-key map (translate, scale, rotate, "
                                          "matrix or look_at), got {}", describe(st)));
                 ok = false;

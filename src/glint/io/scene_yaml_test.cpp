@@ -363,3 +363,18 @@ TEST(SceneYamlLimits, FlowCollectionsNestedTooDeeplyAreAnErrorAtTheBracket) {
 }
 
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Found by fuzz_scene in CI: a transform step whose key is a sequence, not a name, made yaml-cpp
+// throw its own conversion error out of the parser. Now a located error.
+TEST(SceneYaml, ATransformStepKeyThatIsNotANameIsALocatedError) {
+    const std::string e = errors_of("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1,\n"
+                                    "     transform: [{[1, 2]: [0, 0, 1]}]}\n");
+    EXPECT_NE(e.find("scene.yaml:3:"), std::string::npos) << e;
+    EXPECT_NE(e.find("transform: expected a one-key map"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace glint
