@@ -452,7 +452,7 @@ std::size_t Scene::accel_memory_bytes() const {
 #if GLINT_EMBREE
     if (embree_) return embree_->memory_bytes();
 #endif
-    std::size_t bytes = top_.memory_bytes() + top_refs_.size() * sizeof(std::uint32_t);
+    std::size_t bytes = top_.memory_bytes() + top_refs_.size() * sizeof(std::uint32_t) + sphere_set_.memory_bytes();
     for (const MeshBvh& b : mesh_bvhs_) bytes += b.memory_bytes();
     return bytes;
 }

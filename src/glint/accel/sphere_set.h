@@ -33,6 +33,7 @@ public:
     void build(const std::vector<Sphere>& spheres, SimdIsa isa);
     bool empty() const { return soa_.count == 0; }
     SimdIsa isa() const { return isa_; }
+    std::size_t memory_bytes() const { return soa_.groups.size() * sizeof(SphereSoa::Group); }
     /// The nearest sphere hit in [kRayTMin, ray.t_max): its t and index, or false.
     bool closest(const Ray& ray, float& t, std::uint32_t& index) const;
     /// Whether any sphere lies in [kRayTMin, ray.t_max).

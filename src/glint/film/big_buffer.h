@@ -1,9 +1,10 @@
 #pragma once
 // An allocator for the large per-pixel planes (the film, its AOVs): blocks of 2 MiB and more are
 // 2 MiB-aligned and marked for transparent huge pages (madvise), so that filling a 1080p film
-// takes a dozen page faults instead of six thousand. On the project machine (a VM, where a page
-// fault costs microseconds) this took a 1080p Figure 14 render from 321 ms to 246 ms whole
-// process (docs/benchmarks.md). Smaller blocks come from the usual allocator.
+// (25 MB) takes a dozen page faults instead of some six thousand. On the project machine (a VM,
+// where a page fault costs microseconds) huge pages for every allocation (glibc's hugetlb tunable)
+// took a 1080p Figure 14 render from 321 ms to 245 ms whole process (docs/benchmarks.md); this
+// allocator gives them to the film alone. Smaller blocks come from the usual allocator.
 #include <sys/mman.h>
 
 #include <cstddef>

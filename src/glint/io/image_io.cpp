@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <bit>
 #include <cstdio>
 #include <cctype>
 #include <cerrno>
@@ -26,10 +25,19 @@ namespace glint {
 
 namespace fs = std::filesystem;
 
-ImageFormat image_format_for(const fs::path& path) {
+namespace {
+
+std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+ImageFormat image_format_for(const fs::path& path) {
+    const std::string ext = lower_extension(path);
     if (ext == ".png") return ImageFormat::kPng;
     if (ext == ".exr") return ImageFormat::kExr;
     if (ext == ".ppm") return ImageFormat::kPpm;
@@ -137,9 +145,7 @@ Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pix
     if (max_pixels <= 0) max_pixels = limit(Limit::kTexturePixels);
     if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': it {}", path.string(), why));
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lower_extension(path);
     if (const std::string why = exr_header_error(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
     RawImage raw;

@@ -86,17 +86,12 @@ std::uint8_t paeth(int a, int b, int c) {
 }
 
 // One scanline: the filter type byte, then each byte minus its predictor (a: the byte one pixel
-// to the left, b: the byte above, c: above-left; 0 outside the image). One loop per filter.
+// to the left, b: the byte above, c: above-left; 0 outside the image, so the first row's `prev` is
+// a row of zeros). One loop per filter.
 void filter_row(const std::uint8_t* x, const std::uint8_t* prev, std::size_t n, int filter, std::uint8_t* out) {
     out[0] = static_cast<std::uint8_t>(filter);
     ++out;
     constexpr std::size_t bpp = 3;
-    static const std::vector<std::uint8_t> zeros(1 << 16);
-    std::vector<std::uint8_t> zero_row;
-    if (!prev) {
-        if (n > zeros.size()) zero_row.assign(n, 0);
-        prev = n > zeros.size() ? zero_row.data() : zeros.data();
-    }
     const std::size_t head = std::min(bpp, n);
     switch (filter) {
         case 1:
@@ -153,14 +148,19 @@ std::vector<std::uint8_t> encode_png(const PngRows& rows, int width, int height,
         const std::size_t y0 = s * strip_rows, y1 = std::min(h, y0 + strip_rows);
         const std::size_t dict = std::min<std::size_t>(32768, y0 * line);  // primed as one stream would be
         const std::size_t r0 = (y0 * line - dict) / line;   // the first row the dictionary reaches into
-        const std::size_t first_raw = r0 > 0 ? r0 - 1 : 0;  // and the row above it, its predictor
+        // raw holds rows r0 - 1 .. y1 - 1, the first being the predictor of row r0 (zeros above
+        // the image).
         thread_local std::vector<std::uint8_t> raw, filtered, deflated;
-        raw.resize((y1 - first_raw) * row);
+        raw.resize((y1 - r0 + 1) * row);
         filtered.resize((y1 - r0) * line);
-        for (std::size_t y = first_raw; y < y1; ++y) rows(static_cast<int>(y), &raw[(y - first_raw) * row]);
+        if (r0 == 0) {
+            std::fill_n(raw.begin(), row, std::uint8_t{0});
+        } else {
+            rows(static_cast<int>(r0 - 1), raw.data());
+        }
+        for (std::size_t y = r0; y < y1; ++y) rows(static_cast<int>(y), &raw[(y - r0 + 1) * row]);
         for (std::size_t y = r0; y < y1; ++y)
-            filter_row(&raw[(y - first_raw) * row], y > 0 ? &raw[(y - 1 - first_raw) * row] : nullptr, row,
-                       options.filter, &filtered[(y - r0) * line]);
+            filter_row(&raw[(y - r0 + 1) * row], &raw[(y - r0) * row], row, options.filter, &filtered[(y - r0) * line]);
         const std::uint8_t* begin = &filtered[(y0 - r0) * line];
         const std::size_t size = (y1 - y0) * line;
         adlers[s] = adler32_z(adler32_z(0, nullptr, 0), begin, size);
