@@ -352,8 +352,6 @@ int run_render(const RenderArgs& args) {
                                                    : glint::ProgressMode::kSummary;
     const int w = job.film_width, h = job.film_height;
     const auto pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
-    glint::Film film(w, h);
-    if (job.aovs) film.enable_aovs();
     glint::Progress progress(mode, stderr, pixels * static_cast<std::uint64_t>(std::max(1, job.options.spp)));
     remember_temporary(0, out);
     if (!checkpoint.empty()) remember_temporary(1, checkpoint);
@@ -367,8 +365,22 @@ int run_render(const RenderArgs& args) {
         return kExitInterrupted;
     };
 
-    // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums.
+    // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums;
+    // for PNG and PPM straight to 8-bit codes, with no float film (a 1080p film is 25 MB of
+    // memory the kernel must clear and the encoder read back: docs/architecture.md).
     if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty()) {
+        if (glint::image_format_for(out) != glint::ImageFormat::kExr) {
+            glint::BigBuffer<std::uint8_t> rgb(static_cast<std::size_t>(pixels) * 3);
+            const glint::RenderStats stats = glint::render_8bit(job.scene, job.camera, *job.integrator, job.options,
+                                                                job.display, w, h, rgb.data(), &progress, &g_stop);
+            if (!stats.complete) return interrupted_status("no pass completed; nothing written");
+            glint::write_image_8bit(out, rgb.data(), w, h, job.display.encoding == glint::Encoding::kSrgb,
+                                    metadata(args, 1, 1, 1, stats.seconds, true));
+            progress.finish(stats, w, h, "1 spp");
+            if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
+            return 0;
+        }
+        glint::Film film(w, h);
         const glint::RenderStats stats =
             glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress, &g_stop);
         if (!stats.complete) return interrupted_status("no pass completed; nothing written");
@@ -377,6 +389,8 @@ int run_render(const RenderArgs& args) {
         if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
         return 0;
     }
+    glint::Film film(w, h);
+    if (job.aovs) film.enable_aovs();
 
     glint::ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.aovs);
     if (render.adaptive() && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();

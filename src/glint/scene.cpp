@@ -413,6 +413,48 @@ bool Scene::occluded_opaque(const Ray& ray) const {
     return intersect_opaque(ray).has_value();
 }
 
+void Scene::intersect_opaque(const Ray* rays, int n, std::optional<Hit>* hits) const {
+    assert(n >= 0 && n <= kPacketSize);
+    if (sphere_set_.empty() || has_interfaces_) {
+        for (int k = 0; k < n; ++k) hits[k] = intersect_opaque(rays[k]);
+        return;
+    }
+    // As intersect(): the planes first, ray by ray, shortening t_max; then the spheres.
+    RayPacket packet;
+    for (int k = 0; k < n; ++k) {
+        Ray ray = rays[k];
+        hits[k].reset();
+        closest_hit<ShapeKind::kPlane>(planes, ray, hits[k]);
+        packet.set(k, ray);
+    }
+    packet.pad(n);
+    PacketHits found;
+    sphere_set_.closest(packet, n, found);
+    for (int k = 0; k < n; ++k)
+        if (found.index[k] >= 0)
+            hits[k] = Hit{found.t[k], ShapeKind::kSphere, static_cast<std::uint32_t>(found.index[k])};
+}
+
+std::uint32_t Scene::occluded_opaque(const Ray* rays, int n) const {
+    assert(n >= 0 && n <= kPacketSize);
+    std::uint32_t blocked = 0;
+    if (sphere_set_.empty() || has_interfaces_) {
+        for (int k = 0; k < n; ++k)
+            if (occluded_opaque(rays[k])) blocked |= 1u << k;
+        return blocked;
+    }
+    RayPacket packet;
+    for (int k = 0; k < n; ++k) {
+        packet.set(k, rays[k]);
+        if (any_hit(planes, rays[k])) {
+            blocked |= 1u << k;
+            packet.t_max[k] = 0;  // settled: the spheres need not be asked
+        }
+    }
+    packet.pad(n);
+    return blocked | sphere_set_.any(packet, n);
+}
+
 bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim, Vector3 ng) const {
     if (m.normals.empty()) return false;
     const Vector3 sum = to_vector(m.normals[m.indices[3 * prim]]) +

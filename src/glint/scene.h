@@ -150,6 +150,13 @@ struct Scene {
     /// are invisible.
     std::optional<Hit> intersect_opaque(const Ray& ray) const;
     bool occluded_opaque(const Ray& ray) const;
+    /// Packet forms of the two, for up to RayPacket::kSize (16) rays: each answer is the one
+    /// intersect_opaque/occluded_opaque gives for that ray, to the bit. Scenes of spheres and
+    /// planes test one sphere against all the rays at once; the rest ask ray by ray.
+    static constexpr int kPacketSize = RayPacket::kSize;
+    void intersect_opaque(const Ray* rays, int n, std::optional<Hit>* hits) const;
+    /// Bit k set when ray k is blocked.
+    std::uint32_t occluded_opaque(const Ray* rays, int n) const;
     /// Every light, for the path tracer; built by commit().
     const LightSampler& light_sampler() const { return light_sampler_; }
 

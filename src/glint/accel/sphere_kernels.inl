@@ -84,9 +84,8 @@ struct RayW {
 
 // Sphere::intersect on W spheres: the valid lanes and their t. Line for line the scalar code's
 // arithmetic (see shapes/sphere.h for the why of each step).
-inline M test(const SphereSoa::Group& g, int lane0, const RayW& r, V& t_out) {
-    const V cx = load(g.cx + lane0), cy = load(g.cy + lane0), cz = load(g.cz + lane0);
-    const V radius = load(g.r + lane0), r2 = load(g.r2 + lane0);
+// The lanes hold W spheres against one ray (broadcast), or one sphere (broadcast) against W rays.
+inline M test(V cx, V cy, V cz, V radius, V r2, const RayW& r, V& t_out) {
     const V fx = sub(r.ox, cx), fy = sub(r.oy, cy), fz = sub(r.oz, cz);
     const V b = add(add(mul(fx, r.dx), mul(fy, r.dy)), mul(fz, r.dz));
     const V ff = add(add(mul(fx, fx), mul(fy, fy)), mul(fz, fz));
@@ -111,6 +110,26 @@ inline M test(const SphereSoa::Group& g, int lane0, const RayW& r, V& t_out) {
     return mandnot(miss, mor(v0, v1));
 }
 
+inline M test(const SphereSoa::Group& g, int lane0, const RayW& r, V& t_out) {
+    return test(load(g.cx + lane0), load(g.cy + lane0), load(g.cz + lane0), load(g.r + lane0),
+                load(g.r2 + lane0), r, t_out);
+}
+
+inline RayW lanes(const RayPacket& p, int lane0) {
+    return {load(p.ox + lane0), load(p.oy + lane0), load(p.oz + lane0), load(p.dx + lane0),
+            load(p.dy + lane0), load(p.dz + lane0), set1(kRayTMin), load(p.t_max + lane0)};
+}
+
+inline void store(float* p, V v) {
+#if GLINT_KERNEL_WIDTH == 16
+    _mm512_store_ps(p, v);
+#elif GLINT_KERNEL_WIDTH == 8
+    _mm256_store_ps(p, v);
+#else
+    _mm_store_ps(p, v);
+#endif
+}
+
 inline RayW wide(const Ray& ray) {
     return {set1(ray.origin.x), set1(ray.origin.y), set1(ray.origin.z), set1(ray.direction.x),
             set1(ray.direction.y), set1(ray.direction.z), set1(kRayTMin), set1(ray.t_max)};
@@ -128,13 +147,7 @@ bool GLINT_CAT(spheres_closest_, GLINT_KERNEL_ISA)(const SphereSoa& s, const Ray
             V tv;
             unsigned m = bits(test(s.groups[gi], lane0, r, tv));
             if (!m) continue;
-#if GLINT_KERNEL_WIDTH == 16
-            _mm512_store_ps(ts, tv);
-#elif GLINT_KERNEL_WIDTH == 8
-            _mm256_store_ps(ts, tv);
-#else
-            _mm_store_ps(ts, tv);
-#endif
+            store(ts, tv);
             for (; m; m &= m - 1) {  // lanes in index order: the lowest index wins a tie
                 const int k = std::countr_zero(m);
                 if (ts[k] < best) {
@@ -158,6 +171,44 @@ bool GLINT_CAT(spheres_any_, GLINT_KERNEL_ISA)(const SphereSoa& s, const Ray& ra
         }
     }
     return false;
+}
+
+// Packets: one sphere at a time against W rays. Spheres in index order and a strict "nearer"
+// test, so the lowest index wins a tie, as above.
+void GLINT_CAT(spheres_closest_packet_, GLINT_KERNEL_ISA)(const SphereSoa& s, const RayPacket& p, int n,
+                                                         PacketHits& out) {
+    for (int lane0 = 0; lane0 < n; lane0 += kW) {
+        const RayW r = lanes(p, lane0);
+        V best = r.t_max, index = set1(-1.0f);
+        for (std::uint32_t i = 0; i < s.count; ++i) {
+            const SphereSoa::Group& g = s.groups[i / SphereSoa::kGroup];
+            const std::uint32_t k = i % SphereSoa::kGroup;
+            V t;
+            const M valid = test(set1(g.cx[k]), set1(g.cy[k]), set1(g.cz[k]), set1(g.r[k]), set1(g.r2[k]), r, t);
+            const M nearer = mand(valid, lt(t, best));
+            best = select(nearer, t, best);
+            index = select(nearer, set1(static_cast<float>(i)), index);
+        }
+        store(out.t + lane0, best);
+        store(out.index + lane0, index);
+    }
+}
+
+std::uint32_t GLINT_CAT(spheres_any_packet_, GLINT_KERNEL_ISA)(const SphereSoa& s, const RayPacket& p, int n) {
+    std::uint32_t hits = 0;
+    for (int lane0 = 0; lane0 < n; lane0 += kW) {
+        const RayW r = lanes(p, lane0);
+        const unsigned all = (1u << kW) - 1;
+        unsigned hit = 0;
+        for (std::uint32_t i = 0; i < s.count && hit != all; ++i) {
+            const SphereSoa::Group& g = s.groups[i / SphereSoa::kGroup];
+            const std::uint32_t k = i % SphereSoa::kGroup;
+            V t;
+            hit |= bits(test(set1(g.cx[k]), set1(g.cy[k]), set1(g.cz[k]), set1(g.r[k]), set1(g.r2[k]), r, t));
+        }
+        hits |= static_cast<std::uint32_t>(hit) << lane0;
+    }
+    return hits;
 }
 
 }  // namespace glint

@@ -37,4 +37,22 @@ bool SphereSet::any(const Ray& ray) const {
     return spheres_any_sse4(soa_, ray);
 }
 
+void SphereSet::closest(const RayPacket& p, int n, PacketHits& out) const {
+    switch (isa_) {
+        case SimdIsa::kAvx512: return spheres_closest_packet_avx512(soa_, p, n, out);
+        case SimdIsa::kAvx2: return spheres_closest_packet_avx2(soa_, p, n, out);
+        case SimdIsa::kSse4: break;
+    }
+    spheres_closest_packet_sse4(soa_, p, n, out);
+}
+
+std::uint32_t SphereSet::any(const RayPacket& p, int n) const {
+    switch (isa_) {
+        case SimdIsa::kAvx512: return spheres_any_packet_avx512(soa_, p, n);
+        case SimdIsa::kAvx2: return spheres_any_packet_avx2(soa_, p, n);
+        case SimdIsa::kSse4: break;
+    }
+    return spheres_any_packet_sse4(soa_, p, n);
+}
+
 }  // namespace glint

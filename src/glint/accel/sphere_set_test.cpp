@@ -3,6 +3,7 @@
 // inside, grazing, and with t_max cutting through).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <random>
 
@@ -24,6 +25,9 @@ TEST(SphereSet, EveryKernelFindsTheScalarHitToTheBit) {
             SCOPED_TRACE(simd_isa_name(isa));
             SphereSet set;
             set.build(spheres, isa);
+            std::vector<Ray> packet_rays;
+            std::vector<int> packet_best;
+            std::vector<float> packet_t;
             for (int n = 0; n < 20000; ++n) {
                 Ray ray;
                 const Sphere& target = spheres[static_cast<std::size_t>(n) % spheres.size()];
@@ -38,6 +42,9 @@ TEST(SphereSet, EveryKernelFindsTheScalarHitToTheBit) {
                 for (std::uint32_t i = 0; i < spheres.size(); ++i) {
                     if (const auto t = spheres[i].intersect(ray); t && (!best || *t < *best)) best = t, best_i = i;
                 }
+                packet_rays.push_back(ray);
+                packet_best.push_back(best ? static_cast<int>(best_i) : -1);
+                packet_t.push_back(best ? *best : ray.t_max);
                 float t = -1;
                 std::uint32_t index = 0;
                 const bool hit = set.closest(ray, t, index);
@@ -47,6 +54,23 @@ TEST(SphereSet, EveryKernelFindsTheScalarHitToTheBit) {
                     ASSERT_EQ(t, *best) << n;
                     ASSERT_EQ(index, best_i) << n;
                 }
+            }
+            // The packet kernels on the same rays, in packets of 1 to 16 (padded as required).
+            for (std::size_t first = 0, n = 1; first < packet_rays.size(); first += n, n = n % 16 + 1) {
+                const int count = static_cast<int>(std::min(n, packet_rays.size() - first));
+                RayPacket p;
+                for (int k = 0; k < count; ++k) p.set(k, packet_rays[first + static_cast<std::size_t>(k)]);
+                p.pad(count);
+                PacketHits hits;
+                set.closest(p, count, hits);
+                const std::uint32_t blocked = set.any(p, count);
+                for (int k = 0; k < count; ++k) {
+                    const std::size_t r = first + static_cast<std::size_t>(k);
+                    ASSERT_EQ(static_cast<int>(hits.index[k]), packet_best[r]) << r;
+                    ASSERT_EQ(hits.t[k], packet_t[r]) << r;
+                    ASSERT_EQ((blocked >> k) & 1u, packet_best[r] >= 0 ? 1u : 0u) << r;
+                }
+                ASSERT_EQ(blocked >> count, 0u);  // the padding lanes hit nothing
             }
         }
     }

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 namespace glint {
@@ -48,5 +49,26 @@ struct BigAllocator {
 /// A vector whose large buffers take huge pages.
 template <typename T>
 using BigVector = std::vector<T, BigAllocator<T>>;
+
+/// n values of a trivial type, left uninitialised (so that the first write, by whichever thread
+/// makes it, is the page's first touch), on huge pages when large: for planes that are written
+/// whole before they are read, like the 8-bit image of a one-sample render.
+template <typename T>
+class BigBuffer {
+    static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_destructible_v<T>);
+
+public:
+    explicit BigBuffer(std::size_t n) : data_(BigAllocator<T>{}.allocate(n)), size_(n) {}
+    BigBuffer(const BigBuffer&) = delete;
+    BigBuffer& operator=(const BigBuffer&) = delete;
+    ~BigBuffer() { BigAllocator<T>{}.deallocate(data_, size_); }
+    T* data() { return data_; }
+    const T* data() const { return data_; }
+    std::size_t size() const { return size_; }
+
+private:
+    T* data_;
+    std::size_t size_;
+};
 
 }  // namespace glint

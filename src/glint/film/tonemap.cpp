@@ -30,4 +30,22 @@ std::uint8_t encode_8bit(float v, const DisplaySettings& display) {
     return static_cast<std::uint8_t>(v * 255.0f + 0.5f);  // v in [0, 1]: round half up
 }
 
+void encode_8bit(const float* in, std::size_t n, std::uint8_t* out, const DisplaySettings& display) {
+    if (display.curve != ToneCurve::kClamp || display.encoding != Encoding::kRaw) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = encode_8bit(in[i], display);
+        return;
+    }
+    // The scalar steps as selects: a value that is not above 0 (NaN too) gives 0; the rest are
+    // exposed, clamped to 1 and rounded exactly as there.
+    const bool exposed = display.exposure != 0;
+    const float scale = std::exp2(display.exposure);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = in[i];
+        float x = exposed ? v * scale : v;
+        x = x < 1.0f ? x : 1.0f;
+        x = v > 0 ? x : 0.0f;
+        out[i] = static_cast<std::uint8_t>(static_cast<int>(x * 255.0f + 0.5f));
+    }
+}
+
 }  // namespace glint

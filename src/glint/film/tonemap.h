@@ -1,6 +1,7 @@
 #pragma once
 // From linear film values to 8-bit display codes: exposure, a tone curve, the clamp to [0, 1],
 // then the transfer encoding. EXR output skips all of this: it stores the linear values.
+#include <cstddef>
 #include <cstdint>
 
 namespace glint {
@@ -31,5 +32,9 @@ float tone_curve(float v, ToneCurve curve);
 /// A linear value to an 8-bit code: exposure, curve, clamp to [0, 1], encoding, x255, round to
 /// nearest. NaN encodes as 0.
 std::uint8_t encode_8bit(float v, const DisplaySettings& display);
+
+/// encode_8bit on n values, to the same codes: the article's settings (raw, clamp) take a
+/// branch-free loop the compiler vectorises; the rest go value by value.
+void encode_8bit(const float* in, std::size_t n, std::uint8_t* out, const DisplaySettings& display);
 
 }  // namespace glint

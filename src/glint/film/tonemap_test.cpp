@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -60,6 +61,31 @@ TEST(Tonemap, AcesFitHandValues) {
         EXPECT_GE(t, previous) << v;
         previous = t;
     }
+}
+
+// The array form is the scalar one, value for value, on every setting: the raw-and-clamp loop
+// (written as selects) on the special values, the rounding boundaries k/255 +- 0.5/255 and
+// their neighbouring floats, and a sweep; exposures that scale up, down and to infinity.
+TEST(Tonemap, ArrayFormGivesTheScalarCodes) {
+    std::vector<float> values = {0.0f, -0.0f, -1.0f, 1.0f, 7.0f, std::numeric_limits<float>::quiet_NaN(),
+                                 std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                                 std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max()};
+    for (int k = 0; k <= 255; ++k) {
+        const float edge = (static_cast<float>(k) + 0.5f) / 255.0f;
+        values.push_back(edge);
+        values.push_back(std::nextafter(edge, 0.0f));
+        values.push_back(std::nextafter(edge, 2.0f));
+    }
+    for (float v = 1e-6f; v < 4; v *= 1.0007f) values.push_back(v);
+    std::vector<std::uint8_t> codes(values.size());
+    for (const Encoding e : {Encoding::kRaw, Encoding::kSrgb})
+        for (const ToneCurve c : {ToneCurve::kClamp, ToneCurve::kReinhard, ToneCurve::kAces})
+            for (const float exposure : {0.0f, 1.0f, -2.5f, 200.0f}) {
+                const DisplaySettings d{e, c, exposure};
+                encode_8bit(values.data(), values.size(), codes.data(), d);
+                for (std::size_t i = 0; i < values.size(); ++i)
+                    ASSERT_EQ(codes[i], encode_8bit(values[i], d)) << values[i] << " exposure " << exposure;
+            }
 }
 
 }  // namespace

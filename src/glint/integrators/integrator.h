@@ -32,6 +32,11 @@ public:
     /// Radiance along the camera ray; fills `first` (when not null) with the first hit's AOVs.
     virtual Color li(const Scene& scene, const Ray& camera_ray, SampleStream& samples, RayCounter& counter,
                      FirstHit* first = nullptr) const = 0;
+    /// Whether li_packet is offered: for integrators that draw no random numbers.
+    virtual bool traces_packets() const { return false; }
+    /// out[k] = li(rays[k]) to the bit, for n <= Scene::kPacketSize camera rays traced together
+    /// (the scene answers each bounce's rays as one packet).
+    virtual void li_packet(const Scene& scene, const Ray* rays, int n, Color* out, RayCounter& counter) const;
 };
 
 /// Figure 7: the object's colour where the ray hits, the background elsewhere.
@@ -63,6 +68,8 @@ public:
     explicit WhittedIntegrator(WhittedSettings settings) : settings_(settings) {}
     Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
+    bool traces_packets() const override { return true; }
+    void li_packet(const Scene& scene, const Ray* rays, int n, Color* out, RayCounter& counter) const override;
     /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
     Color direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k, RayCounter& counter) const;
     /// With the shading normal equal to the true one.

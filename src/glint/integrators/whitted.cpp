@@ -1,9 +1,14 @@
 #include <algorithm>
+#include <stdexcept>
 
 #include "glint/integrators/integrator.h"
 #include "glint/materials/make_bsdf.h"
 
 namespace glint {
+
+void Integrator::li_packet(const Scene&, const Ray*, int, Color*, RayCounter&) const {
+    throw std::logic_error("this integrator does not trace packets");
+}
 
 Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k,
                                 RayCounter& counter) const {
@@ -56,6 +61,98 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
             return result + weight * evaluate(scene.background, r);
         }
         ray = spawn_ray(si.p, si.n, r);
+    }
+}
+
+// li above for up to 16 camera rays at once: the same loop, each step taken for every live path
+// before the next, so that the scene answers the camera rays, then the shadow rays of each
+// light, then the reflected rays, as packets. Every path does exactly li's arithmetic in li's
+// order (d summed over the lights in order; result and weight updated as there), so each colour
+// is li's to the bit.
+void WhittedIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, int n, Color* out,
+                                  RayCounter& counter) const {
+    constexpr int kN = Scene::kPacketSize;
+    struct Path {
+        Color result{0}, weight{1}, k, d;
+        Point3 p;
+        Normal3 n, ng;
+        float s = 0;
+        int pixel = 0;
+    };
+    Path paths[kN];
+    Ray rays[kN];
+    std::optional<Hit> hits[kN];
+    int live = n;
+    for (int j = 0; j < n; ++j) paths[j].pixel = j, rays[j] = camera_rays[j];
+    for (int depth = 0; live > 0; ++depth) {
+        counter.rays += static_cast<std::uint64_t>(live);
+        scene.intersect_opaque(rays, live, hits);
+        // Shade the hits; a miss ends its path. Paths stay packed at the front (order kept).
+        int shaded = 0;
+        for (int j = 0; j < live; ++j) {
+            Path& path = paths[j];
+            if (!hits[j]) {
+                out[path.pixel] = path.result + path.weight * evaluate(scene.background, rays[j].direction);
+                continue;
+            }
+            const SurfaceInteraction si = scene.interaction(rays[j], *hits[j]);
+            path.n = face_forward(si.ns, rays[j].direction);
+            path.ng = si.n;
+            path.p = si.p;
+            const ArticleView m = article_view(scene, si);
+            path.k = m.color;
+            path.s = m.shininess;
+            path.d = path.k * settings_.ambient;
+            rays[shaded] = rays[j];
+            paths[shaded++] = path;
+        }
+        live = shaded;
+        for (const Light& light : scene.lights) {
+            Ray shadow[kN];
+            int from[kN];
+            LightSample samples[kN];
+            Float cosines[kN];
+            int m = 0;
+            for (int j = 0; j < live; ++j) {
+                const LightSample ls = sample_light(light, paths[j].p);
+                const Float cos_theta = dot(paths[j].n, ls.to_light);
+                if (cos_theta <= 0) continue;
+                samples[m] = ls, cosines[m] = cos_theta, from[m] = j;
+                if (settings_.shadows) shadow[m] = spawn_ray(paths[j].p, paths[j].ng, ls.to_light, ls.distance);
+                ++m;
+            }
+            std::uint32_t blocked = 0;
+            if (settings_.shadows && m > 0) {
+                counter.rays += static_cast<std::uint64_t>(m);
+                blocked = scene.occluded_opaque(shadow, m);
+            }
+            for (int q = 0; q < m; ++q) {
+                if (blocked >> q & 1) continue;
+                Path& path = paths[from[q]];
+                path.d += path.k * samples[q].intensity * cosines[q];
+            }
+        }
+        // Reflect: the paths that go on are packed at the front again.
+        int next = 0;
+        for (int j = 0; j < live; ++j) {
+            Path& path = paths[j];
+            const Color d = path.d;
+            const float s = path.s;
+            if (s <= 0) {
+                out[path.pixel] = path.result + path.weight * d;
+                continue;
+            }
+            path.result += path.weight * d * (1 - s);
+            path.weight *= d * s;
+            const Vector3 r = normalize(reflect(rays[j].direction, path.n));
+            if (depth >= settings_.max_depth) {
+                out[path.pixel] = path.result + path.weight * evaluate(scene.background, r);
+                continue;
+            }
+            rays[next] = spawn_ray(path.p, path.ng, r);
+            paths[next++] = path;
+        }
+        live = next;
     }
 }
 

@@ -225,6 +225,11 @@ void write_atomically(const fs::path& path, const std::vector<std::uint8_t>& byt
     }
 }
 
+std::vector<std::uint8_t> ppm_header(int width, int height) {
+    const std::string header = fmt::format("P6\n{} {}\n255\n", width, height);
+    return {header.begin(), header.end()};
+}
+
 void move_into_place(const fs::path& tmp, const fs::path& path) {
     std::error_code ec;
     fs::rename(tmp, path, ec);
@@ -277,19 +282,34 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     }
     const auto row_bytes = [&](int y, std::uint8_t* out) {
         const Color* px = &film.pixels()[static_cast<std::size_t>(y) * static_cast<std::size_t>(w)];
-        for (int x = 0; x < w; ++x)
-            for (int k = 0; k < 3; ++k) out[3 * x + k] = encode_8bit(px[x][k], display);
+        static_assert(sizeof(Color) == 3 * sizeof(float));
+        encode_8bit(&px->r, static_cast<std::size_t>(w) * 3, out, display);
     };
     if (format == ImageFormat::kPng) {
         write_atomically(path, encode_png(row_bytes, w, h, display.encoding == Encoding::kSrgb, metadata));
     } else {  // binary PPM: no place for metadata
-        const std::string header = fmt::format("P6\n{} {}\n255\n", w, h);
-        std::vector<std::uint8_t> bytes(header.size() + n * 3);
-        std::memcpy(bytes.data(), header.data(), header.size());
-        tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &bytes[header.size() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
+        std::vector<std::uint8_t> bytes = ppm_header(w, h);
+        const std::size_t header = bytes.size();
+        bytes.resize(header + n * 3);
+        tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &bytes[header + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
         write_atomically(path, bytes);
     }
     move_into_place(tmp, path);
+}
+
+void write_image_8bit(const fs::path& path, const std::uint8_t* rgb, int width, int height, bool srgb,
+                      const ImageMetadata& metadata) {
+    const ImageFormat format = image_format_for(path);
+    if (format == ImageFormat::kExr)
+        throw IoError(fmt::format("{}: an EXR image is written from the linear film, not from 8-bit codes", path.string()));
+    if (format == ImageFormat::kPng) {
+        write_atomically(path, encode_png(rgb, width, height, srgb, metadata));
+    } else {
+        std::vector<std::uint8_t> bytes = ppm_header(width, height);
+        bytes.insert(bytes.end(), rgb, rgb + static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+        write_atomically(path, bytes);
+    }
+    move_into_place(temporary_path(path), path);
 }
 
 }  // namespace glint

@@ -3,6 +3,7 @@
 // atomic: the image goes to a temporary file in the destination folder, which is renamed over the
 // destination only once it is complete. A failed or killed run never leaves a truncated image and
 // never clobbers an existing one.
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -58,5 +59,11 @@ std::filesystem::path temporary_path(const std::filesystem::path& target);
 /// channels albedo.R/G/B, N.X/Y/Z and Z, and its per-pixel sample counts as channel `spp`.
 void write_image(const std::filesystem::path& path, const Film& film,
                  const DisplaySettings& display, const ImageMetadata& metadata = {});
+
+/// PNG/PPM from 8-bit RGB codes already through the display transform (render_8bit's): width x
+/// height x 3 bytes, rows top first; `srgb` says which transfer the PNG declares. Atomic as
+/// write_image; an EXR path is an error (it takes the linear film).
+void write_image_8bit(const std::filesystem::path& path, const std::uint8_t* rgb, int width, int height,
+                      bool srgb, const ImageMetadata& metadata = {});
 
 }  // namespace glint

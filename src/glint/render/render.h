@@ -8,6 +8,7 @@
 #include "glint/cameras/camera.h"
 #include "glint/film/film.h"
 #include "glint/film/filter.h"
+#include "glint/film/tonemap.h"
 #include "glint/integrators/integrator.h"
 #include "glint/render/progress.h"
 #include "glint/samplers/sampler.h"
@@ -31,6 +32,9 @@ struct RenderOptions {
     /// below this (Cycles' noise threshold); 0: every pixel gets `spp` samples.
     float noise_threshold = 0;
     int min_spp = 0;  ///< adaptive: samples every pixel gets first (0: Cycles' default for the threshold)
+    /// One sample per pixel with an integrator that draws no samples (Whitted): trace up to 16
+    /// pixels of a row as one packet. The image is the same either way (tests compare the two).
+    bool packets = true;
 };
 
 /// Renders every sample (passes of progressive.h, or one sweep for one sample without AOVs).
@@ -39,5 +43,13 @@ struct RenderOptions {
 RenderStats render(const Scene& scene, const Camera& camera, const Integrator& integrator,
                    const RenderOptions& options, Film& film, Progress* progress = nullptr,
                    const std::atomic<bool>* cancel = nullptr);
+
+/// The one-sample sweep of render() (spp 1, no AOVs) straight to 8-bit display codes, for PNG
+/// and PPM output: rgb (width x height x 3 bytes, rows top first) receives encode_8bit of what
+/// render() would put in the film, with no float film written and read in between.
+RenderStats render_8bit(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                        const RenderOptions& options, const DisplaySettings& display, int width,
+                        int height, std::uint8_t* rgb, Progress* progress = nullptr,
+                        const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace glint
