@@ -370,12 +370,13 @@ int run_render(const RenderArgs& args) {
     // memory the kernel must clear and the encoder read back: docs/architecture.md).
     if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty()) {
         if (glint::image_format_for(out) != glint::ImageFormat::kExr) {
-            glint::BigBuffer<std::uint8_t> rgb(static_cast<std::size_t>(pixels) * 3);
-            const glint::RenderStats stats = glint::render_8bit(job.scene, job.camera, *job.integrator, job.options,
-                                                                job.display, w, h, rgb.data(), &progress, &g_stop);
+            // PNG strips are encoded by the render's threads as their rows come in.
+            glint::Image8Writer writer(out, w, h, job.display.encoding == glint::Encoding::kSrgb);
+            const glint::RenderStats stats = glint::render_8bit(
+                job.scene, job.camera, *job.integrator, job.options, job.display, w, h, writer.rgb(), &progress,
+                &g_stop, [&writer](int y0, int y1) { writer.rows_ready(y0, y1); });
             if (!stats.complete) return interrupted_status("no pass completed; nothing written");
-            glint::write_image_8bit(out, rgb.data(), w, h, job.display.encoding == glint::Encoding::kSrgb,
-                                    metadata(args, 1, 1, 1, stats.seconds, true));
+            writer.finish(metadata(args, 1, 1, 1, stats.seconds, true));
             progress.finish(stats, w, h, "1 spp");
             if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
             return 0;

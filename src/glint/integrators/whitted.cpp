@@ -72,27 +72,33 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
 void WhittedIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, int n, Color* out,
                                   RayCounter& counter) const {
     constexpr int kN = Scene::kPacketSize;
+    // Per pixel, where it stays: paths are referred to by index (moving them as the packet
+    // shrinks cost more than the shading).
     struct Path {
         Color result{0}, weight{1}, k, d;
         Point3 p;
         Normal3 n, ng;
         float s = 0;
-        int pixel = 0;
     };
     Path paths[kN];
-    Ray rays[kN];
+    Ray rays[kN];  // rays[j] belongs to path live[j]
+    int live[kN];
     std::optional<Hit> hits[kN];
-    int live = n;
-    for (int j = 0; j < n; ++j) paths[j].pixel = j, rays[j] = camera_rays[j];
-    for (int depth = 0; live > 0; ++depth) {
-        counter.rays += static_cast<std::uint64_t>(live);
-        scene.intersect_opaque(rays, live, hits);
-        // Shade the hits; a miss ends its path. Paths stay packed at the front (order kept).
+    Ray shadow[kN];
+    int lit[kN];
+    Color arriving[kN];
+    int count = n;
+    for (int j = 0; j < n; ++j) live[j] = j, rays[j] = camera_rays[j];
+    for (int depth = 0; count > 0; ++depth) {
+        counter.rays += static_cast<std::uint64_t>(count);
+        scene.intersect_opaque(rays, count, hits);
+        // Shade the hits; a miss ends its path. The live list stays in pixel order.
         int shaded = 0;
-        for (int j = 0; j < live; ++j) {
-            Path& path = paths[j];
+        for (int j = 0; j < count; ++j) {
+            const int i = live[j];
+            Path& path = paths[i];
             if (!hits[j]) {
-                out[path.pixel] = path.result + path.weight * evaluate(scene.background, rays[j].direction);
+                out[i] = path.result + path.weight * evaluate(scene.background, rays[j].direction);
                 continue;
             }
             const SurfaceInteraction si = scene.interaction(rays[j], *hits[j]);
@@ -103,22 +109,20 @@ void WhittedIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, in
             path.k = m.color;
             path.s = m.shininess;
             path.d = path.k * settings_.ambient;
-            rays[shaded] = rays[j];
-            paths[shaded++] = path;
+            if (shaded != j) rays[shaded] = rays[j];
+            live[shaded++] = i;
         }
-        live = shaded;
+        count = shaded;
         for (const Light& light : scene.lights) {
-            Ray shadow[kN];
-            int from[kN];
-            LightSample samples[kN];
-            Float cosines[kN];
             int m = 0;
-            for (int j = 0; j < live; ++j) {
-                const LightSample ls = sample_light(light, paths[j].p);
-                const Float cos_theta = dot(paths[j].n, ls.to_light);
+            for (int j = 0; j < count; ++j) {
+                const Path& path = paths[live[j]];
+                const LightSample ls = sample_light(light, path.p);
+                const Float cos_theta = dot(path.n, ls.to_light);
                 if (cos_theta <= 0) continue;
-                samples[m] = ls, cosines[m] = cos_theta, from[m] = j;
-                if (settings_.shadows) shadow[m] = spawn_ray(paths[j].p, paths[j].ng, ls.to_light, ls.distance);
+                arriving[m] = path.k * ls.intensity * cos_theta;
+                lit[m] = live[j];
+                if (settings_.shadows) shadow[m] = spawn_ray(path.p, path.ng, ls.to_light, ls.distance);
                 ++m;
             }
             std::uint32_t blocked = 0;
@@ -126,33 +130,31 @@ void WhittedIntegrator::li_packet(const Scene& scene, const Ray* camera_rays, in
                 counter.rays += static_cast<std::uint64_t>(m);
                 blocked = scene.occluded_opaque(shadow, m);
             }
-            for (int q = 0; q < m; ++q) {
-                if (blocked >> q & 1) continue;
-                Path& path = paths[from[q]];
-                path.d += path.k * samples[q].intensity * cosines[q];
-            }
+            for (int q = 0; q < m; ++q)
+                if (!(blocked >> q & 1)) paths[lit[q]].d += arriving[q];
         }
-        // Reflect: the paths that go on are packed at the front again.
+        // Reflect: the paths that go on stay at the front of the list, in order.
         int next = 0;
-        for (int j = 0; j < live; ++j) {
-            Path& path = paths[j];
+        for (int j = 0; j < count; ++j) {
+            const int i = live[j];
+            Path& path = paths[i];
             const Color d = path.d;
             const float s = path.s;
             if (s <= 0) {
-                out[path.pixel] = path.result + path.weight * d;
+                out[i] = path.result + path.weight * d;
                 continue;
             }
             path.result += path.weight * d * (1 - s);
             path.weight *= d * s;
             const Vector3 r = normalize(reflect(rays[j].direction, path.n));
             if (depth >= settings_.max_depth) {
-                out[path.pixel] = path.result + path.weight * evaluate(scene.background, r);
+                out[i] = path.result + path.weight * evaluate(scene.background, r);
                 continue;
             }
             rays[next] = spawn_ray(path.p, path.ng, r);
-            paths[next++] = path;
+            live[next++] = i;
         }
-        live = next;
+        count = next;
     }
 }
 

@@ -3,6 +3,7 @@
 // (libspng, OpenEXR, libjpeg-turbo, zlib) or directly (Radiance HDR, PFM, PPM); the long tail
 // of texture formats goes to OpenImageIO in a module loaded only when needed (oiio_module.h).
 // Internal to image_io.cpp and its tests.
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -60,6 +61,37 @@ std::size_t png_strip_rows(int width);
 using PngRows = std::function<void(int y, std::uint8_t* out)>;
 std::vector<std::uint8_t> encode_png(const PngRows& rows, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options = {});
+
+/// encode_png in pieces, for encoding while the image is made: rows_ready(y0, y1) says rows
+/// [y0, y1) are final (from any thread; each row once), and encodes, on the calling thread,
+/// every strip that then has all the rows it reads (its own and the dictionary's, which lie in
+/// the strip before it). finish() encodes whatever is left and returns encode_png's bytes: the
+/// same file whatever the order rows came in, or whether they were announced at all.
+class PngStrips {
+public:
+    PngStrips(PngRows rows, int width, int height, const PngOptions& options = {});
+    void rows_ready(int y0, int y1);
+    std::vector<std::uint8_t> finish(bool srgb, const ImageMetadata& metadata);
+    std::size_t count() const { return count_; }
+
+private:
+    std::size_t end_row(std::size_t s) const;
+    std::size_t first_row_read(std::size_t s) const;
+    bool ready(std::size_t s) const;
+    void try_encode(std::size_t s);
+    void encode(std::size_t s);
+    std::vector<std::uint8_t> assemble(bool srgb, const ImageMetadata& metadata) const;
+
+    PngRows rows_;
+    int width_, height_;
+    PngOptions options_;
+    std::size_t row_, line_, strip_rows_, count_;
+    std::vector<std::vector<std::uint8_t>> parts_;
+    std::vector<unsigned long> adlers_;
+    std::vector<int> status_;
+    std::vector<std::atomic<bool>> claimed_;  ///< encoded, or being encoded
+    std::vector<std::atomic<int>> left_;      ///< rows of the strip not yet announced
+};
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options = {});
 

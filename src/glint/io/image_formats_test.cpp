@@ -3,11 +3,13 @@
 // format's definition.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -74,6 +76,49 @@ TEST(PngEncoder, TheBytesDoNotDependOnTheThreadCount) {
     }
     EXPECT_EQ(out[0], out[1]);
     EXPECT_EQ(out[0], out[2]);
+}
+
+// Rows announced as a render would (bands in any order, from several threads at once, some
+// strips never announced) give encode_png's bytes; and Image8Writer writes them (and a PPM of
+// the same codes) to disk.
+TEST(PngEncoder, StripsEncodedAsRowsArriveGiveTheSameFile) {
+    const int w = 700, h = 1003;  // strips of 125 rows; the dictionary of each reaches into the last
+    const auto rgb = test_pattern(w, h, 9);
+    const auto whole = encode_png(rgb.data(), w, h, true, {{"k", "v"}});
+    const std::size_t row = static_cast<std::size_t>(w) * 3;
+    const auto rows = [&](int y, std::uint8_t* out) { std::memcpy(out, &rgb[static_cast<std::size_t>(y) * row], row); };
+    std::mt19937 rng(3);
+    for (const int band : {1, 7, 64, h}) {
+        SCOPED_TRACE(band);
+        std::vector<std::pair<int, int>> bands;
+        for (int y = 0; y < h; y += band) bands.emplace_back(y, std::min(h, y + band));
+        std::shuffle(bands.begin(), bands.end(), rng);
+        if (band == 7) bands.resize(bands.size() / 2);  // half never announced: finish() does the rest
+        PngStrips strips(rows, w, h);
+        tbb::task_arena arena(3);
+        arena.execute([&] {
+            tbb::parallel_for(std::size_t{0}, bands.size(), [&](std::size_t i) { strips.rows_ready(bands[i].first, bands[i].second); });
+        });
+        EXPECT_EQ(strips.finish(true, {{"k", "v"}}), whole);
+    }
+    testing::TempDir dir;
+    for (const char* name : {"w.png", "w.ppm"}) {
+        const auto p = dir.path() / name;
+        Image8Writer writer(p, w, h, true);
+        std::memcpy(writer.rgb(), rgb.data(), rgb.size());
+        writer.rows_ready(0, h / 2);
+        writer.finish({{"k", "v"}});
+        const Image back = read_image(p, ImageEncoding::kLinear);
+        ASSERT_EQ(back.texels.size(), static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+        for (std::size_t i = 0; i < back.texels.size(); i += 101)
+            ASSERT_EQ(std::lround(back.texels[i].b * 255.0f), rgb[3 * i + 2]) << name << " " << i;
+        if (std::string(name) == "w.png") {
+            std::ifstream in(p, std::ios::binary);
+            const std::vector<std::uint8_t> file{std::istreambuf_iterator<char>(in), {}};
+            EXPECT_EQ(file, whole);
+        }
+    }
+    EXPECT_THROW(Image8Writer(dir.path() / "x.exr", 2, 2, false), IoError);
 }
 
 TEST(PngEncoder, MetadataAndEncodingAreInTheHeader) {

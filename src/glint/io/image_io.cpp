@@ -18,6 +18,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <system_error>
 #include <vector>
 
@@ -297,19 +298,48 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     move_into_place(tmp, path);
 }
 
-void write_image_8bit(const fs::path& path, const std::uint8_t* rgb, int width, int height, bool srgb,
-                      const ImageMetadata& metadata) {
+struct Image8Writer::Impl {
+    fs::path path;
+    int width, height;
+    bool srgb;
+    BigBuffer<std::uint8_t> rgb;
+    std::optional<PngStrips> png;
+    Impl(fs::path p, int w, int h, bool s)
+        : path(std::move(p)), width(w), height(h), srgb(s),
+          rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3) {}
+};
+
+Image8Writer::Image8Writer(fs::path path, int width, int height, bool srgb) {
     const ImageFormat format = image_format_for(path);
     if (format == ImageFormat::kExr)
         throw IoError(fmt::format("{}: an EXR image is written from the linear film, not from 8-bit codes", path.string()));
+    impl_ = std::make_unique<Impl>(std::move(path), width, height, srgb);
     if (format == ImageFormat::kPng) {
-        write_atomically(path, encode_png(rgb, width, height, srgb, metadata));
-    } else {
-        std::vector<std::uint8_t> bytes = ppm_header(width, height);
-        bytes.insert(bytes.end(), rgb, rgb + static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
-        write_atomically(path, bytes);
+        const std::uint8_t* rgb = impl_->rgb.data();
+        const std::size_t row = static_cast<std::size_t>(width) * 3;
+        impl_->png.emplace([rgb, row](int y, std::uint8_t* out) { std::memcpy(out, rgb + static_cast<std::size_t>(y) * row, row); },
+                           width, height);
     }
-    move_into_place(temporary_path(path), path);
+}
+
+Image8Writer::~Image8Writer() = default;
+
+std::uint8_t* Image8Writer::rgb() { return impl_->rgb.data(); }
+
+void Image8Writer::rows_ready(int y0, int y1) {
+    if (impl_->png) impl_->png->rows_ready(y0, y1);
+}
+
+void Image8Writer::finish(const ImageMetadata& metadata) {
+    const Impl& m = *impl_;
+    if (impl_->png) {
+        write_atomically(m.path, impl_->png->finish(m.srgb, metadata));
+    } else {  // binary PPM: no place for metadata
+        std::vector<std::uint8_t> bytes = ppm_header(m.width, m.height);
+        bytes.insert(bytes.end(), m.rgb.data(), m.rgb.data() + m.rgb.size());
+        write_atomically(m.path, bytes);
+    }
+    move_into_place(temporary_path(m.path), m.path);
 }
 
 }  // namespace glint

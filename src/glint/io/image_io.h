@@ -5,6 +5,7 @@
 // never clobbers an existing one.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -60,10 +61,25 @@ std::filesystem::path temporary_path(const std::filesystem::path& target);
 void write_image(const std::filesystem::path& path, const Film& film,
                  const DisplaySettings& display, const ImageMetadata& metadata = {});
 
-/// PNG/PPM from 8-bit RGB codes already through the display transform (render_8bit's): width x
-/// height x 3 bytes, rows top first; `srgb` says which transfer the PNG declares. Atomic as
-/// write_image; an EXR path is an error (it takes the linear film).
-void write_image_8bit(const std::filesystem::path& path, const std::uint8_t* rgb, int width, int height,
-                      bool srgb, const ImageMetadata& metadata = {});
+/// A PNG or PPM written while it is rendered (render_8bit's output): the renderer fills rgb()
+/// (width x height x 3 bytes, rows top first, codes already through the display transform) and
+/// announces final rows with rows_ready (from any thread), which encodes each PNG strip on that
+/// thread as soon as its rows are in; finish() encodes what is left and writes the file
+/// atomically, as write_image. The bytes are write_image's for the same codes. An EXR path is an
+/// error (it takes the linear film).
+class Image8Writer {
+public:
+    Image8Writer(std::filesystem::path path, int width, int height, bool srgb);
+    ~Image8Writer();
+    Image8Writer(const Image8Writer&) = delete;
+    Image8Writer& operator=(const Image8Writer&) = delete;
+    std::uint8_t* rgb();
+    void rows_ready(int y0, int y1);
+    void finish(const ImageMetadata& metadata = {});
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace glint

@@ -132,53 +132,145 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int hei
                       width, height, srgb, metadata, options);
 }
 
+namespace {
+
+// A thread's deflate state, kept from strip to strip (and image to image) and reset between
+// them: zlib's state is some 270 KB, which malloc takes fresh from the kernel (and gives back)
+// at each deflateInit/deflateEnd, page faults and all.
+class Deflater {
+public:
+    Deflater() = default;
+    Deflater(const Deflater&) = delete;
+    Deflater& operator=(const Deflater&) = delete;
+    ~Deflater() {
+        if (ready_) deflateEnd(&zs_);
+    }
+    /// A stream ready for a new raw deflate stream at these settings, or null (status: zlib's error).
+    z_stream* get(int level, int strategy, int& status) {
+        if (ready_ && (level != level_ || strategy != strategy_)) {
+            deflateEnd(&zs_);
+            ready_ = false;
+        }
+        if (ready_) {
+            status = deflateReset(&zs_);
+        } else {
+            zs_ = z_stream{};
+            status = deflateInit2(&zs_, level, Z_DEFLATED, -15, 8, strategy);
+            ready_ = status == Z_OK;
+            level_ = level, strategy_ = strategy;
+        }
+        return status == Z_OK ? &zs_ : nullptr;
+    }
+
+private:
+    z_stream zs_{};
+    bool ready_ = false;
+    int level_ = 0, strategy_ = 0;
+};
+
+}  // namespace
+
+PngStrips::PngStrips(PngRows rows, int width, int height, const PngOptions& options)
+    : rows_(std::move(rows)), width_(width), height_(height), options_(options),
+      row_(static_cast<std::size_t>(width) * 3), line_(row_ + 1), strip_rows_(png_strip_rows(width)),
+      count_((static_cast<std::size_t>(height) + strip_rows_ - 1) / strip_rows_), parts_(count_),
+      adlers_(count_), status_(count_, Z_OK), claimed_(count_), left_(count_) {
+    for (std::size_t s = 0; s < count_; ++s) left_[s].store(static_cast<int>(end_row(s) - s * strip_rows_));
+}
+
+std::size_t PngStrips::end_row(std::size_t s) const {
+    return std::min(static_cast<std::size_t>(height_), (s + 1) * strip_rows_);
+}
+
+std::size_t PngStrips::first_row_read(std::size_t s) const {
+    const std::size_t y0 = s * strip_rows_;
+    const std::size_t dict = std::min<std::size_t>(32768, y0 * line_);  // primed as one stream would be
+    const std::size_t r0 = (y0 * line_ - dict) / line_;  // the first row the dictionary reaches into
+    return r0 == 0 ? 0 : r0 - 1;                         // and the row above it, its predictor
+}
+
+void PngStrips::rows_ready(int y0, int y1) {
+    const auto first = static_cast<std::size_t>(y0) / strip_rows_;
+    for (std::size_t s = first; s < count_ && s * strip_rows_ < static_cast<std::size_t>(y1); ++s) {
+        const std::size_t a = std::max(s * strip_rows_, static_cast<std::size_t>(y0));
+        const std::size_t b = std::min(end_row(s), static_cast<std::size_t>(y1));
+        if (left_[s].fetch_sub(static_cast<int>(b - a), std::memory_order_acq_rel) != static_cast<int>(b - a)) continue;
+        // Strip s is complete: it and the strips that wait for it may now be encodable.
+        for (std::size_t t = s; t < count_ && first_row_read(t) < end_row(s); ++t) try_encode(t);
+    }
+}
+
+bool PngStrips::ready(std::size_t s) const {
+    for (std::size_t t = first_row_read(s) / strip_rows_; t <= s; ++t)
+        if (left_[t].load(std::memory_order_acquire) != 0) return false;
+    return true;
+}
+
+void PngStrips::try_encode(std::size_t s) {
+    if (ready(s) && !claimed_[s].exchange(true, std::memory_order_acq_rel)) encode(s);
+}
+
+// A strip is made whole by one task: its rows (and the few before it that its dictionary covers)
+// produced, filtered and deflated in buffers the thread keeps, so that nothing the size of the
+// image is allocated or touched.
+void PngStrips::encode(std::size_t s) {
+    const std::size_t row = row_, line = line_;
+    const std::size_t y0 = s * strip_rows_, y1 = end_row(s);
+    const std::size_t dict = std::min<std::size_t>(32768, y0 * line);
+    const std::size_t r0 = (y0 * line - dict) / line;
+    // raw holds rows r0 - 1 .. y1 - 1, the first being the predictor of row r0 (zeros above the
+    // image).
+    thread_local std::vector<std::uint8_t> raw, filtered, deflated;
+    raw.resize((y1 - r0 + 1) * row);
+    filtered.resize((y1 - r0) * line);
+    if (r0 == 0) {
+        std::fill_n(raw.begin(), row, std::uint8_t{0});
+    } else {
+        rows_(static_cast<int>(r0 - 1), raw.data());
+    }
+    for (std::size_t y = r0; y < y1; ++y) rows_(static_cast<int>(y), &raw[(y - r0 + 1) * row]);
+    for (std::size_t y = r0; y < y1; ++y)
+        filter_row(&raw[(y - r0 + 1) * row], &raw[(y - r0) * row], row, options_.filter, &filtered[(y - r0) * line]);
+    const std::uint8_t* begin = &filtered[(y0 - r0) * line];
+    const std::size_t size = (y1 - y0) * line;
+    adlers_[s] = adler32_z(adler32_z(0, nullptr, 0), begin, size);
+    thread_local Deflater deflater;
+    z_stream* stream = deflater.get(options_.level, options_.strategy, status_[s]);
+    if (!stream) return;
+    z_stream& zs = *stream;
+    if (dict > 0) deflateSetDictionary(&zs, begin - dict, static_cast<uInt>(dict));
+    deflated.resize(deflateBound(&zs, size) + 64);
+    zs.next_in = const_cast<Bytef*>(begin);
+    zs.avail_in = static_cast<uInt>(size);
+    zs.next_out = deflated.data();
+    zs.avail_out = static_cast<uInt>(deflated.size());
+    const bool last = s + 1 == count_;
+    const int r = deflate(&zs, last ? Z_FINISH : Z_SYNC_FLUSH);
+    status_[s] = (last ? r == Z_STREAM_END : r == Z_OK && zs.avail_in == 0 && zs.avail_out > 0) ? Z_OK : Z_BUF_ERROR;
+    parts_[s].assign(deflated.data(), deflated.data() + zs.total_out);
+}
+
+std::vector<std::uint8_t> PngStrips::finish(bool srgb, const ImageMetadata& metadata) {
+    // The strips not encoded yet (all of them when no rows were announced), in parallel.
+    tbb::parallel_for(std::size_t{0}, count_, [&](std::size_t s) {
+        if (!claimed_[s].exchange(true, std::memory_order_acq_rel)) encode(s);
+    });
+    return assemble(srgb, metadata);
+}
+
 std::vector<std::uint8_t> encode_png(const PngRows& rows, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options) {
-    const std::size_t row = static_cast<std::size_t>(width) * 3, line = row + 1;
+    PngStrips strips(rows, width, height, options);
+    return strips.finish(srgb, metadata);
+}
+
+std::vector<std::uint8_t> PngStrips::assemble(bool srgb, const ImageMetadata& metadata) const {
+    const int width = width_, height = height_;
+    const std::size_t line = line_, strips = count_, strip_rows = strip_rows_;
     const auto h = static_cast<std::size_t>(height);
-    const std::size_t strip_rows = png_strip_rows(width);
-    const std::size_t strips = (h + strip_rows - 1) / strip_rows;
-    std::vector<std::vector<std::uint8_t>> parts(strips);
-    std::vector<uLong> adlers(strips);
-    std::vector<int> status(strips, Z_OK);
-    // Each strip is made whole by one task: its rows (and the few before it that its dictionary
-    // covers) produced, filtered and deflated in buffers the thread keeps, so that nothing the
-    // size of the image is allocated or touched.
-    tbb::parallel_for(std::size_t{0}, strips, [&](std::size_t s) {
-        const std::size_t y0 = s * strip_rows, y1 = std::min(h, y0 + strip_rows);
-        const std::size_t dict = std::min<std::size_t>(32768, y0 * line);  // primed as one stream would be
-        const std::size_t r0 = (y0 * line - dict) / line;   // the first row the dictionary reaches into
-        // raw holds rows r0 - 1 .. y1 - 1, the first being the predictor of row r0 (zeros above
-        // the image).
-        thread_local std::vector<std::uint8_t> raw, filtered, deflated;
-        raw.resize((y1 - r0 + 1) * row);
-        filtered.resize((y1 - r0) * line);
-        if (r0 == 0) {
-            std::fill_n(raw.begin(), row, std::uint8_t{0});
-        } else {
-            rows(static_cast<int>(r0 - 1), raw.data());
-        }
-        for (std::size_t y = r0; y < y1; ++y) rows(static_cast<int>(y), &raw[(y - r0 + 1) * row]);
-        for (std::size_t y = r0; y < y1; ++y)
-            filter_row(&raw[(y - r0 + 1) * row], &raw[(y - r0) * row], row, options.filter, &filtered[(y - r0) * line]);
-        const std::uint8_t* begin = &filtered[(y0 - r0) * line];
-        const std::size_t size = (y1 - y0) * line;
-        adlers[s] = adler32_z(adler32_z(0, nullptr, 0), begin, size);
-        z_stream zs{};
-        if ((status[s] = deflateInit2(&zs, options.level, Z_DEFLATED, -15, 8, options.strategy)) != Z_OK) return;
-        if (dict > 0) deflateSetDictionary(&zs, begin - dict, static_cast<uInt>(dict));
-        deflated.resize(deflateBound(&zs, size) + 64);
-        zs.next_in = const_cast<Bytef*>(begin);
-        zs.avail_in = static_cast<uInt>(size);
-        zs.next_out = deflated.data();
-        zs.avail_out = static_cast<uInt>(deflated.size());
-        const bool last = s + 1 == strips;
-        const int r = deflate(&zs, last ? Z_FINISH : Z_SYNC_FLUSH);
-        status[s] = (last ? r == Z_STREAM_END : r == Z_OK && zs.avail_in == 0 && zs.avail_out > 0) ? Z_OK : Z_BUF_ERROR;
-        parts[s].assign(deflated.data(), deflated.data() + zs.total_out);
-        deflateEnd(&zs);
-    });
-    for (int st : status)
+    const auto& parts = parts_;
+    const auto& adlers = adlers_;
+    for (int st : status_)
         if (st != Z_OK) throw IoError(fmt::format("PNG encoding failed (zlib error {})", st));
     uLong adler = strips ? adlers[0] : adler32_z(0, nullptr, 0);
     for (std::size_t s = 1; s < strips; ++s) {

@@ -1,11 +1,13 @@
 #include "glint/render/render.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 
 #include "glint/render/progressive.h"
 #include "glint/samplers/sampler.h"
@@ -16,10 +18,13 @@ namespace {
 
 // One sample through each pixel centre, over 16x16 tiles in parallel; store(col, row, colours, n)
 // receives the colours of n pixels of a row from (col, row) on, scaled, each once.
+// With rows_done, the work is split into bands of whole rows instead of tiles, and
+// rows_done(y0, y1) is called once each band is stored.
 template <typename Store>
 RenderStats sweep(const Scene& scene, const Camera& camera, const Integrator& integrator,
                   const RenderOptions& options, int w, int h, Progress* progress,
-                  const std::atomic<bool>* cancel, Store&& store) {
+                  const std::atomic<bool>* cancel, Store&& store,
+                  const std::function<void(int, int)>& rows_done = {}) {
     const auto start = std::chrono::steady_clock::now();
     const int tile = std::max(1, options.tile_size);
     std::atomic<std::uint64_t> total_rays{0};
@@ -70,8 +75,17 @@ RenderStats sweep(const Scene& scene, const Camera& camera, const Integrator& in
     const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, h, tile, 0, w, tile), render_tile,
-                          tbb::simple_partitioner());
+        if (!rows_done) {
+            tbb::parallel_for(tbb::blocked_range2d<int>(0, h, tile, 0, w, tile), render_tile,
+                              tbb::simple_partitioner());
+            return;
+        }
+        // Bands of about 64 tiles' pixels (at least one row), tiled across in the same way.
+        const int band = std::clamp(tile * tile * 64 / std::max(1, w), 1, h);
+        tbb::parallel_for(tbb::blocked_range<int>(0, h, band), [&](const tbb::blocked_range<int>& rows) {
+            render_tile(tbb::blocked_range2d<int>(rows.begin(), rows.end(), band, 0, w, w));
+            if (!(cancel && cancel->load(std::memory_order_relaxed))) rows_done(rows.begin(), rows.end());
+        }, tbb::simple_partitioner());
     });
 
     RenderStats stats;
@@ -116,14 +130,16 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
 
 RenderStats render_8bit(const Scene& scene, const Camera& camera, const Integrator& integrator,
                         const RenderOptions& options, const DisplaySettings& display, int width,
-                        int height, std::uint8_t* rgb, Progress* progress, const std::atomic<bool>* cancel) {
+                        int height, std::uint8_t* rgb, Progress* progress, const std::atomic<bool>* cancel,
+                        const std::function<void(int, int)>& rows_done) {
     static_assert(sizeof(Color) == 3 * sizeof(float));
     return sweep(scene, camera, integrator, options, width, height, progress, cancel,
                  [&](int col, int row, const Color* colors, int n) {
                      const std::size_t at = (static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
                                              static_cast<std::size_t>(col)) * 3;
                      encode_8bit(&colors->r, static_cast<std::size_t>(n) * 3, rgb + at, display);
-                 });
+                 },
+                 rows_done);
 }
 
 }  // namespace glint

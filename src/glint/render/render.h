@@ -4,6 +4,7 @@
 // for any thread count and any tile schedule.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
 #include "glint/cameras/camera.h"
 #include "glint/film/film.h"
@@ -46,10 +47,13 @@ RenderStats render(const Scene& scene, const Camera& camera, const Integrator& i
 
 /// The one-sample sweep of render() (spp 1, no AOVs) straight to 8-bit display codes, for PNG
 /// and PPM output: rgb (width x height x 3 bytes, rows top first) receives encode_8bit of what
-/// render() would put in the film, with no float film written and read in between.
+/// render() would put in the film, with no float film written and read in between. With
+/// rows_done, the image is rendered in bands of whole rows, and rows_done(y0, y1) is called
+/// (on the thread that rendered them) as each band is complete: for encoding while rendering.
 RenderStats render_8bit(const Scene& scene, const Camera& camera, const Integrator& integrator,
                         const RenderOptions& options, const DisplaySettings& display, int width,
                         int height, std::uint8_t* rgb, Progress* progress = nullptr,
-                        const std::atomic<bool>* cancel = nullptr);
+                        const std::atomic<bool>* cancel = nullptr,
+                        const std::function<void(int, int)>& rows_done = {});
 
 }  // namespace glint
