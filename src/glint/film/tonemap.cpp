@@ -25,6 +25,9 @@ float tone_curve(float v, ToneCurve curve) {
 std::uint8_t encode_8bit(float v, const DisplaySettings& display) {
     if (!(v > 0)) return 0;  // also catches NaN
     if (display.exposure != 0) v *= std::exp2(display.exposure);
+    // Saturate before the curve: Reinhard's and ACES's ratios are inf/inf = NaN at infinity (a
+    // float's maximum overflows there too), and every curve is at its top long before 1e6.
+    v = v < 1e6f ? v : 1e6f;
     v = std::min(tone_curve(v, display.curve), 1.0f);
     if (display.encoding == Encoding::kSrgb) v = srgb_encode(v);
     return static_cast<std::uint8_t>(v * 255.0f + 0.5f);  // v in [0, 1]: round half up

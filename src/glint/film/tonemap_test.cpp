@@ -83,6 +83,12 @@ TEST(Tonemap, ArrayFormGivesTheScalarCodes) {
             for (const float exposure : {0.0f, 1.0f, -2.5f, 200.0f}) {
                 const DisplaySettings d{e, c, exposure};
                 encode_8bit(values.data(), values.size(), codes.data(), d);
+                // Independently of either form: infinity and the largest float saturate, NaN and
+                // negatives are black (UBSan caught the curves' inf/inf once).
+                EXPECT_EQ(encode_8bit(std::numeric_limits<float>::infinity(), d), 255);
+                EXPECT_EQ(encode_8bit(std::numeric_limits<float>::max(), d), 255);
+                EXPECT_EQ(encode_8bit(std::numeric_limits<float>::quiet_NaN(), d), 0);
+                EXPECT_EQ(encode_8bit(-1.0f, d), 0);
                 for (std::size_t i = 0; i < values.size(); ++i)
                     ASSERT_EQ(codes[i], encode_8bit(values[i], d)) << values[i] << " exposure " << exposure;
             }
