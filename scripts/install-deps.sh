@@ -18,6 +18,7 @@ packages=(
   libembree-dev            # the Embree backend (--accel embree) and its benchmark
   libfmt-dev               # formatting
   libopenvdb-dev libboost-dev  # grid media (smoke, clouds) read from .vdb files (its headers need Boost)
+  libopenmpi-dev openmpi-bin   # distributed rendering (mpirun -np N glint render), and its tests
   zlib1g-dev               # gzip-compressed PLY meshes (.ply.gz, as pbrt-v4 scenes ship them)
   python3                  # scripts/make_gltf_scene.py (the glTF test scene)
   libgtest-dev libgmock-dev

@@ -1,4 +1,5 @@
 // glint: the command line. The only place that prints diagnostics and chooses an exit status.
+#include <sched.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "glint/demo_scene.h"
 #include "glint/film/film.h"
@@ -29,6 +31,7 @@
 #include "glint/io/image_io.h"
 #include "glint/io/scene_writer.h"
 #include "glint/io/scene_yaml.h"
+#include "glint/render/distributed.h"
 #include "glint/render/progressive.h"
 #include "glint/render/ray_bench.h"
 #include "glint/render/render.h"
@@ -49,6 +52,8 @@ struct RenderArgs {
     std::string time, checkpoint, checkpoint_every = "5m", resume, display;
     std::optional<double> noise_threshold;
     std::optional<long long> min_spp;
+    // Distributed rendering (mpirun).
+    double rank_timeout = 60;
 };
 
 // Exit status of a render stopped by SIGINT or SIGTERM (the image of the completed passes, if
@@ -60,6 +65,10 @@ constexpr int kExitInterrupted = 3;
 // the handler allocates, locks or throws.
 std::atomic<bool> g_stop{false};
 volatile std::sig_atomic_t g_signal = 0;
+// An MPI job's messages (distributed.h), when mpirun started this process; g_ranks_stopped once
+// rank 0 has told the other ranks to stop.
+std::unique_ptr<glint::Transport> g_cluster;
+bool g_ranks_stopped = false;
 char g_temporary[2][4096];  // the image's and the checkpoint's temporary files, or empty
 static_assert(std::atomic<bool>::is_always_lock_free);
 
@@ -85,6 +94,13 @@ void install_signal_handlers() {
     sa.sa_flags = SA_RESTART;
     ::sigaction(SIGINT, &sa, nullptr);
     ::sigaction(SIGTERM, &sa, nullptr);
+    // mpirun ends the job on SIGINT and SIGTERM but forwards SIGUSR1 to every rank: under MPI it
+    // is the way to stop a distributed render cleanly (rank 0 acts on it, the others ignore it).
+    if (g_cluster) ::sigaction(SIGUSR1, &sa, nullptr);
+}
+
+const char* signal_name(int sig) {
+    return sig == SIGTERM ? "SIGTERM" : sig == SIGUSR1 ? "SIGUSR1" : "SIGINT";
 }
 
 std::optional<glint::AccelKind> parse_accel(const std::string& name) {
@@ -312,15 +328,10 @@ std::string spp_text(const glint::ProgressiveRender& r) {
                        s.empty() ? 0 : *std::max_element(s.begin(), s.end()), 100 * r.converged_fraction());
 }
 
-int run_render(const RenderArgs& args) {
+// The scene and every option that changes the image: what each rank of a distributed render
+// prepares alike.
+glint::RenderJob prepare_job(const RenderArgs& args) {
     glint::RenderJob job = load_job(args);
-    const std::filesystem::path out = output_path(args, job);
-    glint::check_writable(out);  // fail before rendering, not after
-    if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
-        throw glint::IoError(fmt::format(
-            "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
-            out.string()));
-    }
     if (args.noise_threshold) {
         if (!(*args.noise_threshold > 0) || !std::isfinite(*args.noise_threshold))
             throw glint::IoError(fmt::format("--noise-threshold {}: must be a number above 0 (e.g. 0.01)",
@@ -334,6 +345,53 @@ int run_render(const RenderArgs& args) {
             throw glint::IoError(fmt::format("--min-spp {}: must be between 1 and the spp ({})", *args.min_spp,
                                              job.options.spp));
         job.options.min_spp = static_cast<int>(*args.min_spp);
+    }
+    if (g_cluster && g_cluster->size() > 1 && !args.threads) {
+        // The cores this rank may use (mpirun may have bound it to some), shared with the other
+        // ranks on this host unless it was bound.
+        cpu_set_t set;
+        int allowed = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+        const int cores = allowed;
+        if (sched_getaffinity(0, sizeof set, &set) == 0) allowed = std::max(1, CPU_COUNT(&set));
+        job.options.threads = allowed < cores ? allowed : std::max(1, cores / glint::local_ranks());
+    }
+    return job;
+}
+
+// A rank other than 0 of a distributed render: loads what rank 0 loads and renders the tiles it
+// is given; what fails here is sent to rank 0, which reports it.
+int run_rank(const RenderArgs& args) {
+    std::optional<glint::RenderJob> job;
+    std::unique_ptr<glint::ProgressiveRender> render;
+    std::uint64_t fingerprint = 0;
+    std::string error;
+    try {
+        job.emplace(prepare_job(args));
+        render = std::make_unique<glint::ProgressiveRender>(job->scene, job->camera, *job->integrator, job->options,
+                                                            job->film_width, job->film_height, job->aovs);
+        fingerprint = glint::render_fingerprint(*job, image_settings(args, *job));
+    } catch (const glint::SceneError& e) {
+        std::string what = e.what();
+        while (!what.empty() && what.back() == '\n') what.pop_back();
+        error = fmt::format("could not load the scene:\n{}", what);
+        render.reset();
+    } catch (const std::exception& e) {
+        error = e.what();
+        render.reset();
+    }
+    return glint::serve(*g_cluster, render.get(), fingerprint, job ? job->options.threads : 1, error);
+}
+
+int run_render(const RenderArgs& args) {
+    const bool distributed = g_cluster && g_cluster->size() > 1;
+    if (distributed && g_cluster->rank() > 0) return run_rank(args);
+    glint::RenderJob job = prepare_job(args);
+    const std::filesystem::path out = output_path(args, job);
+    glint::check_writable(out);  // fail before rendering, not after
+    if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
+        throw glint::IoError(fmt::format(
+            "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
+            out.string()));
     }
     const double budget = args.time.empty() ? -1 : glint::parse_duration(args.time, "--time");
     const double every = glint::parse_duration(args.checkpoint_every, "--checkpoint-every");
@@ -361,14 +419,14 @@ int run_render(const RenderArgs& args) {
     };
     const auto interrupted_status = [&args](const std::string& what) {
         if (!args.quiet)
-            fmt::print(stderr, "glint: interrupted by {}: {}\n", g_signal == SIGTERM ? "SIGTERM" : "SIGINT", what);
+            fmt::print(stderr, "glint: interrupted by {}: {}\n", signal_name(g_signal), what);
         return kExitInterrupted;
     };
 
     // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums;
     // for PNG and PPM straight to 8-bit codes, with no float film (a 1080p film is 25 MB of
     // memory the kernel must clear and the encoder read back: docs/architecture.md).
-    if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty()) {
+    if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty() && !distributed) {
         if (glint::image_format_for(out) != glint::ImageFormat::kExr) {
             // PNG strips are encoded by the render's threads as their rows come in.
             glint::Image8Writer writer(out, w, h, job.display.encoding == glint::Encoding::kSrgb);
@@ -396,8 +454,14 @@ int run_render(const RenderArgs& args) {
     glint::ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.aovs);
     if (render.adaptive() && glint::image_format_for(out) == glint::ImageFormat::kExr) film.enable_sample_counts();
     std::uint64_t fingerprint = 0;
-    if (!checkpoint.empty()) {
+    if (!checkpoint.empty() || distributed) {
         fingerprint = glint::render_fingerprint(job, image_settings(args, job));
+    }
+    std::optional<glint::Coordinator> cluster;
+    if (distributed) {
+        const int threads = job.options.threads > 0 ? job.options.threads
+                                                    : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+        cluster.emplace(*g_cluster, render, glint::ClusterOptions{args.rank_timeout, threads}, fingerprint);
     }
     if (!args.resume.empty()) {
         glint::Checkpoint c = glint::read_checkpoint(args.resume);
@@ -448,7 +512,8 @@ int run_render(const RenderArgs& args) {
         progress.pass_started({render.passes() + 1, render.spp_done(), render.spp_target(),
                                render.adaptive() ? render.converged_fraction() : -1, left,
                                render.remaining_samples()});
-        if (!render.run_pass(n, &g_stop, &progress)) {  // the pass in flight is abandoned
+        const bool done = cluster ? cluster->run_pass(n, &g_stop, &progress) : render.run_pass(n, &g_stop, &progress);
+        if (!done) {  // the pass in flight is abandoned
             interrupted = true;
             break;
         }
@@ -457,6 +522,11 @@ int run_render(const RenderArgs& args) {
             if (!display->send(view_name, film)) note(display->note());
         }
         if (!checkpoint.empty() && seconds_since(last_checkpoint) >= every && !render.finished()) save();
+    }
+    if (cluster) {
+        g_ranks_stopped = true;  // by finish, even if it throws
+        const std::vector<glint::RankReport> reports = cluster->finish();
+        if (!args.quiet) fmt::print(stderr, "{}", glint::format_reports(reports));
     }
     if (render.passes() == 0) {
         if (interrupted) return interrupted_status("no pass completed; nothing written");
@@ -513,6 +583,10 @@ int main(int argc, char** argv) {
                        "samples averaged over the pixel (anti-aliasing, and the path tracer's "
                        "noise falls as 1/sqrt(spp))");
     render->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
+    render->add_option("--rank-timeout", args.rank_timeout,
+                       "Under mpirun: seconds after which a rank's unanswered tiles are given to another "
+                       "(default 60; at least four times the tiles' expected time)")
+        ->check(CLI::PositiveNumber);
     render->add_option("--seed", args.seed, "Sampler seed (overrides the scene)");
     render->add_option("--max-depth", args.max_depth,
                        "Path length: whitted's reflection depth (the camera ray is depth 0), "
@@ -595,7 +669,24 @@ int main(int argc, char** argv) {
         return app.exit(e);
     }
 
+    // Under mpirun, rank 0 stops the other ranks however it leaves (a render, an error), and
+    // every rank ends MPI before it exits.
+    struct EndCluster {
+        ~EndCluster() {
+            if (!g_cluster) return;
+            if (g_cluster->rank() == 0 && !g_ranks_stopped) glint::stop_ranks(*g_cluster);
+            g_cluster.reset();
+        }
+    } end_cluster;
     try {
+        if (render->parsed() && glint::launched_by_mpi()) {
+            std::signal(SIGUSR1, SIG_IGN);  // mpirun forwards it to every rank; rank 0 acts on it
+            g_cluster = glint::mpi_transport(argc, argv);
+            // One voice: the other ranks' failures reach rank 0 as messages and are printed there.
+            if (g_cluster->rank() > 0 && !std::getenv("GLINT_RANK_STDERR")) {
+                if (std::FILE* null = std::fopen("/dev/null", "w")) ::dup2(::fileno(null), STDERR_FILENO);
+            }
+        }
         for (const std::string& l : limits) glint::set_limit_from_text(l);
         if (restrict_paths) {
             const std::filesystem::path dir = std::filesystem::path(args.scene).parent_path();

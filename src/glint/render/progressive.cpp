@@ -1,6 +1,6 @@
 #include "glint/render/progressive.h"
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -237,58 +238,194 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
     return std::max(0, last - first);
 }
 
+int ProgressiveRender::tile_count() const {
+    const int tile = std::max(1, options_.tile_size);
+    const int tx = (state_.width + tile - 1) / tile, ty = (state_.height + tile - 1) / tile;
+    return tx * ty;
+}
+
+ProgressiveRender::TileRect ProgressiveRender::tile_rect(int t) const {
+    const int tile = std::max(1, options_.tile_size);
+    const int tx = (state_.width + tile - 1) / tile;
+    const int x0 = (t % tx) * tile, y0 = (t / tx) * tile;
+    return {x0, y0, std::min(state_.width, x0 + tile), std::min(state_.height, y0 + tile)};
+}
+
+int ProgressiveRender::begin_pass(int n) {
+    n = std::max(0, std::min(n, state_.spp_target - state_.spp_done));
+    if (next_.pixels() != state_.pixels() || next_.sum.size() != state_.sum.size()) {
+        next_ = state_;  // same shape: the buffer the pass writes
+    }
+    pass_n_ = n;
+    return n;
+}
+
+std::uint64_t ProgressiveRender::render_tile(int t, RayCounter& counter) {
+    const TileRect r = tile_rect(t);
+    const auto w = static_cast<std::size_t>(state_.width);
+    std::uint64_t taken = 0;
+    for (int row = r.y0; row < r.y1; ++row) {
+        for (int col = r.x0; col < r.x1; ++col) {
+            const std::size_t i = static_cast<std::size_t>(row) * w + static_cast<std::size_t>(col);
+            // A converged pixel takes no samples: it is carried over as it is.
+            const bool active = !state_.adaptive || state_.active[i];
+            taken += static_cast<std::uint64_t>(sample_pixel(i, col, row, active ? pass_n_ : 0, counter));
+        }
+    }
+    return taken;
+}
+
+namespace {
+
+// Every plane the state's flags call for, in a fixed order, as f(vector&).
+template <typename State, typename F>
+void each_plane(State& s, F&& f) {
+    f(s.sum);
+    f(s.weight);
+    if (s.adaptive) {
+        f(s.odd_sum);
+        f(s.odd_weight);
+        f(s.samples);
+        f(s.active);
+    }
+    if (s.aovs) {
+        f(s.albedo);
+        f(s.normal);
+        f(s.depth);
+        f(s.hit_weight);
+    }
+}
+
+template <typename T>
+constexpr std::size_t element_size(const std::vector<T>&) {
+    return sizeof(T);
+}
+
+}  // namespace
+
+std::size_t ProgressiveRender::tile_bytes(int t) const {
+    const TileRect r = tile_rect(t);
+    const auto pixels = static_cast<std::size_t>(r.x1 - r.x0) * static_cast<std::size_t>(r.y1 - r.y0);
+    std::size_t bytes = 0;
+    each_plane(next_, [&](const auto& plane) { bytes += pixels * element_size(plane); });
+    return bytes;
+}
+
+void ProgressiveRender::pack_tile(int t, std::vector<std::uint8_t>& out) const {
+    const TileRect r = tile_rect(t);
+    const auto w = static_cast<std::size_t>(state_.width);
+    const auto cols = static_cast<std::size_t>(r.x1 - r.x0);
+    out.reserve(out.size() + tile_bytes(t));
+    each_plane(next_, [&](const auto& plane) {
+        const std::size_t size = element_size(plane);
+        for (int row = r.y0; row < r.y1; ++row) {
+            const auto* p = reinterpret_cast<const std::uint8_t*>(&plane[static_cast<std::size_t>(row) * w +
+                                                                         static_cast<std::size_t>(r.x0)]);
+            out.insert(out.end(), p, p + cols * size);
+        }
+    });
+}
+
+void ProgressiveRender::unpack_tile(int t, const std::uint8_t* data, std::size_t size) {
+    if (size != tile_bytes(t))
+        throw std::runtime_error("tile " + std::to_string(t) + ": " + std::to_string(size) + " bytes, not " +
+                                 std::to_string(tile_bytes(t)));
+    const TileRect r = tile_rect(t);
+    const auto w = static_cast<std::size_t>(state_.width);
+    const auto cols = static_cast<std::size_t>(r.x1 - r.x0);
+    each_plane(next_, [&](auto& plane) {
+        const std::size_t bytes = cols * element_size(plane);
+        for (int row = r.y0; row < r.y1; ++row) {
+            std::memcpy(&plane[static_cast<std::size_t>(row) * w + static_cast<std::size_t>(r.x0)], data, bytes);
+            data += bytes;
+        }
+    });
+}
+
+void ProgressiveRender::end_pass(double seconds, std::uint64_t rays, std::uint64_t pixel_samples) {
+    std::swap(state_, next_);
+    state_.spp_done = next_.spp_done + pass_n_;
+    state_.passes = next_.passes + 1;
+    state_.seconds = next_.seconds + seconds;
+    state_.rays = next_.rays + rays;
+    if (pixel_samples > 0) seconds_per_sample_ = seconds / static_cast<double>(pixel_samples);
+    if (state_.adaptive && state_.spp_done >= min_spp_) update_convergence();
+}
+
+namespace {
+
+struct StateHeader {
+    std::int32_t width, height, spp_target, spp_done, passes, flags;
+    double seconds;
+    std::uint64_t rays;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> ProgressiveRender::pack_state() const {
+    const StateHeader h{state_.width, state_.height, state_.spp_target, state_.spp_done, state_.passes,
+                        (state_.adaptive ? 1 : 0) | (state_.aovs ? 2 : 0), state_.seconds, state_.rays};
+    std::vector<std::uint8_t> out(sizeof h);
+    std::memcpy(out.data(), &h, sizeof h);
+    each_plane(state_, [&](const auto& plane) {
+        const auto* p = reinterpret_cast<const std::uint8_t*>(plane.data());
+        out.insert(out.end(), p, p + plane.size() * element_size(plane));
+    });
+    return out;
+}
+
+void ProgressiveRender::unpack_state(const std::uint8_t* data, std::size_t size) {
+    StateHeader h{};
+    if (size < sizeof h) throw std::runtime_error("a render state of " + std::to_string(size) + " bytes");
+    std::memcpy(&h, data, sizeof h);
+    if (h.width != state_.width || h.height != state_.height || h.spp_target != state_.spp_target ||
+        h.flags != ((state_.adaptive ? 1 : 0) | (state_.aovs ? 2 : 0)) || h.spp_done < 0 || h.spp_done > h.spp_target)
+        throw std::runtime_error("a render state of another render (size, spp or flags differ)");
+    std::size_t want = sizeof h;
+    each_plane(state_, [&](const auto& plane) { want += plane.size() * element_size(plane); });
+    if (size != want)
+        throw std::runtime_error("a render state of " + std::to_string(size) + " bytes, not " + std::to_string(want));
+    state_.spp_done = h.spp_done;
+    state_.passes = h.passes;
+    state_.seconds = h.seconds;
+    state_.rays = h.rays;
+    data += sizeof h;
+    each_plane(state_, [&](auto& plane) {
+        const std::size_t bytes = plane.size() * element_size(plane);
+        std::memcpy(plane.data(), data, bytes);
+        data += bytes;
+    });
+}
+
 bool ProgressiveRender::run_pass(int n, const std::atomic<bool>* cancel, Progress* progress) {
     if (n <= 0 || finished()) return true;
     if (state_.adaptive && n != next_pass_size())
         throw std::invalid_argument("an adaptive render's passes follow its schedule");
-    n = std::min(n, state_.spp_target - state_.spp_done);
+    begin_pass(n);
     const auto start = std::chrono::steady_clock::now();
-    if (next_.pixels() != state_.pixels() || next_.sum.size() != state_.sum.size()) {
-        next_ = state_;  // same shape: the buffer the pass writes
-    }
-    const int w = state_.width, h = state_.height;
-    const int tile = std::max(1, options_.tile_size);
     std::atomic<bool> skipped{false};
     std::atomic<std::uint64_t> rays{0}, pixel_samples{0};
-
-    auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) {
-            skipped.store(true, std::memory_order_relaxed);
-            return;
-        }
-        RayCounter counter;
-        std::uint64_t taken = 0;
-        for (int row = r.rows().begin(); row < r.rows().end(); ++row) {
-            for (int col = r.cols().begin(); col < r.cols().end(); ++col) {
-                const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
-                                      static_cast<std::size_t>(col);
-                // A converged pixel takes no samples: it is carried over as it is.
-                const bool active = !state_.adaptive || state_.active[i];
-                taken += static_cast<std::uint64_t>(sample_pixel(i, col, row, active ? n : 0, counter));
-            }
-        }
-        rays.fetch_add(counter.rays, std::memory_order_relaxed);
-        pixel_samples.fetch_add(taken, std::memory_order_relaxed);
-        if (progress) progress->tile_done(taken, counter.rays);
-    };
 
     const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, h, tile, 0, w, tile), render_tile,
-                          tbb::simple_partitioner());
+        tbb::parallel_for(tbb::blocked_range<int>(0, tile_count(), 1), [&](const tbb::blocked_range<int>& r) {
+            for (int t = r.begin(); t < r.end(); ++t) {
+                if (cancel && cancel->load(std::memory_order_relaxed)) {
+                    skipped.store(true, std::memory_order_relaxed);
+                    return;
+                }
+                RayCounter counter;
+                const std::uint64_t taken = render_tile(t, counter);
+                rays.fetch_add(counter.rays, std::memory_order_relaxed);
+                pixel_samples.fetch_add(taken, std::memory_order_relaxed);
+                if (progress) progress->tile_done(taken, counter.rays);
+            }
+        }, tbb::simple_partitioner());
     });
     if (skipped.load()) return false;  // the state is still the previous pass's
-
-    std::swap(state_, next_);
-    state_.spp_done = next_.spp_done + n;
-    state_.passes = next_.passes + 1;
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    state_.seconds = next_.seconds + seconds;
-    state_.rays = next_.rays + rays.load();
-    if (pixel_samples.load() > 0) seconds_per_sample_ = seconds / static_cast<double>(pixel_samples.load());
-    if (state_.adaptive && state_.spp_done >= min_spp_) update_convergence();
+    end_pass(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), rays.load(),
+             pixel_samples.load());
     return true;
 }
 

@@ -16,6 +16,7 @@
 // pixels next to one still noisy keep sampling. Decisions are taken at pass boundaries on a
 // fixed schedule of passes, so they too are the same however the run was cut.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -103,7 +104,35 @@ public:
     /// sample counts).
     void resolve(Film& film) const;
 
+    // A pass in pieces, for spreading one over processes (distributed.h); run_pass is
+    // begin_pass, render_tile for every tile, end_pass. Any split of the tiles gives the same state.
+
+    /// The pass's tiles: tile_size squares in rows, the last row and column cut short.
+    int tile_count() const;
+    /// Starts a pass of n samples (cut to what the target leaves) and returns n; the state is
+    /// unchanged until end_pass.
+    int begin_pass(int n);
+    /// Renders tile t of the pass begun (thread-safe for distinct tiles); returns the pixel
+    /// samples taken.
+    std::uint64_t render_tile(int t, RayCounter& counter);
+    /// Tile t's result in the pass begun, every plane's pixels one plane after another, appended
+    /// to `out`; unpack_tile puts such bytes (from another process) in place of rendering it.
+    void pack_tile(int t, std::vector<std::uint8_t>& out) const;
+    void unpack_tile(int t, const std::uint8_t* data, std::size_t size);
+    std::size_t tile_bytes(int t) const;
+    /// Makes the pass begun the state, with the time it took and what it traced.
+    void end_pass(double seconds, std::uint64_t rays, std::uint64_t pixel_samples);
+    /// The state between passes as bytes, and back: how the processes of a distributed render
+    /// start each pass from the same sums. unpack_state throws std::runtime_error on bytes of
+    /// another shape.
+    std::vector<std::uint8_t> pack_state() const;
+    void unpack_state(const std::uint8_t* data, std::size_t size);
+
 private:
+    struct TileRect {
+        int x0, y0, x1, y1;
+    };
+    TileRect tile_rect(int t) const;
     int sample_pixel(std::size_t i, int col, int row, int n, RayCounter& counter);
     void update_convergence();
 
@@ -116,6 +145,7 @@ private:
     float threshold_ = 0;  ///< Cycles' internal threshold
     ProgressiveState state_, next_;
     double seconds_per_sample_ = 0;  ///< measured: one pixel sample, the whole machine
+    int pass_n_ = 0;                 ///< the samples of the pass begun
 };
 
 }  // namespace glint

@@ -1,0 +1,513 @@
+#include "glint/render/distributed.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "glint/io/build.h"
+#include "glint/io/module.h"
+#include "glint/render/mpi_module.h"
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Message tags.
+enum : int {
+    kPass = 1,    // rank 0 -> rank: PassHeader, then the state before the pass
+    kTiles = 2,   // rank 0 -> rank: u32 pass, u32 count, i32 tiles[count]
+    kStop = 3,    // rank 0 -> rank: nothing
+    kResult = 4,  // rank -> rank 0: ResultHeader, then per tile TileEntry and its bytes (0 tiles: a request)
+    kBye = 5,     // rank -> rank 0: ByeHeader, then the host name
+    kFail = 6,    // rank -> rank 0: what went wrong, as text
+};
+
+struct PassHeader {
+    std::uint32_t pass;
+    std::int32_t n;
+    std::uint64_t fingerprint;
+};
+struct ResultHeader {
+    std::uint32_t pass, count;
+    std::int32_t threads;
+    std::int32_t pad;
+};
+struct TileEntry {
+    std::int32_t tile, pad;
+    std::uint64_t rays, samples;
+};
+struct ByeHeader {
+    std::int32_t threads, pad;
+    std::uint64_t tiles, samples;
+    double busy, wall;
+};
+
+template <typename T>
+void put(std::vector<std::uint8_t>& out, const T& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    out.insert(out.end(), p, p + sizeof(T));
+}
+
+// Reads a T at `at`, or throws: a message is checked like any input.
+template <typename T>
+T get(const Message& m, std::size_t& at) {
+    if (m.bytes.size() - std::min(at, m.bytes.size()) < sizeof(T))
+        throw IoError(fmt::format("a message from rank {} ends early (tag {}, {} bytes)", m.source, m.tag, m.bytes.size()));
+    T v;
+    std::memcpy(&v, m.bytes.data() + at, sizeof(T));
+    at += sizeof(T);
+    return v;
+}
+
+std::string host_name() {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0) return "?";
+    return name;
+}
+
+// Waits for one message, sleeping between polls so that a waiting rank leaves its core to the
+// ranks that render (MPI's own blocking receive spins).
+Message wait_message(Transport& t) {
+    Message m;
+    while (!t.receive(m)) std::this_thread::sleep_for(std::chrono::microseconds(100));
+    return m;
+}
+
+// The test-only fault hook: GLINT_TEST_STALL=R:S makes rank R sleep S seconds before returning
+// its first chunk, as a stalled node would.
+double stall_seconds(int rank) {
+    const char* v = std::getenv("GLINT_TEST_STALL");
+    if (!v) return 0;
+    int r = -1;
+    double s = 0;
+    if (std::sscanf(v, "%d:%lf", &r, &s) != 2 || r != rank) return 0;
+    return s;
+}
+
+}  // namespace
+
+bool launched_by_mpi() {
+    return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_SIZE");
+}
+
+int local_ranks() {
+    for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"}) {
+        if (const char* v = std::getenv(name)) {
+            const int n = std::atoi(v);
+            if (n > 0) return n;
+        }
+    }
+    return 1;
+}
+
+std::unique_ptr<Transport> mpi_transport(int& argc, char**& argv) {
+    void* entry;
+    try {
+        entry = module_entry("mpi");
+    } catch (const IoError& e) {
+        throw IoError(fmt::format("started by mpirun, but this glint cannot use MPI ({}); build it with "
+                                  "Open MPI installed (libopenmpi-dev) and -DGLINT_MPI=ON",
+                                  e.what()));
+    }
+    const auto* m = reinterpret_cast<const MpiModule* (*)()>(entry)();
+    if (m->abi != kMpiModuleAbi) throw IoError("libglint_mpi.so is from another build of glint");
+    try {
+        return std::unique_ptr<Transport>(m->create(&argc, &argv));
+    } catch (const std::exception& e) {
+        throw IoError(e.what());
+    }
+}
+
+std::string format_reports(const std::vector<RankReport>& reports) {
+    std::uint64_t tiles = 0;
+    for (const RankReport& r : reports) tiles += r.tiles;
+    std::string s = "rank  host                  threads   tiles   share   busy (s)   idle (s)\n";
+    for (const RankReport& r : reports) {
+        s += fmt::format("{:>4}  {:<20.20}  {:>7}  {:>6}  {:>5.1f} %  {:>9.2f}  {:>9.2f}\n", r.rank, r.host,
+                         r.threads, r.tiles, tiles ? 100.0 * static_cast<double>(r.tiles) / static_cast<double>(tiles) : 0.0,
+                         r.busy, r.idle);
+    }
+    return s;
+}
+
+// ---- rank 0 ----
+
+struct Coordinator::Impl {
+    Transport& transport;
+    ProgressiveRender& render;
+    ClusterOptions options;
+    std::uint64_t fingerprint;
+    Clock::time_point start = Clock::now();
+    std::uint32_t pass = 0;
+    std::vector<RankReport> reports;
+    std::vector<int> threads;  // each rank's, as it reported (1 until then)
+    bool finished = false;
+
+    // The pass under way.
+    int n = 0, tiles = 0;
+    std::unique_ptr<std::atomic<std::uint8_t>[]> owner;  // 1: a result is in (or rank 0 is rendering it)
+    std::atomic<int> done{0};
+    std::atomic<std::uint64_t> rays{0}, samples{0};
+    std::mutex mutex;  // guards the queue, the chunks out and the waiting ranks
+    std::deque<int> queue;
+    struct Chunk {
+        std::vector<int> tiles;
+        Clock::time_point issued;
+    };
+    std::vector<std::optional<Chunk>> out;  // per rank
+    std::vector<int> waiting;               // ranks that asked when nothing was left
+    double seconds_per_tile_sample = 0;     // one thread; measured
+    std::atomic<bool> stop_local{false};
+    std::atomic<std::uint64_t> local_tiles{0};
+    std::atomic<double> local_busy{0};
+
+    Impl(Transport& t, ProgressiveRender& r, const ClusterOptions& o, std::uint64_t f)
+        : transport(t), render(r), options(o), fingerprint(f), reports(static_cast<std::size_t>(t.size())),
+          threads(static_cast<std::size_t>(t.size()), 1), out(static_cast<std::size_t>(t.size())) {
+        threads[0] = std::max(1, o.threads);
+        for (int i = 0; i < t.size(); ++i) reports[static_cast<std::size_t>(i)].rank = i;
+    }
+
+    // A chunk for a rank of `k` threads: guided, so that chunks shrink as the queue does and the
+    // pass ends together on every rank; at least one tile per thread. Caller holds the mutex.
+    std::vector<int> take(int k) {
+        int all = 0;
+        for (int t : threads) all += t;
+        const auto left = static_cast<int>(queue.size());
+        const int size = std::min(left, std::max(k, (left + 2 * all - 1) / (2 * all) * k));
+        std::vector<int> chunk(queue.begin(), queue.begin() + size);
+        queue.erase(queue.begin(), queue.begin() + size);
+        return chunk;
+    }
+
+    void send_chunk(int rank, std::vector<int> chunk) {
+        std::vector<std::uint8_t> bytes;
+        put(bytes, pass);
+        put(bytes, static_cast<std::uint32_t>(chunk.size()));
+        for (int t : chunk) put(bytes, static_cast<std::int32_t>(t));
+        out[static_cast<std::size_t>(rank)] = Chunk{std::move(chunk), Clock::now()};
+        transport.send(rank, kTiles, std::move(bytes));
+    }
+
+    // Hands the tiles of chunks out too long back to the queue (their late results still count
+    // if they come first), then serves the ranks waiting for work. Caller holds the mutex.
+    void reissue_and_serve() {
+        for (std::size_t r = 1; r < out.size(); ++r) {
+            if (!out[r]) continue;
+            const Chunk& c = *out[r];
+            const double expected = static_cast<double>(c.tiles.size()) * n * seconds_per_tile_sample /
+                                    std::max(1, threads[r]);
+            if (since(c.issued) <= std::max(options.timeout, 4 * expected)) continue;
+            for (int t : c.tiles)
+                if (!owner[static_cast<std::size_t>(t)].load()) queue.push_back(t);
+            out[r].reset();
+        }
+        while (!waiting.empty() && !queue.empty()) {
+            const int r = waiting.back();
+            waiting.pop_back();
+            send_chunk(r, take(threads[static_cast<std::size_t>(r)]));
+        }
+    }
+
+    void handle(const Message& m) {
+        const auto r = static_cast<std::size_t>(m.source);
+        if (m.source <= 0 || m.source >= transport.size()) return;
+        if (m.tag == kFail) {
+            throw IoError(fmt::format("rank {}: {}", m.source, std::string(m.bytes.begin(), m.bytes.end())));
+        }
+        if (m.tag != kResult) return;  // a rank's bye comes only after a stop
+        std::lock_guard lock(mutex);
+        std::size_t at = 0;
+        const auto h = get<ResultHeader>(m, at);
+        threads[r] = std::max(1, static_cast<int>(h.threads));
+        if (h.pass != pass) return;  // a stalled rank's result of a pass already over
+        std::uint64_t accepted = 0;
+        for (std::uint32_t i = 0; i < h.count; ++i) {
+            const auto e = get<TileEntry>(m, at);
+            if (e.tile < 0 || e.tile >= tiles) throw IoError(fmt::format("rank {} sent tile {}", m.source, e.tile));
+            const std::size_t size = render.tile_bytes(e.tile);
+            if (m.bytes.size() - at < size) throw IoError(fmt::format("rank {}: tile {} cut short", m.source, e.tile));
+            std::uint8_t expected = 0;
+            if (owner[static_cast<std::size_t>(e.tile)].compare_exchange_strong(expected, 1)) {
+                render.unpack_tile(e.tile, m.bytes.data() + at, size);
+                rays += e.rays;
+                samples += e.samples;
+                ++accepted;
+                RankReport& report = reports[r];
+                report.tiles += 1;
+                report.samples += e.samples;
+                done.fetch_add(1);
+                if (progress) progress->tile_done(e.samples, e.rays);
+            }
+            at += size;
+        }
+        if (out[r] && h.count > 0) out[r].reset();
+        if (queue.empty()) {
+            waiting.push_back(m.source);
+        } else {
+            send_chunk(m.source, take(threads[r]));
+        }
+    }
+
+    Progress* progress = nullptr;
+
+    // Rank 0's own rendering, on a thread of its own.
+    void render_locally(const std::atomic<bool>* cancel) {
+        tbb::task_arena arena(threads[0]);
+        for (;;) {
+            std::vector<int> chunk;
+            {
+                std::lock_guard lock(mutex);
+                chunk = take(threads[0]);
+            }
+            if (chunk.empty()) {
+                if (stop_local.load() || done.load() == tiles) return;
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                continue;
+            }
+            const auto t0 = Clock::now();
+            arena.execute([&] {
+                tbb::parallel_for(std::size_t{0}, chunk.size(), std::size_t{1}, [&](std::size_t i) {
+                    if (stop_local.load(std::memory_order_relaxed) || (cancel && cancel->load(std::memory_order_relaxed)))
+                        return;
+                    const int t = chunk[i];
+                    std::uint8_t expected = 0;
+                    if (!owner[static_cast<std::size_t>(t)].compare_exchange_strong(expected, 1)) return;
+                    RayCounter counter;
+                    const std::uint64_t taken = render.render_tile(t, counter);
+                    rays += counter.rays;
+                    samples += taken;
+                    local_tiles.fetch_add(1);
+                    done.fetch_add(1);
+                    if (progress) progress->tile_done(taken, counter.rays);
+                });
+            });
+            local_busy.store(local_busy.load() + since(t0));
+        }
+    }
+};
+
+Coordinator::Coordinator(Transport& transport, ProgressiveRender& render, const ClusterOptions& options,
+                         std::uint64_t fingerprint)
+    : impl_(std::make_unique<Impl>(transport, render, options, fingerprint)) {}
+
+Coordinator::~Coordinator() = default;
+
+bool Coordinator::run_pass(int n, const std::atomic<bool>* cancel, Progress* progress) {
+    Impl& s = *impl_;
+    s.n = s.render.begin_pass(n);
+    if (s.n <= 0) return true;
+    s.tiles = s.render.tile_count();
+    ++s.pass;
+    s.owner = std::make_unique<std::atomic<std::uint8_t>[]>(static_cast<std::size_t>(s.tiles));
+    for (int t = 0; t < s.tiles; ++t) s.owner[static_cast<std::size_t>(t)].store(0);
+    s.done = 0;
+    s.rays = 0;
+    s.samples = 0;
+    s.progress = progress;
+    s.stop_local = false;
+    {
+        std::lock_guard lock(s.mutex);
+        s.queue.clear();
+        for (int t = 0; t < s.tiles; ++t) s.queue.push_back(t);
+        for (auto& c : s.out) c.reset();
+        s.waiting.clear();
+    }
+    const auto start = Clock::now();
+    // The pass and the sums it starts from, to every rank; they ask for tiles when they have it.
+    std::vector<std::uint8_t> bytes;
+    put(bytes, PassHeader{s.pass, s.n, s.fingerprint});
+    const std::vector<std::uint8_t> state = s.render.pack_state();
+    bytes.insert(bytes.end(), state.begin(), state.end());
+    for (int r = 1; r < s.transport.size(); ++r) s.transport.send(r, kPass, bytes);
+
+    std::thread local([&s, cancel] { s.render_locally(cancel); });
+    struct Join {
+        Impl& s;
+        std::thread& t;
+        ~Join() {
+            s.stop_local = true;
+            if (t.joinable()) t.join();
+        }
+    } join{s, local};
+
+    bool cancelled = false;
+    while (s.done.load() < s.tiles) {
+        if (cancel && cancel->load()) {
+            cancelled = true;
+            break;
+        }
+        bool any = false;
+        Message m;
+        while (s.transport.receive(m)) {
+            any = true;
+            s.handle(m);
+        }
+        {
+            std::lock_guard lock(s.mutex);
+            s.reissue_and_serve();
+        }
+        if (!any) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    s.stop_local = true;
+    local.join();
+    if (cancelled) return false;
+    const double seconds = since(start);
+    std::uint64_t sampled = s.samples.load();
+    if (sampled > 0) {
+        double threads = 0;
+        for (int t : s.threads) threads += t;
+        s.seconds_per_tile_sample = seconds * threads / (static_cast<double>(s.tiles) * s.n);
+    }
+    s.render.end_pass(seconds, s.rays.load(), sampled);
+    return true;
+}
+
+std::vector<RankReport> Coordinator::finish() {
+    Impl& s = *impl_;
+    s.finished = true;
+    for (int r = 1; r < s.transport.size(); ++r) s.transport.send(r, kStop, {});
+    int left = s.transport.size() - 1;
+    std::string failure;
+    while (left > 0) {
+        const Message m = wait_message(s.transport);
+        if (m.source <= 0 || m.source >= s.transport.size()) continue;
+        if (m.tag == kFail && failure.empty())
+            failure = fmt::format("rank {}: {}", m.source, std::string(m.bytes.begin(), m.bytes.end()));
+        if (m.tag != kBye) continue;
+        std::size_t at = 0;
+        const auto h = get<ByeHeader>(m, at);
+        RankReport& r = s.reports[static_cast<std::size_t>(m.source)];
+        r.host = std::string(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end());
+        r.threads = h.threads;
+        r.busy = h.busy;
+        r.idle = std::max(0.0, h.wall - h.busy);
+        --left;
+    }
+    s.transport.flush();
+    RankReport& me = s.reports[0];
+    me.host = host_name();
+    me.threads = s.threads[0];
+    me.tiles = s.local_tiles.load();
+    me.busy = s.local_busy.load();
+    me.idle = std::max(0.0, since(s.start) - me.busy);
+    if (!failure.empty()) throw IoError(failure);
+    return s.reports;
+}
+
+void stop_ranks(Transport& transport) noexcept {
+    try {
+        for (int r = 1; r < transport.size(); ++r) transport.send(r, kStop, {});
+        int left = transport.size() - 1;
+        while (left > 0)
+            if (wait_message(transport).tag == kBye) --left;
+        transport.flush();
+    } catch (...) {
+    }
+}
+
+// ---- the other ranks ----
+
+int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerprint, int threads,
+          const std::string& error) {
+    const auto start = Clock::now();
+    const int rank = transport.rank();
+    const std::string host = host_name();
+    bool failed = !error.empty() || !render;
+    if (failed) {
+        const std::string text = error.empty() ? std::string("could not load the scene") : error;
+        transport.send(0, kFail, std::vector<std::uint8_t>(text.begin(), text.end()));
+    }
+    threads = std::max(1, threads);
+    tbb::task_arena arena(threads);
+    double stall = stall_seconds(rank);
+    std::uint32_t pass = 0;
+    std::uint64_t tiles_done = 0, samples_done = 0;
+    double busy = 0;
+    const auto request = [&](std::vector<std::uint8_t> bytes) { transport.send(0, kResult, std::move(bytes)); };
+    const auto header = [&](std::uint32_t count) {
+        std::vector<std::uint8_t> bytes;
+        put(bytes, ResultHeader{pass, count, threads, 0});
+        return bytes;
+    };
+    for (;;) {
+        const Message m = wait_message(transport);
+        if (m.source != 0) continue;
+        if (m.tag == kStop) {
+            std::vector<std::uint8_t> bytes;
+            put(bytes, ByeHeader{threads, 0, tiles_done, samples_done, busy, since(start)});
+            bytes.insert(bytes.end(), host.begin(), host.end());
+            transport.send(0, kBye, std::move(bytes));
+            transport.flush();
+            return 0;
+        }
+        if (failed) continue;
+        try {
+            if (m.tag == kPass) {
+                std::size_t at = 0;
+                const auto h = get<PassHeader>(m, at);
+                if (h.fingerprint != fingerprint) {
+                    throw IoError(fmt::format(
+                        "on {} the scene, its files or the options differ from rank 0's (each rank loads the "
+                        "scene itself: give every node the same files)", host));
+                }
+                render->unpack_state(m.bytes.data() + at, m.bytes.size() - at);
+                render->begin_pass(h.n);
+                pass = h.pass;
+                request(header(0));
+            } else if (m.tag == kTiles) {
+                std::size_t at = 0;
+                const auto p = get<std::uint32_t>(m, at);
+                const auto count = get<std::uint32_t>(m, at);
+                if (p != pass) continue;  // for a pass already over
+                std::vector<int> chunk(count);
+                for (auto& t : chunk) {
+                    t = get<std::int32_t>(m, at);
+                    if (t < 0 || t >= render->tile_count()) throw IoError(fmt::format("rank 0 sent tile {}", t));
+                }
+                std::vector<TileEntry> entries(count);
+                const auto t0 = Clock::now();
+                arena.execute([&] {
+                    tbb::parallel_for(std::size_t{0}, chunk.size(), std::size_t{1}, [&](std::size_t i) {
+                        RayCounter counter;
+                        const std::uint64_t taken = render->render_tile(chunk[i], counter);
+                        entries[i] = TileEntry{chunk[i], 0, counter.rays, taken};
+                    });
+                });
+                std::vector<std::uint8_t> bytes = header(count);
+                for (const TileEntry& e : entries) {
+                    put(bytes, e);
+                    render->pack_tile(e.tile, bytes);
+                    samples_done += e.samples;
+                }
+                tiles_done += count;
+                busy += since(t0);
+                if (stall > 0) {
+                    std::this_thread::sleep_for(std::chrono::duration<double>(stall));
+                    stall = 0;
+                }
+                request(std::move(bytes));
+            }
+        } catch (const std::exception& e) {
+            failed = true;
+            const std::string text = e.what();
+            transport.send(0, kFail, std::vector<std::uint8_t>(text.begin(), text.end()));
+        }
+    }
+}
+
+}  // namespace glint

@@ -1,0 +1,112 @@
+#pragma once
+// One render spread over the processes of an MPI job (`mpirun -np N glint render ...`).
+//
+// Every rank loads the scene itself (from a shared file system or identical copies: a fingerprint
+// of the scene, its meshes and textures and the options is compared, and a rank that loaded
+// something else is an error) and builds its own acceleration structure. Rank 0 runs the passes
+// of the progressive renderer as a single process would and hands out each pass's tiles in
+// chunks, on request: a rank asks for more when it has rendered what it had, so a slow or busy
+// node takes fewer. Rank 0 renders tiles too, on a thread of its own, while its main thread
+// answers the others. Each pass starts from the same sums on every rank (rank 0 sends the state
+// with the pass), and a tile's result is the same bytes whichever rank renders it, so the image
+// is the single process's to the bit whatever N and whatever order the tiles came back in.
+//
+// Faults: a chunk whose rank has not answered within the timeout is handed out again (the first
+// result for a tile is kept, a late duplicate dropped). A rank that dies takes the job with it
+// (Open MPI aborts a job when a rank exits early); --checkpoint-every bounds what that loses.
+//
+// The messages go through `Transport`, implemented on MPI by libglint_mpi.so (loaded only in an
+// MPI job, so that a single process never loads Open MPI's libraries). All MPI calls are made by
+// the thread that started it (MPI_THREAD_FUNNELED).
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "glint/render/progress.h"
+#include "glint/render/progressive.h"
+
+namespace glint {
+
+struct Message {
+    int source = -1;
+    int tag = -1;
+    std::vector<std::uint8_t> bytes;
+};
+
+/// Point-to-point messages between the ranks of one job. Sends do not block (the bytes are kept
+/// until delivered); receive takes one waiting message from any rank, or returns false.
+class Transport {
+public:
+    virtual ~Transport() = default;
+    virtual int rank() const = 0;
+    virtual int size() const = 0;
+    virtual void send(int to, int tag, std::vector<std::uint8_t> bytes) = 0;
+    virtual bool receive(Message& message) = 0;
+    /// Waits until every send has been delivered.
+    virtual void flush() = 0;
+    /// Ends the job at once, every rank (MPI_Abort).
+    [[noreturn]] virtual void abort(int status) = 0;
+};
+
+/// True when this process was started by an MPI launcher (Open MPI's mpirun, or a PMIx launcher).
+bool launched_by_mpi();
+/// The ranks of this job on this host (to share the cores between them), 1 outside MPI.
+int local_ranks();
+/// MPI through libglint_mpi.so: initialises MPI. Throws IoError if this glint was built
+/// without MPI or the module cannot be loaded.
+std::unique_ptr<Transport> mpi_transport(int& argc, char**& argv);
+
+/// What each rank did, for the report at the end.
+struct RankReport {
+    int rank = 0;
+    std::string host;
+    int threads = 0;
+    std::uint64_t tiles = 0, samples = 0;
+    double busy = 0;  ///< seconds spent rendering tiles
+    double idle = 0;  ///< seconds of the job not spent rendering
+};
+
+struct ClusterOptions {
+    /// A chunk not answered within this many seconds is handed out again.
+    double timeout = 60;
+    int threads = 1;  ///< rank 0's render threads
+};
+
+/// Rank 0's side.
+class Coordinator {
+public:
+    /// `fingerprint` identifies the render (render_fingerprint); every rank must have the same.
+    Coordinator(Transport& transport, ProgressiveRender& render, const ClusterOptions& options,
+                std::uint64_t fingerprint);
+    ~Coordinator();
+    Coordinator(const Coordinator&) = delete;
+    Coordinator& operator=(const Coordinator&) = delete;
+
+    /// ProgressiveRender::run_pass over every rank. Returns false, the state unchanged, if
+    /// `cancel` became true first. Throws IoError if a rank failed (its message).
+    bool run_pass(int n, const std::atomic<bool>* cancel, Progress* progress);
+    /// Tells every rank to stop and waits for their reports (rank 0's first). Throws IoError if
+    /// a rank reported a failure; the ranks are stopped either way.
+    std::vector<RankReport> finish();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// A rank other than 0: takes passes and tiles from rank 0 until told to stop. `render` is null
+/// when this rank could not load the scene: `error` then says why, and it goes to rank 0.
+/// Returns the process's exit status.
+int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerprint, int threads,
+          const std::string& error);
+
+/// Rank 0, leaving without a Coordinator's finish (an error before or during the render): tells
+/// every other rank to stop and waits until each has.
+void stop_ranks(Transport& transport) noexcept;
+
+/// The per-rank table printed at the end of a distributed render.
+std::string format_reports(const std::vector<RankReport>& reports);
+
+}  // namespace glint

@@ -1,0 +1,132 @@
+// Distributed rendering under Open MPI's real mpirun (distributed.h): the image of any number of
+// ranks is the single process's to the bit; a stalled rank loses its tiles to the others and the
+// image stays the same; a rank that cannot load the scene, or loaded another one, is an error on
+// rank 0, never a hang.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "testing.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int status;
+    std::string err;
+};
+
+class Mpi : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (std::system("command -v mpirun >/dev/null 2>&1") != 0)
+            GTEST_SKIP() << "mpirun not found: scripts/install-deps.sh installs Open MPI (openmpi-bin)";
+    }
+    // Runs `command` in the test's folder with glint's path for {glint}, under a time limit so that
+    // a hang fails the test. mpirun refuses root without these two variables (CI runs as root).
+    Result run(std::string command, int limit = 120) {
+        for (std::size_t at; (at = command.find("{glint}")) != std::string::npos;)
+            command.replace(at, 7, std::string("'") + GLINT_CLI + "'");
+        const std::string cmd = "cd '" + dir_.path().string() + "' && OMPI_ALLOW_RUN_AS_ROOT=1 " +
+                                "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout " + std::to_string(limit) + " env " +
+                                command + " >/dev/null 2>err.txt </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, glint::testing::read_file(dir_ / "err.txt")};
+        fs::remove(dir_ / "err.txt");
+        return r;
+    }
+    // Every channel of an EXR, as floats.
+    std::vector<float> pixels(const std::string& name) {
+        auto in = OIIO::ImageInput::open((dir_ / name).string());
+        if (!in) return {};
+        const OIIO::ImageSpec& spec = in->spec();
+        std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data())) return {};
+        return px;
+    }
+    static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
+    // The tiles rank `rank` rendered, from rank 0's report.
+    static long tiles_of(const std::string& err, int rank) {
+        std::smatch m;
+        const std::regex line("\n\\s*" + std::to_string(rank) + "\\s+\\S+\\s+\\d+\\s+(\\d+)\\s");
+        return std::regex_search(err, m, line) ? std::stol(m[1]) : -1;
+    }
+    glint::testing::TempDir dir_;
+};
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+    return !a.empty() && a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+// The Cornell box by the path tracer (8 spp in passes of 1, 1, 2 and 4), adaptive sampling (its
+// per-pixel counts and active flags travel with each pass) and AOVs: 1 to 4 ranks of one
+// thread, 12 tiles shared however the ranks asked for them, the same floats as one process.
+TEST_F(Mpi, EveryRankCountGivesTheSingleProcessImage) {
+    struct Case {
+        const char* options;
+        std::vector<int> ranks;
+    };
+    const Case cases[] = {{"--spp 8", {1, 2, 3, 4}},
+                          {"--spp 64 --noise-threshold 0.05 --min-spp 4", {3}},
+                          {"--spp 4 --aovs", {2}}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.options);
+        const std::string render = "{glint} render '" + scene("cornell-box.yaml") + "' --width 64 --height 48 " +
+                                   c.options + " --threads 1 -q";
+        Result r = run(render + " -o single.exr");
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::vector<float> single = pixels("single.exr");
+        ASSERT_FALSE(single.empty());
+        for (const int n : c.ranks) {
+            const std::string out = "ranks" + std::to_string(n) + ".exr";
+            r = run("mpirun -np " + std::to_string(n) + " --oversubscribe " + render + " -o " + out);
+            ASSERT_EQ(r.status, 0) << n << " ranks: " << r.err;
+            EXPECT_TRUE(same_bits(single, pixels(out))) << n << " ranks";
+        }
+    }
+}
+
+// Rank 1 sleeps two seconds before returning its first tiles (GLINT_TEST_STALL, a test-only
+// hook); after the 0.2 s timeout rank 0 renders them itself. The image is the same, rank 1's
+// share is smaller than rank 0's, and the report says so.
+TEST_F(Mpi, AStalledRankGetsFewerTilesAndTheImageIsTheSame) {
+    const std::string render = "{glint} render '" + scene("cornell-box.yaml") +
+                               "' --width 64 --height 48 --spp 8 --threads 1";
+    Result r = run(render + " -q -o single.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("GLINT_TEST_STALL=1:2 mpirun -np 2 --oversubscribe " + render + " --rank-timeout 0.2 -o stalled.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(same_bits(pixels("single.exr"), pixels("stalled.exr")));
+    const long zero = tiles_of(r.err, 0), one = tiles_of(r.err, 1);
+    ASSERT_GE(zero, 0) << r.err;
+    ASSERT_GE(one, 0) << r.err;
+    EXPECT_LT(one, zero) << r.err;
+    EXPECT_EQ(zero + one, 4 * 12) << r.err;  // 4 passes of 12 tiles, each counted once
+}
+
+// Each rank loads the scene itself: a rank that cannot (here: another file, missing) or that
+// loaded a different render (another seed) is reported by rank 0, which writes nothing and exits
+// with an error; the job ends instead of waiting for the rank.
+TEST_F(Mpi, ARankWithoutTheSceneOrWithAnotherOneIsAnErrorNotAHang) {
+    const std::string good = "{glint} render '" + scene("cornell-box.yaml") + "' --width 64 --height 48 --spp 4 --threads 1";
+    Result r = run("mpirun -np 1 " + good + " -o a.exr : -np 1 {glint} render nowhere.yaml --threads 1 -o a.exr", 60);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("glint: error: rank 1: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nowhere.yaml"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "a.exr"));
+
+    r = run("mpirun -np 1 " + good + " -o b.exr : -np 1 " + good + " --seed 7 -o b.exr", 60);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("differ from rank 0's"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "b.exr"));
+}
+
+}  // namespace
