@@ -28,8 +28,8 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 // Message tags.
 enum : int {
-    kPass = 1,    // rank 0 -> rank: PassHeader, then the state before the pass
-    kTiles = 2,   // rank 0 -> rank: u32 pass, u32 count, i32 tiles[count]
+    kPass = 1,    // rank 0 -> rank: PassHeader, then the render's header (spp done, ...)
+    kTiles = 2,   // rank 0 -> rank: u32 pass, u32 count, then per tile i32 index and its sums before the pass
     kStop = 3,    // rank 0 -> rank: nothing
     kResult = 4,  // rank -> rank 0: ResultHeader, then per tile TileEntry and its bytes (0 tiles: a request)
     kBye = 5,     // rank -> rank 0: ByeHeader, then the host name
@@ -132,6 +132,12 @@ std::unique_ptr<Transport> mpi_transport(int& argc, char**& argv) {
     }
 }
 
+int chunk_tiles(int left, int all_threads, int k) {
+    all_threads = std::max(1, all_threads);
+    k = std::max(1, k);
+    return std::min(left, std::max(k, (left + 2 * all_threads - 1) / (2 * all_threads) * k));
+}
+
 std::string format_reports(const std::vector<RankReport>& reports) {
     std::uint64_t tiles = 0;
     for (const RankReport& r : reports) tiles += r.tiles;
@@ -187,8 +193,7 @@ struct Coordinator::Impl {
     std::vector<int> take(int k) {
         int all = 0;
         for (int t : threads) all += t;
-        const auto left = static_cast<int>(queue.size());
-        const int size = std::min(left, std::max(k, (left + 2 * all - 1) / (2 * all) * k));
+        const int size = chunk_tiles(static_cast<int>(queue.size()), all, k);
         std::vector<int> chunk(queue.begin(), queue.begin() + size);
         queue.erase(queue.begin(), queue.begin() + size);
         return chunk;
@@ -198,7 +203,10 @@ struct Coordinator::Impl {
         std::vector<std::uint8_t> bytes;
         put(bytes, pass);
         put(bytes, static_cast<std::uint32_t>(chunk.size()));
-        for (int t : chunk) put(bytes, static_cast<std::int32_t>(t));
+        for (int t : chunk) {
+            put(bytes, static_cast<std::int32_t>(t));
+            render.pack_tile(t, bytes, /*before=*/true);
+        }
         out[static_cast<std::size_t>(rank)] = Chunk{std::move(chunk), Clock::now()};
         transport.send(rank, kTiles, std::move(bytes));
     }
@@ -328,11 +336,12 @@ bool Coordinator::run_pass(int n, const std::atomic<bool>* cancel, Progress* pro
         s.waiting.clear();
     }
     const auto start = Clock::now();
-    // The pass and the sums it starts from, to every rank; they ask for tiles when they have it.
+    // The pass to every rank; they ask for tiles when they have it. Each chunk then carries its
+    // tiles' sums, so the state crosses the network once a pass, not once per rank.
     std::vector<std::uint8_t> bytes;
     put(bytes, PassHeader{s.pass, s.n, s.fingerprint});
-    const std::vector<std::uint8_t> state = s.render.pack_state();
-    bytes.insert(bytes.end(), state.begin(), state.end());
+    const std::vector<std::uint8_t> header = s.render.pack_header();
+    bytes.insert(bytes.end(), header.begin(), header.end());
     for (int r = 1; r < s.transport.size(); ++r) s.transport.send(r, kPass, bytes);
 
     std::thread local([&s, cancel] { s.render_locally(cancel); });
@@ -465,7 +474,7 @@ int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerp
                         "on {} the scene, its files or the options differ from rank 0's (each rank loads the "
                         "scene itself: give every node the same files)", host));
                 }
-                render->unpack_state(m.bytes.data() + at, m.bytes.size() - at);
+                render->unpack_header(m.bytes.data() + at, m.bytes.size() - at);
                 render->begin_pass(h.n);
                 pass = h.pass;
                 request(header(0));
@@ -478,6 +487,10 @@ int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerp
                 for (auto& t : chunk) {
                     t = get<std::int32_t>(m, at);
                     if (t < 0 || t >= render->tile_count()) throw IoError(fmt::format("rank 0 sent tile {}", t));
+                    const std::size_t size = render->tile_bytes(t);
+                    if (m.bytes.size() - at < size) throw IoError(fmt::format("rank 0: tile {} cut short", t));
+                    render->unpack_tile(t, m.bytes.data() + at, size, /*before=*/true);
+                    at += size;
                 }
                 std::vector<TileEntry> entries(count);
                 const auto t0 = Clock::now();

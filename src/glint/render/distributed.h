@@ -58,6 +58,12 @@ int local_ranks();
 /// without MPI or the module cannot be loaded.
 std::unique_ptr<Transport> mpi_transport(int& argc, char**& argv);
 
+/// The scheduler's chunk: for a rank of `k` threads asking when `left` tiles are queued and the
+/// job has `all_threads` threads, ceil(left / (2 all_threads)) tiles per thread (guided
+/// self-scheduling: chunks shrink as the queue does, so the ranks finish a pass together), at
+/// least one per thread, at most `left`.
+int chunk_tiles(int left, int all_threads, int k);
+
 /// What each rank did, for the report at the end.
 struct RankReport {
     int rank = 0;

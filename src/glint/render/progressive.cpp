@@ -311,12 +311,12 @@ std::size_t ProgressiveRender::tile_bytes(int t) const {
     return bytes;
 }
 
-void ProgressiveRender::pack_tile(int t, std::vector<std::uint8_t>& out) const {
+void ProgressiveRender::pack_tile(int t, std::vector<std::uint8_t>& out, bool before) const {
     const TileRect r = tile_rect(t);
     const auto w = static_cast<std::size_t>(state_.width);
     const auto cols = static_cast<std::size_t>(r.x1 - r.x0);
     out.reserve(out.size() + tile_bytes(t));
-    each_plane(next_, [&](const auto& plane) {
+    each_plane(before ? state_ : next_, [&](const auto& plane) {
         const std::size_t size = element_size(plane);
         for (int row = r.y0; row < r.y1; ++row) {
             const auto* p = reinterpret_cast<const std::uint8_t*>(&plane[static_cast<std::size_t>(row) * w +
@@ -326,14 +326,14 @@ void ProgressiveRender::pack_tile(int t, std::vector<std::uint8_t>& out) const {
     });
 }
 
-void ProgressiveRender::unpack_tile(int t, const std::uint8_t* data, std::size_t size) {
+void ProgressiveRender::unpack_tile(int t, const std::uint8_t* data, std::size_t size, bool before) {
     if (size != tile_bytes(t))
         throw std::runtime_error("tile " + std::to_string(t) + ": " + std::to_string(size) + " bytes, not " +
                                  std::to_string(tile_bytes(t)));
     const TileRect r = tile_rect(t);
     const auto w = static_cast<std::size_t>(state_.width);
     const auto cols = static_cast<std::size_t>(r.x1 - r.x0);
-    each_plane(next_, [&](auto& plane) {
+    each_plane(before ? state_ : next_, [&](auto& plane) {
         const std::size_t bytes = cols * element_size(plane);
         for (int row = r.y0; row < r.y1; ++row) {
             std::memcpy(&plane[static_cast<std::size_t>(row) * w + static_cast<std::size_t>(r.x0)], data, bytes);
@@ -362,39 +362,25 @@ struct StateHeader {
 
 }  // namespace
 
-std::vector<std::uint8_t> ProgressiveRender::pack_state() const {
+std::vector<std::uint8_t> ProgressiveRender::pack_header() const {
     const StateHeader h{state_.width, state_.height, state_.spp_target, state_.spp_done, state_.passes,
                         (state_.adaptive ? 1 : 0) | (state_.aovs ? 2 : 0), state_.seconds, state_.rays};
     std::vector<std::uint8_t> out(sizeof h);
     std::memcpy(out.data(), &h, sizeof h);
-    each_plane(state_, [&](const auto& plane) {
-        const auto* p = reinterpret_cast<const std::uint8_t*>(plane.data());
-        out.insert(out.end(), p, p + plane.size() * element_size(plane));
-    });
     return out;
 }
 
-void ProgressiveRender::unpack_state(const std::uint8_t* data, std::size_t size) {
+void ProgressiveRender::unpack_header(const std::uint8_t* data, std::size_t size) {
     StateHeader h{};
-    if (size < sizeof h) throw std::runtime_error("a render state of " + std::to_string(size) + " bytes");
+    if (size != sizeof h) throw std::runtime_error("a render header of " + std::to_string(size) + " bytes");
     std::memcpy(&h, data, sizeof h);
     if (h.width != state_.width || h.height != state_.height || h.spp_target != state_.spp_target ||
         h.flags != ((state_.adaptive ? 1 : 0) | (state_.aovs ? 2 : 0)) || h.spp_done < 0 || h.spp_done > h.spp_target)
-        throw std::runtime_error("a render state of another render (size, spp or flags differ)");
-    std::size_t want = sizeof h;
-    each_plane(state_, [&](const auto& plane) { want += plane.size() * element_size(plane); });
-    if (size != want)
-        throw std::runtime_error("a render state of " + std::to_string(size) + " bytes, not " + std::to_string(want));
+        throw std::runtime_error("a render header of another render (size, spp or flags differ)");
     state_.spp_done = h.spp_done;
     state_.passes = h.passes;
     state_.seconds = h.seconds;
     state_.rays = h.rays;
-    data += sizeof h;
-    each_plane(state_, [&](auto& plane) {
-        const std::size_t bytes = plane.size() * element_size(plane);
-        std::memcpy(plane.data(), data, bytes);
-        data += bytes;
-    });
 }
 
 bool ProgressiveRender::run_pass(int n, const std::atomic<bool>* cancel, Progress* progress) {

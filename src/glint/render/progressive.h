@@ -115,18 +115,20 @@ public:
     /// Renders tile t of the pass begun (thread-safe for distinct tiles); returns the pixel
     /// samples taken.
     std::uint64_t render_tile(int t, RayCounter& counter);
-    /// Tile t's result in the pass begun, every plane's pixels one plane after another, appended
-    /// to `out`; unpack_tile puts such bytes (from another process) in place of rendering it.
-    void pack_tile(int t, std::vector<std::uint8_t>& out) const;
-    void unpack_tile(int t, const std::uint8_t* data, std::size_t size);
+    /// Tile t's planes, every plane's pixels one plane after another, appended to `out`: its
+    /// result in the pass begun, or (`before`) the state the pass starts from. unpack_tile puts
+    /// such bytes from another process in place: a result instead of rendering the tile, or the
+    /// sums a tile's pass continues. Throws std::runtime_error on the wrong size.
+    void pack_tile(int t, std::vector<std::uint8_t>& out, bool before = false) const;
+    void unpack_tile(int t, const std::uint8_t* data, std::size_t size, bool before = false);
     std::size_t tile_bytes(int t) const;
     /// Makes the pass begun the state, with the time it took and what it traced.
     void end_pass(double seconds, std::uint64_t rays, std::uint64_t pixel_samples);
-    /// The state between passes as bytes, and back: how the processes of a distributed render
-    /// start each pass from the same sums. unpack_state throws std::runtime_error on bytes of
-    /// another shape.
-    std::vector<std::uint8_t> pack_state() const;
-    void unpack_state(const std::uint8_t* data, std::size_t size);
+    /// What a pass starts from besides the tiles' sums (spp done, passes, time, rays), as bytes,
+    /// and back. unpack_header throws std::runtime_error on bytes of another render (size, spp
+    /// target, adaptive sampling or AOVs differ).
+    std::vector<std::uint8_t> pack_header() const;
+    void unpack_header(const std::uint8_t* data, std::size_t size);
 
 private:
     struct TileRect {
