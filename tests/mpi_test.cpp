@@ -1,7 +1,7 @@
 // Distributed rendering under Open MPI's real mpirun (distributed.h): the image of any number of
 // ranks is the single process's to the bit; a stalled rank loses its tiles to the others and the
 // image stays the same; a rank that cannot load the scene, or loaded another one, is an error on
-// rank 0, never a hang.
+// rank 0, never a hang; a job stopped by its time budget resumes on another number of ranks.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -57,6 +57,13 @@ protected:
         std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
         if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data())) return {};
         return px;
+    }
+    // An EXR's glint:spp attribute (the samples per pixel it holds), or -1.
+    long spp_of(const std::string& name) {
+        auto in = OIIO::ImageInput::open((dir_ / name).string());
+        if (!in) return -1;
+        const std::string spp = in->spec().get_string_attribute("glint:spp");
+        return spp.empty() ? -1 : std::stol(spp);
     }
     static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
     // The tiles rank `rank` rendered, from rank 0's report.
@@ -116,6 +123,24 @@ TEST_F(Mpi, AStalledRankGetsFewerTilesAndTheImageIsTheSame) {
     ASSERT_GE(one, 0) << r.err;
     EXPECT_LT(one, zero) << r.err;
     EXPECT_EQ(zero + one, 4 * 12) << r.err;  // 4 passes of 12 tiles, each counted once
+}
+
+// A job stopped by its time budget leaves a checkpoint of the completed passes; another job with
+// another number of ranks resumes it, and the image is the single uninterrupted process's.
+TEST_F(Mpi, AJobStoppedByItsTimeBudgetResumesOnAnyRankCountToTheSameImage) {
+    const std::string render = "{glint} render '" + scene("cornell-box.yaml") +
+                               "' --width 64 --height 48 --spp 256 --threads 1";
+    Result r = run(render + " -q -o full.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("mpirun -np 2 --oversubscribe " + render + " --time 0.3 --checkpoint c.ckpt -q -o part.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const long part = spp_of("part.exr");
+    EXPECT_GT(part, 0);
+    EXPECT_LT(part, 256) << "the budget did not stop the render, so nothing was resumed";
+    r = run("mpirun -np 3 --oversubscribe " + render + " --resume c.ckpt -q -o final.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(spp_of("final.exr"), 256);
+    EXPECT_TRUE(same_bits(pixels("full.exr"), pixels("final.exr")));
 }
 
 // Each rank loads the scene itself: a rank that cannot (here: another file, missing) or that
