@@ -1,7 +1,8 @@
 // Distributed rendering under Open MPI's real mpirun (distributed.h): the image of any number of
 // ranks is the single process's to the bit; a stalled rank loses its tiles to the others and the
 // image stays the same; a rank that cannot load the scene, or loaded another one, is an error on
-// rank 0, never a hang; a job stopped by its time budget resumes on another number of ranks.
+// rank 0, never a hang; a rank without the scene's files gets them from rank 0; a job stopped
+// by its time budget resumes on another number of ranks.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -141,6 +143,49 @@ TEST_F(Mpi, AJobStoppedByItsTimeBudgetResumesOnAnyRankCountToTheSameImage) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(spp_of("final.exr"), 256);
     EXPECT_TRUE(same_bits(pixels("full.exr"), pixels("final.exr")));
+}
+
+// A scene only rank 0 can read: rank 1 starts in an empty folder, asks rank 0 for the files it
+// read (the scene, an image texture, a mesh found through rank 0's GLINT_MODEL_PATH) and renders
+// from its copy of them; the image is the single process's and rank 1 took part.
+TEST_F(Mpi, ARankWithoutTheFilesGetsThemFromRankZero) {
+    const fs::path zero = dir_ / "zero";
+    fs::create_directories(zero / "maps");
+    fs::create_directories(zero / "models");
+    fs::create_directories(dir_ / "one");
+    fs::create_directories(dir_ / "tmp1");
+    fs::copy_file(fs::path(GLINT_SOURCE_DIR) / "scenes/textures/uv-grid.png", zero / "maps/grid.png");
+    const auto write = [](const fs::path& p, const std::string& text) {
+        std::ofstream out(p, std::ios::binary);
+        out << text;
+    };
+    write(zero / "models/pyramid.ply",
+          "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+          "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+          "-1 0 -1\n1 0 -1\n1 0 1\n-1 0 1\n0 1.5 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n");
+    write(zero / "scene.yaml", R"(camera: {type: look_at, from: [0, 2, -6], to: [0, 0.8, 0], fov: 40}
+sampler: {spp: 4}
+integrator: {type: path, max_depth: 4}
+background: {type: constant, color: [0.6, 0.7, 0.9]}
+materials:
+  grid: {color: {type: image, filename: maps/grid.png}}
+  white: {color: [0.8, 0.8, 0.8]}
+objects:
+  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], material: white}
+  - {type: sphere, center: [-1.4, 1, 0.5], radius: 1, material: grid}
+  - {type: mesh, file: pyramid.ply, material: grid, transform: [{translate: [1.2, 0, 0]}]}
+)");
+    const std::string options = " render scene.yaml --width 64 --height 48 --spp 512 --threads 1";
+    const std::string models = "GLINT_MODEL_PATH='" + (zero / "models").string() + "' ";
+    Result r = run("sh -c \"cd zero && " + models + "'" + GLINT_CLI + "'" + options + " -q -o ../single.exr\"");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("mpirun --oversubscribe -np 1 --wdir zero env " + models + "{glint}" + options +
+            " -o ../both.exr : -np 1 --wdir one env TMPDIR='" + (dir_ / "tmp1").string() + "' {glint}" + options + " -o ../both.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(same_bits(pixels("single.exr"), pixels("both.exr")));
+    EXPECT_GT(tiles_of(r.err, 1), 0) << r.err;
+    EXPECT_TRUE(fs::is_empty(dir_ / "one"));
+    EXPECT_TRUE(fs::is_empty(dir_ / "tmp1"));  // rank 1's copy of the files, removed at its end
 }
 
 // Each rank loads the scene itself: a rank that cannot (here: another file, missing) or that

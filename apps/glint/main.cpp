@@ -10,9 +10,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <new>
@@ -69,6 +72,8 @@ volatile std::sig_atomic_t g_signal = 0;
 // rank 0 has told the other ranks to stop.
 std::unique_ptr<glint::Transport> g_cluster;
 bool g_ranks_stopped = false;
+// --restrict-paths was given (a rank loading a copy of rank 0's files restricts reads to it).
+bool g_restrict_paths = false;
 char g_temporary[2][4096];  // the image's and the checkpoint's temporary files, or empty
 static_assert(std::atomic<bool>::is_always_lock_free);
 
@@ -358,28 +363,85 @@ glint::RenderJob prepare_job(const RenderArgs& args) {
     return job;
 }
 
+// A private folder under $TMPDIR (or /tmp), removed with everything in it when done.
+struct TempFolder {
+    std::filesystem::path path;
+    TempFolder() {
+        const char* tmp = std::getenv("TMPDIR");
+        std::string pattern = (std::filesystem::path(tmp && *tmp ? tmp : "/tmp") / "glint-rank-XXXXXX").string();
+        if (!::mkdtemp(pattern.data()))
+            throw glint::IoError(fmt::format("{}: cannot make a folder for rank 0's files: {}", pattern, std::strerror(errno)));
+        path = pattern;
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+};
+
 // A rank other than 0 of a distributed render: loads what rank 0 loads and renders the tiles it
-// is given; what fails here is sent to rank 0, which reports it.
+// is given; what fails here is sent to rank 0, which reports it. A rank that cannot load the
+// scene from its own files loads a copy of the files rank 0 read.
 int run_rank(const RenderArgs& args) {
     std::optional<glint::RenderJob> job;
     std::unique_ptr<glint::ProgressiveRender> render;
     std::uint64_t fingerprint = 0;
     std::string error;
-    try {
-        job.emplace(prepare_job(args));
-        render = std::make_unique<glint::ProgressiveRender>(job->scene, job->camera, *job->integrator, job->options,
-                                                            job->film_width, job->film_height, job->aovs);
-        fingerprint = glint::render_fingerprint(*job, image_settings(args, *job));
-    } catch (const glint::SceneError& e) {
-        std::string what = e.what();
-        while (!what.empty() && what.back() == '\n') what.pop_back();
-        error = fmt::format("could not load the scene:\n{}", what);
-        render.reset();
-    } catch (const std::exception& e) {
-        error = e.what();
-        render.reset();
+    const auto load = [&](const RenderArgs& a) {
+        render.reset();  // before the scene it renders
+        job.reset();
+        try {
+            job.emplace(prepare_job(a));
+            render = std::make_unique<glint::ProgressiveRender>(job->scene, job->camera, *job->integrator,
+                                                                job->options, job->film_width, job->film_height,
+                                                                job->aovs);
+            fingerprint = glint::render_fingerprint(*job, image_settings(a, *job));
+            return std::string();
+        } catch (const glint::SceneError& e) {
+            std::string what = e.what();
+            while (!what.empty() && what.back() == '\n') what.pop_back();
+            render.reset();
+            return fmt::format("could not load the scene:\n{}", what);
+        } catch (const std::exception& e) {
+            render.reset();
+            return std::string(e.what());
+        }
+    };
+    error = load(args);
+    std::deque<glint::Message> pending;
+    std::optional<TempFolder> copy;  // removed when this rank is done
+    if (!error.empty() && !args.scene.empty()) {
+        try {
+            copy.emplace();
+            const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
+            if (!files) return 0;  // rank 0 stopped the job first
+            // The scene as rank 0 named it, in the copy; meshes found in rank 0's model folders, in
+            // the copy of them.
+            const std::filesystem::path scene = (files->cwd / args.scene).lexically_normal();
+            RenderArgs local = args;
+            local.scene = (copy->path / scene.relative_path()).string();
+            std::string folders;
+            for (const auto& f : files->model_folders)
+                folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
+            ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
+            if (g_restrict_paths) glint::restrict_reads_to({copy->path});
+            std::string again = load(local);
+            if (!again.empty()) {
+                // Rank 0's paths in the message, not the copy's.
+                for (std::size_t at; (at = again.find(copy->path.string())) != std::string::npos;)
+                    again.erase(at, copy->path.string().size());
+                error += "\nnor from the copy of the files rank 0 read: " + again;
+            } else {
+                error.clear();
+            }
+        } catch (const std::exception& e) {
+            error += fmt::format("\nnor could it get rank 0's files: {}", e.what());
+        }
     }
-    return glint::serve(*g_cluster, render.get(), fingerprint, job ? job->options.threads : 1, error);
+    return glint::serve(*g_cluster, render.get(), fingerprint, job ? job->options.threads : 1, error,
+                        std::move(pending));
 }
 
 int run_render(const RenderArgs& args) {
@@ -461,7 +523,12 @@ int run_render(const RenderArgs& args) {
     if (distributed) {
         const int threads = job.options.threads > 0 ? job.options.threads
                                                     : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-        cluster.emplace(*g_cluster, render, glint::ClusterOptions{args.rank_timeout, threads}, fingerprint);
+        // What a rank that cannot read the scene's files gets from this one.
+        glint::SceneFiles files{std::filesystem::current_path(), glint::files_read(), {}};
+        for (const auto& f : glint::model_folders(std::filesystem::path(args.scene).parent_path()))
+            files.model_folders.push_back(std::filesystem::absolute(f).lexically_normal());
+        cluster.emplace(*g_cluster, render, glint::ClusterOptions{args.rank_timeout, threads, std::move(files)},
+                        fingerprint);
     }
     if (!args.resume.empty()) {
         glint::Checkpoint c = glint::read_checkpoint(args.resume);
@@ -689,6 +756,7 @@ int main(int argc, char** argv) {
         }
         for (const std::string& l : limits) glint::set_limit_from_text(l);
         if (restrict_paths) {
+            g_restrict_paths = true;
             const std::filesystem::path dir = std::filesystem::path(args.scene).parent_path();
             glint::restrict_reads_to(glint::model_folders(dir));
         }

@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <numeric>
 
@@ -116,6 +118,16 @@ std::vector<std::filesystem::path>& roots() {
     return folders;
 }
 
+// files_read(): readers run on several threads (meshes load in parallel).
+std::mutex& read_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::set<std::filesystem::path>& read_set() {
+    static std::set<std::filesystem::path> files;
+    return files;
+}
+
 // Whether `inner` is `outer` or lies inside it, component by component (both resolved).
 bool within(const std::filesystem::path& inner, const std::filesystem::path& outer) {
     auto i = inner.begin();
@@ -126,6 +138,11 @@ bool within(const std::filesystem::path& inner, const std::filesystem::path& out
     return true;
 }
 }  // namespace
+
+std::vector<std::filesystem::path> files_read() {
+    const std::lock_guard lock(read_mutex());
+    return {read_set().begin(), read_set().end()};
+}
 
 void restrict_reads_to(const std::vector<std::filesystem::path>& folders) {
     roots().clear();
@@ -159,7 +176,12 @@ std::string why_not_readable(const std::filesystem::path& path) {
         }
     }
     const auto status = std::filesystem::status(path, ec);  // follows symbolic links
-    if (ec || !std::filesystem::exists(status) || std::filesystem::is_regular_file(status)) return {};
+    if (ec || !std::filesystem::exists(status)) return {};
+    if (std::filesystem::is_regular_file(status)) {
+        const std::lock_guard lock(read_mutex());
+        read_set().insert(std::filesystem::absolute(path, ec).lexically_normal());
+        return {};
+    }
     if (std::filesystem::is_directory(status)) return "is a folder";
     return "is not a regular file (a device, FIFO or socket)";
 }

@@ -38,6 +38,11 @@ std::vector<std::filesystem::path> split_search_path(const std::string& list);
 
 std::string why_not_readable(const std::filesystem::path& path);
 
+/// Every regular file why_not_readable has let through in this process, as absolute, lexically
+/// normal paths, sorted: the files a render read (a distributed render's rank 0 sends them to the
+/// ranks that cannot read them).
+std::vector<std::filesystem::path> files_read();
+
 /// --restrict-paths: from now on only files under `folders` (resolved: symbolic links and ".."
 /// followed) may be read; an empty list lifts the restriction. Set once, before reading starts.
 void restrict_reads_to(const std::vector<std::filesystem::path>& folders);

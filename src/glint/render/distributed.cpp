@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -34,6 +36,17 @@ enum : int {
     kResult = 4,  // rank -> rank 0: ResultHeader, then per tile TileEntry and its bytes (0 tiles: a request)
     kBye = 5,     // rank -> rank 0: ByeHeader, then the host name
     kFail = 6,    // rank -> rank 0: what went wrong, as text
+    kWantFiles = 7,  // rank -> rank 0: nothing (it cannot read the scene's files)
+    kFile = 8,       // rank 0 -> rank: FileHeader, the path, then the piece's bytes
+    kFilesEnd = 9,   // rank 0 -> rank: u32 ok; then the working folder and the model folders, one a line, or the error
+};
+
+// A file goes in pieces of at most this many bytes (MPI counts are ints).
+constexpr std::uint64_t kFilePiece = std::uint64_t{64} << 20;
+
+struct FileHeader {
+    std::uint64_t size, offset;
+    std::uint32_t path_bytes, pad;
 };
 
 struct PassHeader {
@@ -96,6 +109,58 @@ double stall_seconds(int rank) {
     double s = 0;
     if (std::sscanf(v, "%d:%lf", &r, &s) != 2 || r != rank) return 0;
     return s;
+}
+
+// Rank 0: every file of `files` to `rank`, then the folders; a file that cannot be read now ends
+// the list with its error instead.
+void send_files(Transport& t, int rank, const SceneFiles& files) {
+    std::string error;
+    for (const std::filesystem::path& path : files.files) {
+        std::ifstream in(path, std::ios::binary);
+        std::error_code ec;
+        const std::uint64_t size = std::filesystem::file_size(path, ec);
+        if (!in || ec) {
+            error = fmt::format("{}: rank 0 cannot read it again to send it", path.string());
+            break;
+        }
+        const std::string name = path.string();
+        std::uint64_t offset = 0;
+        do {
+            const std::uint64_t piece = std::min(kFilePiece, size - offset);
+            std::vector<std::uint8_t> bytes;
+            bytes.reserve(sizeof(FileHeader) + name.size() + piece);
+            put(bytes, FileHeader{size, offset, static_cast<std::uint32_t>(name.size()), 0});
+            bytes.insert(bytes.end(), name.begin(), name.end());
+            const std::size_t at = bytes.size();
+            bytes.resize(at + piece);
+            if (!in.read(reinterpret_cast<char*>(bytes.data() + at), static_cast<std::streamsize>(piece))) {
+                error = fmt::format("{}: rank 0 cannot read it again to send it (it changed?)", name);
+                break;
+            }
+            t.send(rank, kFile, std::move(bytes));
+            offset += piece;
+        } while (offset < size);
+        if (!error.empty()) break;
+    }
+    std::vector<std::uint8_t> bytes;
+    put(bytes, static_cast<std::uint32_t>(error.empty()));
+    std::string text = error;
+    if (error.empty()) {
+        text = files.cwd.string();
+        for (const auto& f : files.model_folders) text += "\n" + f.string();
+    }
+    bytes.insert(bytes.end(), text.begin(), text.end());
+    t.send(rank, kFilesEnd, std::move(bytes));
+}
+
+// A rank's goodbye: what it did, for rank 0's report.
+void send_bye(Transport& t, int threads, std::uint64_t tiles, std::uint64_t samples, double busy, double wall) {
+    const std::string host = host_name();
+    std::vector<std::uint8_t> bytes;
+    put(bytes, ByeHeader{threads, 0, tiles, samples, busy, wall});
+    bytes.insert(bytes.end(), host.begin(), host.end());
+    t.send(0, kBye, std::move(bytes));
+    t.flush();
 }
 
 }  // namespace
@@ -237,6 +302,10 @@ struct Coordinator::Impl {
         if (m.tag == kFail) {
             throw IoError(fmt::format("rank {}: {}", m.source, std::string(m.bytes.begin(), m.bytes.end())));
         }
+        if (m.tag == kWantFiles) {
+            send_files(transport, m.source, options.files);
+            return;
+        }
         if (m.tag != kResult) return;  // a rank's bye comes only after a stop
         std::lock_guard lock(mutex);
         std::size_t at = 0;
@@ -355,6 +424,9 @@ bool Coordinator::run_pass(int n, const std::atomic<bool>* cancel, Progress* pro
     } join{s, local};
 
     bool cancelled = false;
+    // Polling backs off while nothing comes (to 2 ms: a probe of Open MPI costs the render thread
+    // on the same core) and starts again at 50 us after each message.
+    int idle_us = 50;
     while (s.done.load() < s.tiles) {
         if (cancel && cancel->load()) {
             cancelled = true;
@@ -370,7 +442,12 @@ bool Coordinator::run_pass(int n, const std::atomic<bool>* cancel, Progress* pro
             std::lock_guard lock(s.mutex);
             s.reissue_and_serve();
         }
-        if (!any) std::this_thread::sleep_for(std::chrono::microseconds(200));
+        if (any) {
+            idle_us = 50;
+        } else {
+            std::this_thread::sleep_for(std::chrono::microseconds(idle_us));
+            idle_us = std::min(2000, idle_us * 2);
+        }
     }
     s.stop_local = true;
     local.join();
@@ -431,8 +508,67 @@ void stop_ranks(Transport& transport) noexcept {
 
 // ---- the other ranks ----
 
+std::optional<SceneFiles> fetch_scene_files(Transport& transport, const std::filesystem::path& folder,
+                                            std::deque<Message>& pending) {
+    namespace fs = std::filesystem;
+    const auto start = Clock::now();
+    transport.send(0, kWantFiles, {});
+    std::ofstream out;
+    fs::path current;
+    for (;;) {
+        Message m = wait_message(transport);
+        if (m.source != 0) continue;
+        if (m.tag == kStop) {
+            send_bye(transport, 0, 0, 0, 0, since(start));
+            return std::nullopt;
+        }
+        if (m.tag == kFile) {
+            std::size_t at = 0;
+            const auto h = get<FileHeader>(m, at);
+            if (m.bytes.size() - at < h.path_bytes) throw IoError("rank 0 sent a file message cut short");
+            const fs::path path(std::string(m.bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                                            m.bytes.begin() + static_cast<std::ptrdiff_t>(at + h.path_bytes)));
+            at += h.path_bytes;
+            // Rank 0's paths are absolute and normal; anything else could write outside the copy.
+            const bool safe = path.is_absolute() && path == path.lexically_normal() &&
+                              std::none_of(path.begin(), path.end(), [](const fs::path& c) { return c == ".."; });
+            if (!safe) throw IoError(fmt::format("rank 0 sent a file named {}", path.string()));
+            const fs::path copy = folder / path.relative_path();
+            if (h.offset == 0) {
+                out.close();
+                fs::create_directories(copy.parent_path());
+                out.open(copy, std::ios::binary | std::ios::trunc);
+                current = copy;
+            } else if (copy != current) {
+                throw IoError(fmt::format("rank 0 sent a piece of {} out of order", path.string()));
+            }
+            out.write(reinterpret_cast<const char*>(m.bytes.data() + at), static_cast<std::streamsize>(m.bytes.size() - at));
+            if (!out) throw IoError(fmt::format("{}: cannot write the copy of rank 0's file", copy.string()));
+            continue;
+        }
+        if (m.tag == kFilesEnd) {
+            out.close();
+            if (!out) throw IoError(fmt::format("{}: cannot write the copy of rank 0's file", current.string()));
+            std::size_t at = 0;
+            const auto ok = get<std::uint32_t>(m, at);
+            const std::string text(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end());
+            if (!ok) throw IoError(text);
+            SceneFiles files;
+            for (std::size_t from = 0, line = 0; from <= text.size(); ++line) {
+                const std::size_t end = std::min(text.find('\n', from), text.size());
+                const fs::path p = text.substr(from, end - from);
+                if (line == 0) files.cwd = p;
+                else files.model_folders.push_back(p);
+                from = end + 1;
+            }
+            return files;
+        }
+        pending.push_back(std::move(m));  // a pass: for serve
+    }
+}
+
 int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerprint, int threads,
-          const std::string& error) {
+          const std::string& error, std::deque<Message> pending) {
     const auto start = Clock::now();
     const int rank = transport.rank();
     const std::string host = host_name();
@@ -454,14 +590,16 @@ int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerp
         return bytes;
     };
     for (;;) {
-        const Message m = wait_message(transport);
+        Message m;
+        if (!pending.empty()) {
+            m = std::move(pending.front());
+            pending.pop_front();
+        } else {
+            m = wait_message(transport);
+        }
         if (m.source != 0) continue;
         if (m.tag == kStop) {
-            std::vector<std::uint8_t> bytes;
-            put(bytes, ByeHeader{threads, 0, tiles_done, samples_done, busy, since(start)});
-            bytes.insert(bytes.end(), host.begin(), host.end());
-            transport.send(0, kBye, std::move(bytes));
-            transport.flush();
+            send_bye(transport, threads, tiles_done, samples_done, busy, since(start));
             return 0;
         }
         if (failed) continue;

@@ -3,12 +3,13 @@
 //
 // Every rank loads the scene itself (from a shared file system or identical copies: a fingerprint
 // of the scene, its meshes and textures and the options is compared, and a rank that loaded
-// something else is an error) and builds its own acceleration structure. Rank 0 runs the passes
+// something else is an error) and builds its own acceleration structure. A rank that cannot load
+// it from its own files asks rank 0 for the files rank 0 read and loads a copy of them. Rank 0 runs the passes
 // of the progressive renderer as a single process would and hands out each pass's tiles in
 // chunks, on request: a rank asks for more when it has rendered what it had, so a slow or busy
 // node takes fewer. Rank 0 renders tiles too, on a thread of its own, while its main thread
-// answers the others. Each pass starts from the same sums on every rank (rank 0 sends the state
-// with the pass), and a tile's result is the same bytes whichever rank renders it, so the image
+// answers the others. A tile goes out with its sums before the pass and comes back with them
+// after it; its result is the same bytes whichever rank renders it, so the image
 // is the single process's to the bit whatever N and whatever order the tiles came back in.
 //
 // Faults: a chunk whose rank has not answered within the timeout is handed out again (the first
@@ -20,7 +21,10 @@
 // the thread that started it (MPI_THREAD_FUNNELED).
 #include <atomic>
 #include <cstdint>
+#include <deque>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,10 +78,18 @@ struct RankReport {
     double idle = 0;  ///< seconds of the job not spent rendering
 };
 
+/// What rank 0 read to load the scene, for the ranks that cannot read it themselves.
+struct SceneFiles {
+    std::filesystem::path cwd;                           ///< rank 0's working folder
+    std::vector<std::filesystem::path> files;            ///< absolute (files_read())
+    std::vector<std::filesystem::path> model_folders;    ///< absolute, in search order
+};
+
 struct ClusterOptions {
     /// A chunk not answered within this many seconds is handed out again.
     double timeout = 60;
     int threads = 1;  ///< rank 0's render threads
+    SceneFiles files;
 };
 
 /// Rank 0's side.
@@ -102,11 +114,19 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-/// A rank other than 0: takes passes and tiles from rank 0 until told to stop. `render` is null
-/// when this rank could not load the scene: `error` then says why, and it goes to rank 0.
-/// Returns the process's exit status.
+/// A rank other than 0 that could not load the scene from its own files: asks rank 0 for every
+/// file rank 0 read and writes each one under `folder` at rank 0's path (`/a/b.ply` as
+/// `folder/a/b.ply`). Returns rank 0's working folder and model folders; nullopt if rank 0
+/// stopped the job first (this rank has then reported and may exit). Messages meant for later
+/// (a pass) are kept in `pending` for serve. Throws IoError if rank 0 could not send a file.
+std::optional<SceneFiles> fetch_scene_files(Transport& transport, const std::filesystem::path& folder,
+                                            std::deque<Message>& pending);
+
+/// A rank other than 0: takes passes and tiles from rank 0 until told to stop, starting with the
+/// messages in `pending`. `render` is null when this rank could not load the scene: `error` then
+/// says why, and it goes to rank 0. Returns the process's exit status.
 int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerprint, int threads,
-          const std::string& error);
+          const std::string& error, std::deque<Message> pending = {});
 
 /// Rank 0, leaving without a Coordinator's finish (an error before or during the render): tells
 /// every other rank to stop and waits until each has.
