@@ -14,6 +14,8 @@
 //
 //   glint_cluster_sim SCENE [--width W] [--height H] [--spp S] [--ranks 1,2,8,64,512]
 //                     [--latency-us L] [--bandwidth-gbs B] [--whole-state]
+// Without a network option it reports three: InfiniBand-like, 10 GbE-like, and 10 GbE-like with
+// the first protocol.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -57,7 +59,8 @@ double simulate_pass(const Costs& c, int n, int ranks, const Model& m) {
     }
     struct Event {
         double time;
-        int kind;  // 0: a message reaches rank 0 (request or result), 1: rank 0's thread wants work
+        int kind;  // 0: a message is at rank 0 (request or result), 1: rank 0's thread wants work,
+                   // 2: a result reaches rank 0's link
         int rank;
         std::vector<int> chunk;  // a result's tiles
         bool operator>(const Event& o) const { return time > o.time; }
@@ -92,11 +95,9 @@ double simulate_pass(const Costs& c, int n, int ranks, const Model& m) {
         out_free = std::max(out_free, main_free) + payload / m.bandwidth;
         const double arrives = out_free + m.latency;
         const double rendered = arrives + cost(chunk);
-        // The result crosses back (the rank's own link is not the limit; rank 0's is).
-        const double payload_back = bytes(chunk);
-        const double reaches = std::max(in_free, rendered + m.latency) + payload_back / m.bandwidth;
-        in_free = reaches;
-        events.push({reaches, 0, r, std::move(chunk)});
+        // The result crosses back: it reaches rank 0's link a latency later and takes its turn
+        // there (the rank's own link is not the limit; rank 0's is).
+        events.push({rendered + m.latency, 2, r, std::move(chunk)});
     };
     // PASS to every rank (with the whole state, in the first version), then each one's request.
     const double pass_bytes = 64 + (m.whole_state ? static_cast<double>(c.state_bytes) : 0);
@@ -111,6 +112,11 @@ double simulate_pass(const Costs& c, int n, int ranks, const Model& m) {
         Event e = events.top();
         events.pop();
         end = std::max(end, e.time);
+        if (e.kind == 2) {  // a result reaches rank 0's link: in order of arrival, one at a time
+            in_free = std::max(in_free, e.time) + bytes(e.chunk) / m.bandwidth;
+            events.push({in_free, 0, e.rank, std::move(e.chunk)});
+            continue;
+        }
         if (e.kind == 1) {  // rank 0's render thread: takes a chunk (a lock, no message)
             if (next >= tiles) continue;
             std::vector<int> chunk = chunk_for(1);
@@ -152,6 +158,7 @@ int main(int argc, char** argv) {
     Overrides o;
     Model m;
     std::vector<int> ranks = {1, 2, 8, 64, 512};
+    bool explicit_model = false;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         const char* v = i + 1 < argc ? argv[i + 1] : "0";
@@ -159,9 +166,9 @@ int main(int argc, char** argv) {
         else if (a == "--height") o.height = std::atoll(v), ++i;
         else if (a == "--spp") o.spp = std::atoll(v), ++i;
         else if (a == "--ranks") ranks = parse_list(v), ++i;
-        else if (a == "--latency-us") m.latency = std::atof(v) * 1e-6, ++i;
-        else if (a == "--bandwidth-gbs") m.bandwidth = std::atof(v) * 1e9, ++i;
-        else if (a == "--whole-state") m.whole_state = true;
+        else if (a == "--latency-us") m.latency = std::atof(v) * 1e-6, ++i, explicit_model = true;
+        else if (a == "--bandwidth-gbs") m.bandwidth = std::atof(v) * 1e9, ++i, explicit_model = true;
+        else if (a == "--whole-state") m.whole_state = true, explicit_model = true;
         else {
             std::fprintf(stderr, "unknown option %s\n", a.c_str());
             return 2;
@@ -182,7 +189,7 @@ int main(int argc, char** argv) {
     double total = 0;
     int passes = 0;
     while (!render.finished()) {
-        const int n = render.begin_pass(render.next_pass_size());
+        render.begin_pass(render.next_pass_size());
         double pass = 0;
         std::uint64_t samples = 0;
         for (int t = 0; t < tiles; ++t) {
@@ -200,26 +207,46 @@ int main(int argc, char** argv) {
     for (double& s : c.per_sample) s /= render.spp_done();
     std::printf("measured: %dx%d, %d spp, %d tiles, %d passes, %.2f s on one thread\n", job.film_width,
                 job.film_height, render.spp_done(), tiles, passes, total);
-    std::printf("model: latency %.1f us, rank 0's link %.2f GB/s each way, %s\n\n", m.latency * 1e6,
-                m.bandwidth * 1e-9, m.whole_state ? "whole state with every pass (first version)" : "sums with the tiles");
-    std::printf("| ranks | passes | predicted (s) | speed-up | efficiency |\n|---|---|---|---|---|\n");
-
-    // 2. The replay: rank 0's pass decisions from the simulated clock.
-    double one = 0;
-    for (const int n_ranks : ranks) {
-        ProgressiveRender decide(job.scene, job.camera, *job.integrator, job.options, job.film_width, job.film_height, false);
-        double t = 0;
-        int p = 0;
-        while (!decide.finished()) {
-            const int n = decide.begin_pass(decide.next_pass_size());
-            const double pass = simulate_pass(c, n, n_ranks, m);
-            decide.end_pass(pass, 0, static_cast<std::uint64_t>(job.film_width) * job.film_height * n);
-            t += pass;
-            ++p;
+    // 2. The replay: rank 0's pass decisions from the simulated clock, on the given network and
+    // on two reference ones (an InfiniBand-like and a 10 GbE-like link), and the first protocol.
+    struct Named {
+        const char* name;
+        Model model;
+    };
+    std::vector<Named> models = {{"as given", m}};
+    if (!explicit_model) {
+        Model infiniband;  // the defaults
+        Model ethernet;
+        ethernet.latency = 30e-6;
+        ethernet.bandwidth = 1.25e9;
+        Model first = ethernet;
+        first.whole_state = true;
+        models = {{"InfiniBand-like: 2 us, 12.5 GB/s", infiniband},
+                  {"10 GbE-like: 30 us, 1.25 GB/s", ethernet},
+                  {"10 GbE-like, the first protocol (whole state to every rank each pass)", first}};
+    }
+    for (const Named& nm : models) {
+        const Model& model = nm.model;
+        std::printf("\nnetwork: %s (latency %.1f us, rank 0's link %.2f GB/s each way)\n\n", nm.name,
+                    model.latency * 1e6, model.bandwidth * 1e-9);
+        std::printf("| ranks | passes | predicted (s) | speed-up | efficiency |\n|---|---|---|---|---|\n");
+        double one = 0;
+        for (const int n_ranks : ranks) {
+            ProgressiveRender decide(job.scene, job.camera, *job.integrator, job.options, job.film_width,
+                                     job.film_height, false);
+            double t = 0;
+            int p = 0;
+            while (!decide.finished()) {
+                const int n = decide.begin_pass(decide.next_pass_size());
+                const double pass = simulate_pass(c, n, n_ranks, model);
+                decide.end_pass(pass, 0, static_cast<std::uint64_t>(job.film_width) * job.film_height * n);
+                t += pass;
+                ++p;
+            }
+            if (n_ranks == 1) one = t;
+            const double speedup = one > 0 ? one / t : 0;
+            std::printf("| %d | %d | %.3f | %.2fx | %.2f |\n", n_ranks, p, t, speedup, speedup / n_ranks);
         }
-        if (n_ranks == 1) one = t;
-        const double speedup = one > 0 ? one / t : 0;
-        std::printf("| %d | %d | %.3f | %.2fx | %.2f |\n", n_ranks, p, t, speedup, speedup / n_ranks);
     }
     return 0;
 }

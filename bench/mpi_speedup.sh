@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Distributed rendering's speed-up on this machine: the Cornell box and the bunny at 512x512 by the
-# path tracer, one process of one thread against `mpirun -np 2` ranks of one thread, the runs
-# alternating. Prints a Markdown table of medians (the render time glint reports, and the whole
-# process) and the speed-up; checks that every distributed image equals the single process's.
+# path tracer, one process of one thread against `mpirun -np 2` ranks of one thread, and, for
+# what the machine's two cores give at all, one process of two threads; the runs alternate.
+# Prints a Markdown table of medians (the render time glint reports, and the whole process) and
+# the speed-ups; checks that every distributed image equals the single process's.
 #
 #   bench/mpi_speedup.sh [BUILD_DIR] [RUNS]
 #   SPP=256 bench/mpi_speedup.sh build 3      # the issue's setting (about 20 minutes)
@@ -28,12 +29,14 @@ run() {
 }
 
 for scene in cornell-box bunny; do
-  args=(render "scenes/$scene.yaml" --width 512 --height 512 --spp "$spp" --threads 1)
+  args=(render "scenes/$scene.yaml" --width 512 --height 512 --spp "$spp")
   : >"$out/$scene-1.txt"
   : >"$out/$scene-2.txt"
+  : >"$out/$scene-t2.txt"
   for i in $(seq "$runs"); do
-    run "$glint" "${args[@]}" -o "$out/$scene-1.exr" >>"$out/$scene-1.txt"
-    run mpirun -np 2 "$glint" "${args[@]}" -o "$out/$scene-2.exr" >>"$out/$scene-2.txt"
+    run "$glint" "${args[@]}" --threads 1 -o "$out/$scene-1.exr" >>"$out/$scene-1.txt"
+    run "$glint" "${args[@]}" --threads 2 -o "$out/$scene-t2.exr" >>"$out/$scene-t2.txt"
+    run mpirun -np 2 "$glint" "${args[@]}" --threads 1 -o "$out/$scene-2.exr" >>"$out/$scene-2.txt"
     idiff -fail 0 -warn 0 -a "$out/$scene-1.exr" "$out/$scene-2.exr" >/dev/null ||
       { echo "$scene: the 2-rank image differs from the single process's" >&2; exit 1; }
   done
@@ -43,13 +46,13 @@ python3 - "$out" "$runs" "$spp" <<'PY'
 import statistics, sys
 out, runs, spp = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 print(f"512x512, {spp} spp, path tracer; median of {runs} runs, alternating; images identical\n")
-print("| scene | 1 process (s) | 2 ranks (s) | speed-up | whole process: 1 (s) | 2 (s) | speed-up |")
+print("| scene | 1 process, 1 thread (s) | 2 ranks of 1 thread (s) | speed-up | whole process, speed-up | 1 process, 2 threads (s) | its speed-up |")
 print("|---|---|---|---|---|---|---|")
 for scene in ("cornell-box", "bunny"):
     cols = []
-    for n in (1, 2):
+    for n in ("1", "2", "t2"):
         rows = [list(map(float, l.split())) for l in open(f"{out}/{scene}-{n}.txt") if l.strip()]
         cols.append((statistics.median(r[0] for r in rows), statistics.median(r[1] for r in rows)))
-    (r1, w1), (r2, w2) = cols
-    print(f"| {scene} | {r1:.2f} | {r2:.2f} | {r1 / r2:.2f}x | {w1:.2f} | {w2:.2f} | {w1 / w2:.2f}x |")
+    (r1, w1), (r2, w2), (t2, _) = cols
+    print(f"| {scene} | {r1:.2f} | {r2:.2f} | {r1 / r2:.2f}x | {w1 / w2:.2f}x | {t2:.2f} | {r1 / t2:.2f}x |")
 PY
