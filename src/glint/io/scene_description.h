@@ -264,6 +264,11 @@ struct SceneDescription {
     std::vector<ObjectDesc> objects;
     /// What the reader approximated or left out (pbrt files), printed as located warnings.
     std::vector<Diagnostic> warnings;
+    /// Animation: the frame this description is of (keyframed values were read at it), frames
+    /// per second (glTF animations are timed in seconds), and whether anything is keyframed.
+    double frame = 0;
+    double fps = 24;
+    bool animated = false;
 };
 
 }  // namespace glint

@@ -49,8 +49,18 @@ public:
         }
         MapReader m(r_, root, "scene",
                     {"camera", "film", "sampler", "integrator", "background", "lights",
-                     "materials", "media", "medium", "objects"});
+                     "materials", "media", "medium", "objects", "animation"});
         if (!m.valid()) return;
+        if (auto n = m.get("animation")) {
+            MapReader a(r_, *n, "animation", {"fps"});
+            if (a.valid())
+                if (auto f = a.get("fps")) assign(f, scene.fps, [this](const YAML::Node& v) { return r_.number_in(v, "fps", 0, 1e6, true); });
+        }
+        // Every keyframed value becomes its value at this frame, then the scene is read as usual.
+        for (auto it = root.begin(); it != root.end(); ++it) {
+            YAML::Node value = it->second;
+            animate(value, scene);
+        }
         if (auto n = m.get("camera")) scene.camera = camera(*n);
         if (auto n = m.get("film")) film(*n, scene.film);
         if (auto n = m.get("sampler")) sampler(*n, scene.sampler);
@@ -66,6 +76,130 @@ public:
     }
 
 private:
+    // Replaces, in place, every `{keyframes: [[frame, value], ...], interpolation: ...}` under
+    // `node` with its value at scene.frame (docs/scene-format.md, "Animation").
+    void animate(YAML::Node& node, SceneDescription& scene) {
+        if (node.IsMap() && std::as_const(node)["keyframes"].IsDefined()) {  // const: no key made
+            scene.animated = true;
+            if (auto v = keyframed(node, scene.frame)) node = *v;
+            return;
+        }
+        if (node.IsMap()) {
+            for (auto it = node.begin(); it != node.end(); ++it) {
+                YAML::Node value = it->second;
+                animate(value, scene);
+            }
+        } else if (node.IsSequence()) {
+            for (auto it = node.begin(); it != node.end(); ++it) {
+                YAML::Node value = *it;
+                animate(value, scene);
+            }
+        }
+    }
+
+    // A keyframed value at `frame`: a number, or a list of numbers, as a node made here (errors
+    // about it are located at the keyframes map).
+    std::optional<YAML::Node> keyframed(const YAML::Node& node, double frame) {
+        MapReader m(r_, node, "keyframed value", {"keyframes", "interpolation"});
+        if (!m.valid()) return std::nullopt;
+        enum class Curve { kLinear, kStep, kSmooth } curve = Curve::kLinear;
+        if (auto n = m.get("interpolation")) {
+            auto c = choice<Curve>(*n, "interpolation", {{"linear", Curve::kLinear}, {"step", Curve::kStep},
+                                                         {"smooth", Curve::kSmooth}});
+            if (!c) return std::nullopt;
+            curve = *c;
+        }
+        const YAML::Node keys = *m.get("keyframes");
+        if (!keys.IsSequence() || keys.size() == 0) {
+            r_.error(keys, fmt::format("keyframes: expected a list of [frame, value] pairs, got {}", describe(keys)));
+            return std::nullopt;
+        }
+        std::vector<double> t;
+        std::vector<std::vector<double>> v;
+        bool scalar = false;
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const YAML::Node k = keys[i];
+            if (!k.IsSequence() || k.size() != 2) {
+                r_.error(k, fmt::format("keyframe: expected [frame, value], got {}", describe(k)));
+                return std::nullopt;
+            }
+            const auto f = r_.number(k[0]);
+            if (!f) return std::nullopt;
+            if (!t.empty() && !(*f > t.back())) {
+                r_.error(k[0], fmt::format("keyframe at frame {}: frames must increase (the one before is {})", *f, t.back()));
+                return std::nullopt;
+            }
+            const YAML::Node value = k[1];
+            std::vector<double> x;
+            if (value.IsScalar()) {
+                const auto n = r_.number(value);
+                if (!n) return std::nullopt;
+                x.push_back(*n);
+            } else if (value.IsSequence() && value.size() > 0) {
+                for (std::size_t j = 0; j < value.size(); ++j) {
+                    const auto n = r_.number(value[j]);
+                    if (!n) return std::nullopt;
+                    x.push_back(*n);
+                }
+            } else {
+                r_.error(value, fmt::format("keyframe value: expected a number or a list of numbers, got {}", describe(value)));
+                return std::nullopt;
+            }
+            if (i == 0) scalar = value.IsScalar();
+            else if (value.IsScalar() != scalar || x.size() != v[0].size()) {
+                r_.error(value, fmt::format("keyframe value: every key must have the shape of the first ({})",
+                                            scalar ? "a number" : fmt::format("a list of {}", v[0].size())));
+                return std::nullopt;
+            }
+            t.push_back(*f);
+            v.push_back(std::move(x));
+        }
+        const std::vector<double> at = interpolate(t, v, frame, static_cast<int>(curve));
+        YAML::Node out;
+        const auto number = [&](double x) {
+            YAML::Node n(fmt::format("{:.17g}", x));
+            r_.locate_as(n, r_.loc(node));
+            return n;
+        };
+        if (scalar) {
+            out = number(at[0]);
+        } else {
+            out = YAML::Node(YAML::NodeType::Sequence);
+            for (double x : at) out.push_back(number(x));
+        }
+        r_.locate_as(out, r_.loc(node));
+        return out;
+    }
+
+    // The value at `f` of keys (t[i], v[i]), t increasing: held before the first and after the
+    // last; between keys linear (0), the earlier key's (1), or smooth (2): a cubic Hermite
+    // through the keys whose slopes are the central differences (Catmull-Rom, non-uniform), one-sided at the ends.
+    static std::vector<double> interpolate(const std::vector<double>& t, const std::vector<std::vector<double>>& v,
+                                           double f, int curve) {
+        const std::size_t n = t.size();
+        if (f <= t[0]) return v[0];
+        if (f >= t[n - 1]) return v[n - 1];
+        std::size_t i = 0;
+        while (!(f < t[i + 1])) ++i;
+        if (curve == 1) return v[i];
+        const double dt = t[i + 1] - t[i], u = (f - t[i]) / dt;
+        std::vector<double> out(v[i].size());
+        for (std::size_t c = 0; c < out.size(); ++c) {
+            if (curve == 0) {
+                out[c] = v[i][c] + u * (v[i + 1][c] - v[i][c]);
+                continue;
+            }
+            const auto slope = [&](std::size_t k) {
+                const std::size_t a = k == 0 ? 0 : k - 1, b = k + 1 == n ? k : k + 1;
+                return (v[b][c] - v[a][c]) / (t[b] - t[a]);
+            };
+            const double u2 = u * u, u3 = u2 * u;
+            out[c] = (2 * u3 - 3 * u2 + 1) * v[i][c] + (u3 - 2 * u2 + u) * dt * slope(i) +
+                     (-2 * u3 + 3 * u2) * v[i + 1][c] + (u3 - u2) * dt * slope(i + 1);
+        }
+        return out;
+    }
+
     // The value of a polymorphic map's `type` key, checked against `types`.
     std::optional<std::string> type_of(const YAML::Node& node, const std::string& context,
                                        const std::vector<std::string>& types,
@@ -1033,12 +1167,13 @@ private:
 }  // namespace
 
 SceneDescription parse_scene(const std::string& text, const std::string& path,
-                             std::shared_ptr<SourceFiles> sources) {
+                             std::shared_ptr<SourceFiles> sources, double frame) {
     reset_memory_budget();  // a new scene
     sources->add(path, text);
     Diagnostics diagnostics(sources);
     SceneDescription scene;
     scene.path = path;
+    scene.frame = frame;
     // Flow collections nested deeper than the nesting limit, found before yaml-cpp recurses
     // into them (its own guard, at 2000 levels, reports only "bad file").
     {
@@ -1081,10 +1216,14 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
     return scene;
 }
 
-SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources) {
-    if (is_pbrt_file(path)) return load_pbrt_file(path, std::move(sources));
+SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources, double frame) {
+    if (is_pbrt_file(path)) {
+        SceneDescription d = load_pbrt_file(path, std::move(sources));
+        d.frame = frame;
+        return d;
+    }
     const std::string text = read_scene_text(path, sources);
-    return parse_scene(text, path, std::move(sources));
+    return parse_scene(text, path, std::move(sources), frame);
 }
 
 }  // namespace glint

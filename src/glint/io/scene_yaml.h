@@ -12,10 +12,11 @@ namespace glint {
 /// Reads and parses a scene file. All errors (syntax, unknown keys, wrong types, out-of-range
 /// values) are collected and thrown together as one SceneError; a missing file is a SceneError
 /// too. `sources` receives the file text for later diagnostics (build's name resolution).
-SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources);
+/// `frame`: the animation frame whose keyframed values are read (docs/scene-format.md, "Animation").
+SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources, double frame = 0);
 
 /// Parses scene text; `path` names it in messages and resolves nothing else.
 SceneDescription parse_scene(const std::string& text, const std::string& path,
-                             std::shared_ptr<SourceFiles> sources);
+                             std::shared_ptr<SourceFiles> sources, double frame = 0);
 
 }  // namespace glint

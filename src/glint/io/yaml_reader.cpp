@@ -20,7 +20,11 @@ std::string describe(const YAML::Node& node) {
 
 SourceLoc YamlReader::loc(const YAML::Node& node) const {
     const YAML::Mark m = node.Mark();
-    if (m.is_null()) return {file_, 0, 0};
+    if (m.is_null()) {
+        for (const auto& [made, at] : made_)
+            if (made.is(node)) return at;
+        return {file_, 0, 0};
+    }
     return {file_, m.line + 1, m.column + 1};
 }
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "glint/io/diagnostics.h"
@@ -21,6 +22,9 @@ public:
         : diagnostics_(diagnostics), file_(std::move(file)) {}
 
     SourceLoc loc(const YAML::Node& node) const;
+    /// Errors about `node` (a value made by the parser, e.g. a keyframed value at one frame, which
+    /// has no place in the file) are reported at `at`.
+    void locate_as(const YAML::Node& node, SourceLoc at) { made_.emplace_back(node, std::move(at)); }
     void error(const YAML::Node& node, std::string message) { diagnostics_.error(loc(node), std::move(message)); }
     Diagnostics& diagnostics() { return diagnostics_; }
 
@@ -47,6 +51,7 @@ public:
 private:
     Diagnostics& diagnostics_;
     std::string file_;
+    std::vector<std::pair<YAML::Node, SourceLoc>> made_;
 };
 
 /// A YAML map whose keys are checked against a fixed set: unknown keys (with a did-you-mean),
