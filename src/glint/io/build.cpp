@@ -617,6 +617,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     };
     std::map<std::string, LoadedFile> loaded;
     std::map<const TriangleMesh*, std::uint32_t> inline_meshes;
+    const double time = d.frame / d.fps;  // seconds into glTF animations
     for (const ObjectDesc& o : d.objects) {
         MaterialId id = 0;
         const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
@@ -666,7 +667,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
             if (it == loaded.end()) {
                 ImportedFile f;
                 try {
-                    f = mesh_file->camera.empty() ? import_mesh_file(path) : import_gltf(path, mesh_file->camera);
+                    f = mesh_file->camera.empty() ? import_mesh_file(path, time) : import_gltf(path, mesh_file->camera, time);
                 } catch (const IoError& e) {
                     diagnostics.error(mesh_file->file.loc, e.what());
                     continue;

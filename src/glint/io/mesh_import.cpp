@@ -31,7 +31,7 @@ std::string mesh_size_error(long long vertices, long long triangles) {
     return charge_memory(44 * vertices + 80 * triangles, fmt::format("a mesh of {} vertices and {} triangles", vertices, triangles));
 }
 
-ImportedFile import_mesh_file(const std::filesystem::path& path) {
+ImportedFile import_mesh_file(const std::filesystem::path& path, double time) {
     const auto format = mesh_format(path);
     if (!format)
         throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .ply.gz, .gltf, .glb)", path.string(),
@@ -40,7 +40,7 @@ ImportedFile import_mesh_file(const std::filesystem::path& path) {
         case MeshFormat::kPly: return import_ply(path);
         case MeshFormat::kObj: return import_obj(path);
         case MeshFormat::kGltf:
-        case MeshFormat::kGlb: return import_gltf(path);
+        case MeshFormat::kGlb: return import_gltf(path, "", time);
     }
     return {};  // unreachable: every format is covered
 }

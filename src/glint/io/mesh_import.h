@@ -56,10 +56,11 @@ enum class MeshFormat { kPly, kObj, kGltf, kGlb };
 /// The format a file's extension names (any case), if it is a mesh format.
 std::optional<MeshFormat> mesh_format(const std::filesystem::path& path);
 
-/// By extension: .ply, .obj, .gltf, .glb.
-ImportedFile import_mesh_file(const std::filesystem::path& path);
+/// By extension: .ply, .obj, .gltf, .glb. `time`: seconds into a glTF file's animation.
+ImportedFile import_mesh_file(const std::filesystem::path& path, double time = 0);
 /// `camera`: the name of the camera to use (empty: the first one met in the node hierarchy).
-ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera = "");
+/// `time`: the nodes are placed as the file's first animation has them at this many seconds.
+ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera = "", double time = 0);
 ImportedFile import_ply(const std::filesystem::path& path);
 ImportedFile import_obj(const std::filesystem::path& path);
 
