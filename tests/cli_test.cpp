@@ -406,6 +406,114 @@ TEST_F(LongRender, InterruptedAndResumedRendersEqualTheUninterruptedOne) {
     EXPECT_NE(log.find("interrupted by SIGTERM"), std::string::npos) << log;
 }
 
+// An animated scene for the --frames tests: a camera on a smooth path, a sphere moving up, a box
+// turning, lit by the sky and path traced.
+const char* kAnimatedScene =
+    "animation: {fps: 24}\n"
+    "camera: {type: look_at, from: {keyframes: [[0, [0, 1, -6]], [2, [2, 1.5, -5]], [5, [3, 1, -5]]], "
+    "interpolation: smooth}, to: [0, 0.5, 0], fov: 40}\n"
+    "film: {width: 64, height: 48}\n"
+    "integrator: {type: path}\n"
+    "background: {type: sky}\n"
+    "objects:\n"
+    "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0]}\n"
+    "  - {type: sphere, center: {keyframes: [[0, [0, 1, 0]], [5, [0, 2, 0]]]}, radius: 1,\n"
+    "     material: {type: diffuse, albedo: [0.8, 0.1, 0.1]}}\n"
+    "  - {type: box, min: [-0.5, 0, -0.5], max: [0.5, 1, 0.5],\n"
+    "     transform: [{rotate: {angle: {keyframes: [[0, 0], [5, 90]]}, axis: [0, 1, 0]}}, {translate: [2, 0, 0]}]}\n";
+
+// A job killed in the middle of an animation (SIGINT, then SIGKILL) goes on where it stopped: the
+// frames on disk are whole and skipped, the interrupted frame is not written, and every frame in
+// the end is the uninterrupted job's, bit for bit.
+TEST_F(LongRender, AnAnimationStoppedMidwayGoesOnWhereItStopped) {
+    write("anim.yaml", kAnimatedScene);
+    const std::string scene = "anim.yaml --spp 256 --threads 2";
+    ASSERT_EQ(run("render " + scene + " --frames 0:5 -q -o full_%d.exr").status, 0) << read(dir_ / "err.txt");
+    std::vector<std::vector<float>> full;
+    for (int f = 0; f <= 5; ++f) full.push_back(pixels(dir_ / ("full_" + std::to_string(f) + ".exr")));
+    for (int f = 1; f <= 5; ++f) EXPECT_NE(full[0], full[static_cast<std::size_t>(f)]) << "frame " << f << " did not move";
+
+    const auto frames_on_disk = [&] {
+        int n = 0;
+        for (int f = 0; f <= 5; ++f) n += fs::exists(dir_ / ("part_" + std::to_string(f) + ".exr"));
+        return n;
+    };
+    int stopped = 0;
+    for (const int sig : {SIGINT, SIGKILL}) {
+        const int before = frames_on_disk();
+        if (before == 6) break;
+        const pid_t pid = start("render " + scene + " --frames 0:5 -o part_%d.exr");
+        // Stopped once the frame after the first it renders has started.
+        if (!wait_for_file(pid, dir_ / ("part_" + std::to_string(before) + ".exr"), {})) continue;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        ::kill(pid, sig);
+        const int status = wait_for(pid);
+        EXPECT_TRUE(status == (sig == SIGINT ? 3 : 1000 + SIGKILL) || status == 0) << status;
+        ++stopped;
+        for (const auto& e : fs::directory_iterator(dir_.path()))
+            if (e.path().extension() == ".tmp") {
+                EXPECT_EQ(sig, SIGKILL) << "SIGINT left " << e.path();  // only a killed process may leave one
+                fs::remove(e.path());
+            }
+        for (int f = 0; f <= 5; ++f) {  // what is on disk is whole and right
+            const fs::path p = dir_ / ("part_" + std::to_string(f) + ".exr");
+            if (fs::exists(p)) EXPECT_EQ(pixels(p), full[static_cast<std::size_t>(f)]) << p;
+        }
+    }
+    EXPECT_GE(stopped, 1) << "the animation finished before it could be stopped";
+    // The frames already written are skipped (untouched), the rest rendered.
+    std::map<int, fs::file_time_type> written;
+    for (int f = 0; f <= 5; ++f) {
+        const fs::path p = dir_ / ("part_" + std::to_string(f) + ".exr");
+        if (fs::exists(p)) written[f] = fs::last_write_time(p);
+    }
+    EXPECT_LT(written.size(), 6u);
+    const Result r = run("render " + scene + " --frames 0:5 -o part_%d.exr");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const std::size_t left = 6 - written.size();
+    EXPECT_NE(r.err.find(std::to_string(left) + (left == 1 ? " frame" : " frames") + " rendered, " +
+                         std::to_string(written.size()) + " skipped"),
+              std::string::npos)
+        << r.err;
+    for (int f = 0; f <= 5; ++f) {
+        const fs::path p = dir_ / ("part_" + std::to_string(f) + ".exr");
+        EXPECT_EQ(pixels(p), full[static_cast<std::size_t>(f)]) << p;
+        if (written.count(f)) EXPECT_EQ(fs::last_write_time(p), written[f]) << "frame " << f << " was rendered again";
+    }
+}
+
+// --frames: one frame alone is that frame of the sequence; the pattern, the range and the
+// options that do not go with it are refused before anything renders.
+TEST_F(LongRender, FramesOneFrameAloneAndBadArguments) {
+    write("anim.yaml", kAnimatedScene);
+    ASSERT_EQ(run("render anim.yaml --spp 4 --frames 1:3 -q -o f%02d.exr").status, 0);
+    for (const char* f : {"f01.exr", "f02.exr", "f03.exr"}) EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+    ASSERT_EQ(run("render anim.yaml --spp 4 --frames 2 -q -o two.exr").status, 0);
+    EXPECT_EQ(pixels(dir_ / "two.exr"), pixels(dir_ / "f02.exr"));
+    EXPECT_NE(pixels(dir_ / "f01.exr"), pixels(dir_ / "f02.exr"));
+    // Frame 0 without --frames is the scene's first frame.
+    ASSERT_EQ(run("render anim.yaml --spp 4 --frames 0 -q -o a.exr").status, 0);
+    ASSERT_EQ(run("render anim.yaml --spp 4 -q -o b.exr").status, 0);
+    EXPECT_EQ(pixels(dir_ / "a.exr"), pixels(dir_ / "b.exr"));
+    const std::size_t files = dir_.file_count();
+    const std::pair<const char*, const char*> bad[] = {
+        {"--frames 3:1 -o f%d.exr", "--frames 3:1: expected FIRST:LAST"},
+        {"--frames x -o f%d.exr", "--frames x: expected FIRST:LAST"},
+        {"--frames 0:2 -o f.exr", "-o f.exr: several frames need the frame number in the name"},
+        {"--frames 0:2 -o f%d%d.exr", "the frame number may appear once"},
+        {"--frames 0:2 -o f%s.exr", "must be %d, %0Nd"},
+        {"--frames 0:2", "--frames needs -o"},
+        {"--frames 0:2 -o f%d.exr --checkpoint c.ckpt", "--checkpoint and --resume are for one image"},
+        {"--frames 0:2 -o f%d.exr --fps 0", "--fps 0: must be a number above 0"},
+    };
+    for (const auto& [args, message] : bad) {
+        const Result r = run(std::string("render anim.yaml ") + args);
+        EXPECT_EQ(r.status, 1) << args;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    }
+    EXPECT_EQ(dir_.file_count(), files);  // nothing written
+}
+
 // A second SIGINT exits at once (status 130), removes the temporary files and leaves the old
 // image as it was.
 TEST_F(LongRender, SecondSigintAbortsAtOnceWithoutATruncatedFile) {

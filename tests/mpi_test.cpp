@@ -2,7 +2,8 @@
 // ranks is the single process's to the bit; a stalled rank loses its tiles to the others and the
 // image stays the same; a rank that cannot load the scene, or loaded another one, is an error on
 // rank 0, never a hang; a rank without the scene's files gets them from rank 0; a job stopped
-// by its time budget resumes on another number of ranks.
+// by its time budget resumes on another number of ranks; an animation's frames are the single
+// process's and the frames written are skipped when the job runs again.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -186,6 +187,60 @@ objects:
     EXPECT_GT(tiles_of(r.err, 1), 0) << r.err;
     EXPECT_TRUE(fs::is_empty(dir_ / "one"));
     EXPECT_TRUE(fs::is_empty(dir_ / "tmp1"));  // rank 1's copy of the files, removed at its end
+}
+
+// An animation across ranks: every frame is the single process's, bit for bit; frames already
+// written are skipped when the job is run again (here on 3 ranks, one of which has no files and
+// loads rank 0's copy for each frame); a rank that fails on a frame ends the job with its error.
+TEST_F(Mpi, AnAnimationAcrossRanksGivesTheSingleProcessFramesAndSkipsWrittenOnes) {
+    fs::create_directories(dir_ / "one");
+    {
+        std::ofstream out(dir_ / "anim.yaml");
+        out << "camera: {type: look_at, from: {keyframes: [[0, [0, 1.5, -6]], [3, [3, 1.5, -5]]], interpolation: smooth},\n"
+               "         to: [0, 0.8, 0], fov: 40}\n"
+               "integrator: {type: path, max_depth: 4}\n"
+               "background: {type: constant, color: [0.6, 0.7, 0.9]}\n"
+               "objects:\n"
+               "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0]}\n"
+               "  - {type: sphere, center: {keyframes: [[0, [0, 1, 0]], [3, [0, 2, 0]]]}, radius: 1,\n"
+               "     material: {color: [0.8, 0.2, 0.2]}}\n";
+    }
+    const std::string options = " render anim.yaml --width 48 --height 32 --spp 64 --threads 1 --frames 0:3";
+    Result r = run("{glint}" + options + " -q -o s_%d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("mpirun --oversubscribe -np 2 {glint}" + options + " -o m_%d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_GT(tiles_of(r.err, 1), 0) << r.err;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string n = std::to_string(f);
+        EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("m_" + n + ".exr"))) << "frame " << f;
+    }
+    EXPECT_FALSE(same_bits(pixels("m_0.exr"), pixels("m_3.exr")));
+    // Two frames lost: a job of 3 ranks renders only those, rank 2 from rank 0's files.
+    fs::remove(dir_ / "m_1.exr");
+    fs::remove(dir_ / "m_3.exr");
+    const auto kept = fs::last_write_time(dir_ / "m_2.exr");
+    r = run("mpirun --oversubscribe -np 2 {glint}" + options + " -o m_%d.exr : -np 1 --wdir one {glint}" + options +
+            " -o m_%d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("2 frames rendered, 2 skipped"), std::string::npos) << r.err;
+    EXPECT_EQ(fs::last_write_time(dir_ / "m_2.exr"), kept);
+    for (int f = 0; f <= 3; ++f) {
+        const std::string n = std::to_string(f);
+        EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("m_" + n + ".exr"))) << "frame " << f;
+    }
+    EXPECT_TRUE(fs::is_empty(dir_ / "one"));
+    // A rank with another scene: rank 0 reports it and the job ends (no hang between frames).
+    fs::create_directories(dir_ / "other");
+    {
+        std::ofstream out(dir_ / "other/anim.yaml");
+        out << "objects: [{type: sphere, center: [0, 0, 0], radius: 1}]\n";
+    }
+    r = run("mpirun --oversubscribe -np 1 {glint}" + options + " -o x_%d.exr : -np 1 --wdir other {glint}" + options +
+            " -o x_%d.exr", 60);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("rank 1: on "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x_0.exr"));
 }
 
 // Each rank loads the scene itself: a rank that cannot (here: another file, missing) or that

@@ -57,6 +57,12 @@ struct RenderArgs {
     std::optional<long long> min_spp;
     // Distributed rendering (mpirun).
     double rank_timeout = 60;
+    // Animation: --frames A:B and --fps; `frame` is the one being rendered, `animation` says a
+    // frame of --frames is (an interrupted frame is then not written: it is rendered again).
+    std::string frames;
+    std::optional<double> fps;
+    double frame = 0;
+    bool animation = false;
 };
 
 // Exit status of a render stopped by SIGINT or SIGTERM (the image of the completed passes, if
@@ -72,6 +78,9 @@ volatile std::sig_atomic_t g_signal = 0;
 // rank 0 has told the other ranks to stop.
 std::unique_ptr<glint::Transport> g_cluster;
 bool g_ranks_stopped = false;
+// Rank 0 of a distributed animation: the other ranks wait for the next frame between frames, and
+// must be stopped there too.
+bool g_animation_ranks = false;
 // --restrict-paths was given (a rank loading a copy of rank 0's files restricts reads to it).
 bool g_restrict_paths = false;
 char g_temporary[2][4096];  // the image's and the checkpoint's temporary files, or empty
@@ -150,11 +159,17 @@ void frame_bounds(glint::RenderJob& job) {
 glint::RenderJob load_job(const RenderArgs& args) {
     auto sources = std::make_shared<glint::SourceFiles>();
     const bool mesh = !args.scene.empty() && is_mesh_file(args.scene);
-    const glint::SceneDescription description =
-        args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources)
+    glint::SceneDescription description =
+        args.scene.empty() ? glint::parse_scene(glint::kDemoScene, glint::kDemoSceneName, sources, args.frame)
         : mesh             ? mesh_file_scene(args.scene, args.camera)
         : glint::is_pbrt_file(args.scene) ? glint::load_pbrt_file(args.scene, sources, {args.strict})
-                           : glint::load_scene_file(args.scene, sources);
+                           : glint::load_scene_file(args.scene, sources, args.frame);
+    description.frame = args.frame;
+    if (args.fps) {
+        if (!(*args.fps > 0) || !std::isfinite(*args.fps) || *args.fps > 1e6)
+            throw glint::IoError(fmt::format("--fps {}: must be a number above 0", *args.fps));
+        description.fps = *args.fps;
+    }
     glint::Overrides overrides;
     overrides.width = args.width;
     overrides.height = args.height;
@@ -384,7 +399,8 @@ struct TempFolder {
 // A rank other than 0 of a distributed render: loads what rank 0 loads and renders the tiles it
 // is given; what fails here is sent to rank 0, which reports it. A rank that cannot load the
 // scene from its own files loads a copy of the files rank 0 read.
-int run_rank(const RenderArgs& args) {
+// `copy`: the folder of rank 0's files, kept from one frame of an animation to the next.
+int run_rank_frame(const RenderArgs& args, std::optional<TempFolder>& copy, std::optional<RenderArgs>& from_copy) {
     std::optional<glint::RenderJob> job;
     std::unique_ptr<glint::ProgressiveRender> render;
     std::uint64_t fingerprint = 0;
@@ -411,10 +427,14 @@ int run_rank(const RenderArgs& args) {
     };
     error = load(args);
     std::deque<glint::Message> pending;
-    std::optional<TempFolder> copy;  // removed when this rank is done
+    if (!error.empty() && from_copy) {  // an earlier frame needed rank 0's files: try the copy first
+        RenderArgs local = *from_copy;
+        local.frame = args.frame;
+        if (load(local).empty()) error.clear();
+    }
     if (!error.empty() && !args.scene.empty()) {
         try {
-            copy.emplace();
+            if (!copy) copy.emplace();
             const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
             if (!files) return 0;  // rank 0 stopped the job first
             // The scene as rank 0 named it, in the copy; meshes found in rank 0's model folders, in
@@ -427,6 +447,7 @@ int run_rank(const RenderArgs& args) {
                 folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
             ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
             if (g_restrict_paths) glint::restrict_reads_to({copy->path});
+            from_copy = local;
             std::string again = load(local);
             if (!again.empty()) {
                 // Rank 0's paths in the message, not the copy's.
@@ -442,6 +463,20 @@ int run_rank(const RenderArgs& args) {
     }
     return glint::serve(*g_cluster, render.get(), fingerprint, job ? job->options.threads : 1, error,
                         std::move(pending));
+}
+
+int run_rank(const RenderArgs& args) {
+    std::optional<TempFolder> copy;  // removed when this rank is done
+    std::optional<RenderArgs> from_copy;
+    if (args.frames.empty()) return run_rank_frame(args, copy, from_copy);
+    // An animation: one render per frame rank 0 announces, until it stops the job.
+    while (const std::optional<double> frame = glint::wait_frame(*g_cluster)) {
+        RenderArgs a = args;
+        a.frame = *frame;
+        a.animation = true;
+        if (const int status = run_rank_frame(a, copy, from_copy); status != 0) return status;
+    }
+    return 0;
 }
 
 int run_render(const RenderArgs& args) {
@@ -495,7 +530,7 @@ int run_render(const RenderArgs& args) {
             const glint::RenderStats stats = glint::render_8bit(
                 job.scene, job.camera, *job.integrator, job.options, job.display, w, h, writer.rgb(), &progress,
                 &g_stop, [&writer](int y0, int y1) { writer.rows_ready(y0, y1); });
-            if (!stats.complete) return interrupted_status("no pass completed; nothing written");
+            if (!stats.complete) return interrupted_status(args.animation ? fmt::format("frame {} not written", args.frame) : "no pass completed; nothing written");
             writer.finish(metadata(args, 1, 1, 1, stats.seconds, true));
             progress.finish(stats, w, h, "1 spp");
             if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
@@ -504,7 +539,7 @@ int run_render(const RenderArgs& args) {
         glint::Film film(w, h);
         const glint::RenderStats stats =
             glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress, &g_stop);
-        if (!stats.complete) return interrupted_status("no pass completed; nothing written");
+        if (!stats.complete) return interrupted_status(args.animation ? fmt::format("frame {} not written", args.frame) : "no pass completed; nothing written");
         glint::write_image(out, film, job.display, metadata(args, 1, 1, 1, stats.seconds, true));
         progress.finish(stats, w, h, "1 spp");
         if (!args.quiet) fmt::print(stderr, "wrote {}\n", out.string());
@@ -595,6 +630,8 @@ int run_render(const RenderArgs& args) {
         const std::vector<glint::RankReport> reports = cluster->finish();
         if (!args.quiet) fmt::print(stderr, "{}", glint::format_reports(reports));
     }
+    if (interrupted && args.animation)
+        return interrupted_status(fmt::format("frame {} not written; run the command again to go on from it", args.frame));
     if (render.passes() == 0) {
         if (interrupted) return interrupted_status("no pass completed; nothing written");
         if (budget_hit) throw glint::IoError("--time: the budget ended before the first pass; nothing written");
@@ -619,6 +656,102 @@ int run_render(const RenderArgs& args) {
     }
     if (interrupted) return interrupted_status(fmt::format("the image holds {} passes ({})", render.passes(), what));
     return 0;
+}
+
+// The file of frame `frame` from an output pattern: printf's %d, %0Nd or %Nd (N up to 9) once,
+// %% for a percent sign. Throws IoError naming what is wrong with the pattern.
+std::string frame_path(const std::string& pattern, long long frame, bool need_number) {
+    std::string out;
+    int numbers = 0;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') {
+            out += pattern[i];
+            continue;
+        }
+        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+            out += '%';
+            ++i;
+            continue;
+        }
+        std::size_t j = i + 1;
+        const bool zero = j < pattern.size() && pattern[j] == '0';
+        if (zero) ++j;
+        int width = 0;
+        if (j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9') width = pattern[j++] - '0';
+        if (j >= pattern.size() || pattern[j] != 'd')
+            throw glint::IoError(fmt::format("-o {}: '%' at character {} must be %d, %0Nd (N from 1 to 9) or %%",
+                                             pattern, i + 1));
+        std::string digits = std::to_string(frame);
+        const std::size_t w = static_cast<std::size_t>(width);
+        if (digits.size() < w) digits.insert(digits.front() == '-' && zero ? 1 : 0, w - digits.size(), zero ? '0' : ' ');
+        out += digits;
+        ++numbers;
+        i = j;
+    }
+    if (numbers > 1) throw glint::IoError(fmt::format("-o {}: the frame number may appear once", pattern));
+    if (numbers == 0 && need_number)
+        throw glint::IoError(fmt::format("-o {}: several frames need the frame number in the name, e.g. frame_%04d.exr",
+                                         pattern));
+    return out;
+}
+
+// glint render SCENE --frames A:B -o out/frame_%04d.exr: each frame rendered in turn (across the
+// ranks under mpirun), frames whose file exists skipped, so a killed job goes on where it stopped.
+int run_frames(RenderArgs args) {
+    const bool distributed = g_cluster && g_cluster->size() > 1;
+    if (distributed && g_cluster->rank() > 0) return run_rank(args);
+    long long first = 0, last = 0;
+    {
+        const std::string& f = args.frames;
+        const std::size_t colon = f.find(':');
+        const auto integer = [&](const std::string& text, long long& v) {
+            if (text.empty() || text.size() > 9) return false;
+            std::size_t used = 0;
+            try {
+                v = std::stoll(text, &used);
+            } catch (const std::exception&) {
+                return false;
+            }
+            return used == text.size();
+        };
+        const bool ok = colon == std::string::npos ? integer(f, first) && (last = first, true)
+                                                   : integer(f.substr(0, colon), first) && integer(f.substr(colon + 1), last);
+        if (!ok || first < 0 || last < first)
+            throw glint::IoError(fmt::format("--frames {}: expected FIRST:LAST (whole numbers, 0 <= FIRST <= LAST) or one frame", f));
+    }
+    if (!args.checkpoint.empty() || !args.resume.empty())
+        throw glint::IoError("--frames renders frame by frame and skips the frames already written (that is how an "
+                             "animation resumes); --checkpoint and --resume are for one image");
+    const std::string pattern = args.output;
+    if (pattern.empty()) throw glint::IoError("--frames needs -o with the frame number in the name, e.g. -o out/frame_%04d.exr");
+    frame_path(pattern, first, last > first);  // a bad pattern fails before anything renders
+    args.animation = true;
+    if (distributed) g_ranks_stopped = g_animation_ranks = true;  // the ranks wait for a frame
+    long long rendered = 0, skipped = 0;
+    for (long long f = first; f <= last; ++f) {
+        const std::string out = frame_path(pattern, f, last > first);
+        std::error_code ec;
+        if (std::filesystem::exists(out, ec)) {  // written whole (images are renamed into place)
+            ++skipped;
+            if (!args.quiet) fmt::print(stderr, "glint: frame {}: {} exists; skipped\n", f, out);
+            continue;
+        }
+        if (!args.quiet) fmt::print(stderr, "glint: frame {} of {}:{}\n", f, first, last);
+        RenderArgs a = args;
+        a.output = out;
+        a.frame = static_cast<double>(f);
+        if (distributed) {
+            glint::send_frame(*g_cluster, a.frame);
+            g_ranks_stopped = false;  // until this frame's render stops them
+        }
+        if (const int status = run_render(a); status != 0) return status;
+        ++rendered;
+        if (g_stop.load()) break;  // a signal after the frame's last pass: the frame is whole
+    }
+    if (!args.quiet)
+        fmt::print(stderr, "glint: {} frame{} rendered, {} skipped (already written)\n", rendered,
+                   rendered == 1 ? "" : "s", skipped);
+    return g_stop.load() ? kExitInterrupted : 0;
 }
 
 }  // namespace
@@ -685,6 +818,10 @@ int main(int argc, char** argv) {
     render->add_option("--display", args.display,
                        "Show the image as it forms in a viewer speaking tev's protocol at HOST:PORT "
                        "(tev's default: 127.0.0.1:14158)");
+    render->add_option("--frames", args.frames,
+                       "Render an animation's frames FIRST:LAST (or one frame N), each to -o with the frame "
+                       "number put in for %d or %04d; frames whose file exists are skipped");
+    render->add_option("--fps", args.fps, "Frames per second of the animation (default: the scene's animation.fps, else 24)");
     render->add_option("--camera", args.camera,
                        "For a .gltf/.glb rendered directly: the camera to look through, by name "
                        "(default: the first one)");
@@ -741,7 +878,8 @@ int main(int argc, char** argv) {
     struct EndCluster {
         ~EndCluster() {
             if (!g_cluster) return;
-            if (g_cluster->rank() == 0 && !g_ranks_stopped) glint::stop_ranks(*g_cluster);
+            if (g_cluster->rank() == 0 && !g_ranks_stopped) glint::stop_ranks(*g_cluster);  // a frame's render
+            if (g_cluster->rank() == 0 && g_animation_ranks) glint::stop_ranks(*g_cluster);  // waiting for a frame
             g_cluster.reset();
         }
     } end_cluster;
@@ -769,7 +907,7 @@ int main(int argc, char** argv) {
             args.accel.clear();
             return run_bench(args, set, runs);
         }
-        return run_render(args);
+        return args.frames.empty() ? run_render(args) : run_frames(args);
     } catch (const glint::SceneError& e) {
         std::fputs(e.what(), stderr);
         const std::size_t n = e.diagnostics().size();

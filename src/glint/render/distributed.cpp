@@ -39,6 +39,7 @@ enum : int {
     kWantFiles = 7,  // rank -> rank 0: nothing (it cannot read the scene's files)
     kFile = 8,       // rank 0 -> rank: FileHeader, the path, then the piece's bytes
     kFilesEnd = 9,   // rank 0 -> rank: u32 ok; then the working folder and the model folders, one a line, or the error
+    kFrame = 10,     // rank 0 -> rank: f64 the animation frame rendered next
 };
 
 // A file goes in pieces of at most this many bytes (MPI counts are ints).
@@ -506,7 +507,31 @@ void stop_ranks(Transport& transport) noexcept {
     }
 }
 
+void send_frame(Transport& transport, double frame) {
+    for (int r = 1; r < transport.size(); ++r) {
+        std::vector<std::uint8_t> bytes;
+        put(bytes, frame);
+        transport.send(r, kFrame, std::move(bytes));
+    }
+}
+
 // ---- the other ranks ----
+
+std::optional<double> wait_frame(Transport& transport) {
+    const auto start = Clock::now();
+    for (;;) {
+        Message m = wait_message(transport);
+        if (m.source != 0) continue;
+        if (m.tag == kStop) {
+            send_bye(transport, 0, 0, 0, 0, since(start));
+            return std::nullopt;
+        }
+        if (m.tag == kFrame) {
+            std::size_t at = 0;
+            return get<double>(m, at);
+        }
+    }
+}
 
 std::optional<SceneFiles> fetch_scene_files(Transport& transport, const std::filesystem::path& folder,
                                             std::deque<Message>& pending) {

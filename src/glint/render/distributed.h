@@ -128,6 +128,13 @@ std::optional<SceneFiles> fetch_scene_files(Transport& transport, const std::fil
 int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerprint, int threads,
           const std::string& error, std::deque<Message> pending = {});
 
+/// Animations (`--frames`): rank 0 tells every rank which frame comes next, before that frame's
+/// Coordinator; each frame is then a render of its own, ended by the Coordinator's finish.
+void send_frame(Transport& transport, double frame);
+/// A rank other than 0: the next frame, or nullopt when rank 0 stopped the job (this rank has
+/// then said goodbye and may exit).
+std::optional<double> wait_frame(Transport& transport);
+
 /// Rank 0, leaving without a Coordinator's finish (an error before or during the render): tells
 /// every other rank to stop and waits until each has.
 void stop_ranks(Transport& transport) noexcept;
