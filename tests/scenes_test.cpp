@@ -52,6 +52,15 @@ TEST(Scenes, SceneFormatCompleteExampleLoadsAndBuilds) {
     EXPECT_EQ(job.scene.planes.size(), 1u);
 }
 
+TEST(Scenes, SceneFormatKeyframesExampleLoadsAndBuildsAtEveryFrame) {
+    const std::string yaml = yaml_block("docs/scene-format.md", "## Animation: keyframes");
+    ASSERT_FALSE(yaml.empty());
+    for (double frame : {0.0, 10.5, 24.0, 47.0, 60.0}) {
+        auto sources = std::make_shared<SourceFiles>();
+        EXPECT_NO_THROW(build(parse_scene(yaml, "scene-format.md", sources, frame), {}, sources)) << frame;
+    }
+}
+
 TEST(Scenes, ReadmeExampleLoadsAndBuilds) {
     std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "README.md");
     std::ostringstream text;
