@@ -137,7 +137,7 @@ TEST(SceneYaml, UnknownTopLevelKeyIsAnError) {
     EXPECT_EQ(errors_of("objets: []\n"),
               "scene.yaml:1:1: error: scene: unknown key 'objets'; did you mean 'objects'? "
               "(known: camera, film, sampler, integrator, background, lights, materials, "
-              "media, medium, objects)\n"
+              "media, medium, objects, animation)\n"
               "    objets: []\n" +
                   caret(1, 6));
 }
