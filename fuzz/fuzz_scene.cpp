@@ -17,7 +17,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     };
 #else
     const std::string path = (fuzz::scratch() / "scene.yaml").string();
-    constexpr auto parse = &parse_scene;
+    // A frame between whole numbers, so keyframed values are interpolated, not just looked up.
+    constexpr auto parse = [](const std::string& text, const std::string& p, std::shared_ptr<SourceFiles> s) {
+        return parse_scene(text, p, std::move(s), 1.5);
+    };
 #endif
     fuzz::expect_located_errors([&] {
         auto sources = std::make_shared<SourceFiles>();

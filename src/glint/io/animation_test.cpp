@@ -218,7 +218,7 @@ TEST_F(GltfAnimation, TranslationIsLinearAndHeldOutsideTheKeys) {
 // (cos, 0, -sin) (a right-handed rotation); normalising a straight blend of the quaternions would
 // turn it by 21.6.
 TEST_F(GltfAnimation, RotationIsSlerp) {
-    const double a = std::numbers::pi / 8;
+    const auto a = static_cast<Float>(std::numbers::pi / 8);
     expect_near(place(0.5, 1, {1, 0, 0}), {std::cos(a), 0, -std::sin(a)}, "slerp");
     expect_near(place(2, 1, {1, 0, 0}), {0, 0, -1}, "end");
 }
@@ -226,7 +226,7 @@ TEST_F(GltfAnimation, RotationIsSlerp) {
 TEST_F(GltfAnimation, StepAndCubicSpline) {
     expect_near(place(0.99, 2, {1, 1, 0}), {1, 1, 0}, "step before");
     expect_near(place(1, 2, {1, 1, 0}), {3, 3, 0}, "step at the key");
-    for (double t : {0.5, 1.0, 1.5}) expect_near(place(t, 3, {0, 0, 0}), {t * t * t, 0, 0}, "x = t^3");
+    for (Float t : {0.5f, 1.0f, 1.5f}) expect_near(place(t, 3, {0, 0, 0}), {t * t * t, 0, 0}, "x = t^3");
 }
 
 // A scene file plays the animation at frame / fps seconds: at 0.5 s node 0 has moved the triangle
