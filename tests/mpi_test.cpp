@@ -69,6 +69,24 @@ protected:
         return spp.empty() ? -1 : std::stol(spp);
     }
     static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
+    // anim.yaml: a camera and a sphere moving over frames 0 to 3.
+    void write_animation() {
+        std::ofstream out(dir_ / "anim.yaml");
+        out << "camera: {type: look_at, from: {keyframes: [[0, [0, 1.5, -6]], [3, [3, 1.5, -5]]], interpolation: smooth},\n"
+               "         to: [0, 0.8, 0], fov: 40}\n"
+               "integrator: {type: path, max_depth: 4}\n"
+               "background: {type: constant, color: [0.6, 0.7, 0.9]}\n"
+               "objects:\n"
+               "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0]}\n"
+               "  - {type: sphere, center: {keyframes: [[0, [0, 1, 0]], [3, [0, 2, 0]]]}, radius: 1,\n"
+               "     material: {color: [0.8, 0.2, 0.2]}}\n";
+    }
+    // The frames rank `rank` rendered, from rank 0's report of an animation by whole frames.
+    static long frames_of(const std::string& err, int rank) {
+        std::smatch m;
+        const std::regex line("\n\\s*" + std::to_string(rank) + "\\s+(\\d+)\n");
+        return std::regex_search(err, m, line) ? std::stol(m[1]) : -1;
+    }
     // The tiles rank `rank` rendered, from rank 0's report.
     static long tiles_of(const std::string& err, int rank) {
         std::smatch m;
@@ -189,34 +207,29 @@ objects:
     EXPECT_TRUE(fs::is_empty(dir_ / "tmp1"));  // rank 1's copy of the files, removed at its end
 }
 
-// An animation across ranks: every frame is the single process's, bit for bit; frames already
+// An animation across ranks: every frame is the single process's, bit for bit, whether frames go
+// out whole (at least as many frames as ranks) or each is shared by tiles (fewer); frames already
 // written are skipped when the job is run again (here on 3 ranks, one of which has no files and
-// loads rank 0's copy for each frame); a rank that fails on a frame ends the job with its error.
+// loads rank 0's copy for each frame); a stalled rank's frame is rendered again by another; a
+// rank with another scene ends the job with its error.
 TEST_F(Mpi, AnAnimationAcrossRanksGivesTheSingleProcessFramesAndSkipsWrittenOnes) {
     fs::create_directories(dir_ / "one");
-    {
-        std::ofstream out(dir_ / "anim.yaml");
-        out << "camera: {type: look_at, from: {keyframes: [[0, [0, 1.5, -6]], [3, [3, 1.5, -5]]], interpolation: smooth},\n"
-               "         to: [0, 0.8, 0], fov: 40}\n"
-               "integrator: {type: path, max_depth: 4}\n"
-               "background: {type: constant, color: [0.6, 0.7, 0.9]}\n"
-               "objects:\n"
-               "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0]}\n"
-               "  - {type: sphere, center: {keyframes: [[0, [0, 1, 0]], [3, [0, 2, 0]]]}, radius: 1,\n"
-               "     material: {color: [0.8, 0.2, 0.2]}}\n";
-    }
+    write_animation();
     const std::string options = " render anim.yaml --width 48 --height 32 --spp 64 --threads 1 --frames 0:3";
     Result r = run("{glint}" + options + " -q -o s_%d.exr");
     ASSERT_EQ(r.status, 0) << r.err;
+    // 4 frames, 2 ranks: whole frames.
     r = run("mpirun --oversubscribe -np 2 {glint}" + options + " -o m_%d.exr");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_GT(tiles_of(r.err, 1), 0) << r.err;
+    EXPECT_GT(frames_of(r.err, 1), 0) << r.err;
+    EXPECT_EQ(frames_of(r.err, 0) + frames_of(r.err, 1), 4) << r.err;
     for (int f = 0; f <= 3; ++f) {
         const std::string n = std::to_string(f);
         EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("m_" + n + ".exr"))) << "frame " << f;
     }
     EXPECT_FALSE(same_bits(pixels("m_0.exr"), pixels("m_3.exr")));
-    // Two frames lost: a job of 3 ranks renders only those, rank 2 from rank 0's files.
+    // Two frames lost: a job of 3 ranks renders only those (fewer frames than ranks: by tiles),
+    // rank 2 from rank 0's files.
     fs::remove(dir_ / "m_1.exr");
     fs::remove(dir_ / "m_3.exr");
     const auto kept = fs::last_write_time(dir_ / "m_2.exr");
@@ -224,13 +237,33 @@ TEST_F(Mpi, AnAnimationAcrossRanksGivesTheSingleProcessFramesAndSkipsWrittenOnes
             " -o m_%d.exr");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("2 frames rendered, 2 skipped"), std::string::npos) << r.err;
+    EXPECT_GT(tiles_of(r.err, 2), 0) << r.err;
     EXPECT_EQ(fs::last_write_time(dir_ / "m_2.exr"), kept);
     for (int f = 0; f <= 3; ++f) {
         const std::string n = std::to_string(f);
         EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("m_" + n + ".exr"))) << "frame " << f;
     }
     EXPECT_TRUE(fs::is_empty(dir_ / "one"));
-    // A rank with another scene: rank 0 reports it and the job ends (no hang between frames).
+    // Rank 1 stalls on its first whole frame: rank 0 renders its frames and that one too.
+    r = run("mpirun --oversubscribe -np 2 env GLINT_TEST_STALL=1:4 {glint}" + options + " -o d_%d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_GE(frames_of(r.err, 0), 3) << r.err;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string n = std::to_string(f);
+        EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("d_" + n + ".exr"))) << "frame " << f;
+    }
+    // Whole frames on a rank without the files: it renders them from rank 0's copy.
+    r = run("mpirun --oversubscribe -np 1 {glint}" + options + " -o w_%d.exr : -np 1 --wdir one {glint}" + options +
+            " -o w_%d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_GT(frames_of(r.err, 1), 0) << r.err;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string n = std::to_string(f);
+        EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("w_" + n + ".exr"))) << "frame " << f;
+    }
+    EXPECT_TRUE(fs::is_empty(dir_ / "one"));
+    // A rank with another scene: rank 0 reports it and the job ends (no hang between frames);
+    // the frames rank 0 wrote meanwhile are its own, right ones.
     fs::create_directories(dir_ / "other");
     {
         std::ofstream out(dir_ / "other/anim.yaml");
@@ -239,8 +272,50 @@ TEST_F(Mpi, AnAnimationAcrossRanksGivesTheSingleProcessFramesAndSkipsWrittenOnes
     r = run("mpirun --oversubscribe -np 1 {glint}" + options + " -o x_%d.exr : -np 1 --wdir other {glint}" + options +
             " -o x_%d.exr", 60);
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("rank 1: on "), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(dir_ / "x_0.exr"));
+    EXPECT_NE(r.err.find("glint: error: rank 1: frame "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("differ from rank 0's"), std::string::npos) << r.err;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string n = std::to_string(f);
+        if (fs::exists(dir_ / ("x_" + n + ".exr")))
+            EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("x_" + n + ".exr"))) << "frame " << f;
+    }
+    // Fewer frames than ranks (by tiles): the same error, from the frame's fingerprint.
+    const std::string two = std::regex_replace(options, std::regex("0:3"), "0:1");
+    r = run("mpirun --oversubscribe -np 1 {glint}" + two + " -o y_%d.exr : -np 3 --wdir other {glint}" + two +
+            " -o y_%d.exr", 60);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("differ from rank 0's"), std::string::npos) << r.err;
+}
+
+// SIGUSR1 to mpirun (forwarded to every rank) stops an animation rendered by whole frames: the
+// frames finished are written, rank 0's frame in flight is not, the exit status is 3; the same
+// command run again renders only the rest, and every frame is the single process's.
+TEST_F(Mpi, AnAnimationStoppedBySigusr1GoesOnWhereItStopped) {
+    write_animation();
+    const std::string options = " render anim.yaml --width 48 --height 32 --spp 512 --threads 1 --frames 0:7";
+    Result r = run("{glint}" + options + " -q -o s_%d.exr", 300);
+    ASSERT_EQ(r.status, 0) << r.err;
+    // The signal goes as soon as a frame has been written (mpirun's stderr is watched for it).
+    r = run("sh -c \"mpirun --oversubscribe -np 2 {glint}" + options +
+                " -o m_%d.exr 2>job.txt & p=\\$!; until grep -q 'written by rank' job.txt || ! kill -0 \\$p; do sleep 0.1; done; "
+                "kill -USR1 \\$p; wait \\$p; s=\\$?; cat job.txt >&2; exit \\$s\"",
+            300);
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_NE(r.err.find("interrupted by SIGUSR1"), std::string::npos) << r.err;
+    int written = 0;
+    for (int f = 0; f <= 7; ++f) written += fs::exists(dir_ / ("m_" + std::to_string(f) + ".exr")) ? 1 : 0;
+    EXPECT_GE(written, 1);
+    EXPECT_LT(written, 8) << r.err;
+    r = run("mpirun --oversubscribe -np 2 {glint}" + options + " -o m_%d.exr", 300);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find(std::to_string(8 - written) + " frame"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::to_string(written) + " skipped"), std::string::npos) << r.err;
+    for (int f = 0; f <= 7; ++f) {
+        const std::string n = std::to_string(f);
+        EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("m_" + n + ".exr"))) << "frame " << f;
+    }
+    for (const auto& e : fs::directory_iterator(dir_.path()))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
 }
 
 // Each rank loads the scene itself: a rank that cannot (here: another file, missing) or that

@@ -17,6 +17,9 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <mutex>
 #include <memory>
 #include <new>
 #include <numbers>
@@ -63,6 +66,9 @@ struct RenderArgs {
     std::optional<double> fps;
     double frame = 0;
     bool animation = false;
+    // Under mpirun, a frame this process renders whole, alone (an animation's frames handed out whole).
+    bool local = false;
+    std::string scene_label;  // the scene as the image's metadata names it, if not `scene` (a copy's)
 };
 
 // Exit status of a render stopped by SIGINT or SIGTERM (the image of the completed passes, if
@@ -109,8 +115,9 @@ void install_signal_handlers() {
     ::sigaction(SIGINT, &sa, nullptr);
     ::sigaction(SIGTERM, &sa, nullptr);
     // mpirun ends the job on SIGINT and SIGTERM but forwards SIGUSR1 to every rank: under MPI it
-    // is the way to stop a distributed render cleanly (rank 0 acts on it, the others ignore it).
-    if (g_cluster) ::sigaction(SIGUSR1, &sa, nullptr);
+    // is the way to stop a distributed render cleanly (rank 0 acts on it, the others ignore it,
+    // also while they render a whole frame of an animation through run_render).
+    if (g_cluster && g_cluster->rank() == 0) ::sigaction(SIGUSR1, &sa, nullptr);
 }
 
 const char* signal_name(int sig) {
@@ -335,7 +342,7 @@ glint::ImageMetadata metadata(const RenderArgs& args, int spp, int target, int p
             {"glint:passes", std::to_string(passes)},
             {"glint:render_seconds", fmt::format("{:.3f}", seconds)},
             {"glint:complete", complete ? "yes" : "no"},
-            {"glint:scene", args.scene},
+            {"glint:scene", args.scene_label.empty() ? args.scene : args.scene_label},
             {"Software", std::string("glint ") + GLINT_VERSION}};
 }
 
@@ -400,6 +407,99 @@ struct TempFolder {
 // is given; what fails here is sent to rank 0, which reports it. A rank that cannot load the
 // scene from its own files loads a copy of the files rank 0 read.
 // `copy`: the folder of rank 0's files, kept from one frame of an animation to the next.
+int run_render(const RenderArgs& args, std::optional<glint::RenderJob> preloaded = std::nullopt);
+
+// What every frame of an animation shares, for ranks rendering whole frames to compare: the
+// options that change the image and the bytes of every file the last load read (files_read(),
+// emptied before it), whatever their paths.
+std::uint64_t files_fingerprint(const RenderArgs& args, const glint::RenderJob& job) {
+    std::vector<std::uint64_t> files;
+    for (const auto& path : glint::files_read()) {
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        files.push_back(glint::hash_bytes(bytes.data(), bytes.size()));
+    }
+    std::sort(files.begin(), files.end());
+    const std::string settings = image_settings(args, job);
+    std::uint64_t h = glint::hash_bytes(settings.data(), settings.size());
+    return glint::hash_bytes(files.data(), files.size() * sizeof(files[0]), h);
+}
+
+// A rank other than 0 of an animation handed out by whole frames: renders `args.frame` alone
+// (from its own files, else rank 0's copy) into a private folder and sends the image file to
+// rank 0. A failure goes to rank 0, which ends the job.
+void run_rank_whole_frame(const RenderArgs& args, std::uint64_t expected, std::optional<TempFolder>& copy,
+                          std::optional<RenderArgs>& from_copy) {
+    std::optional<glint::RenderJob> job;
+    RenderArgs used = args;
+    const auto load = [&](const RenderArgs& a) {
+        try {
+            glint::forget_files_read();
+            job.emplace(prepare_job(a));
+            used = a;
+            return std::string();
+        } catch (const std::exception& e) {
+            std::string what = e.what();
+            while (!what.empty() && what.back() == '\n') what.pop_back();
+            return what;
+        }
+    };
+    std::string error = load(args);
+    if (!job && from_copy) {
+        RenderArgs a = *from_copy;
+        a.frame = args.frame;
+        if (load(a).empty()) error.clear();
+    }
+    if (!job && !args.scene.empty()) {
+        try {
+            if (!copy) copy.emplace();
+            std::deque<glint::Message> pending;  // rank 0 sends nothing else while a frame is out
+            const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
+            if (!files) return;
+            RenderArgs local = args;
+            local.scene = (copy->path / (files->cwd / args.scene).lexically_normal().relative_path()).string();
+            std::string folders;
+            for (const auto& f : files->model_folders)
+                folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
+            ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
+            if (g_restrict_paths) glint::restrict_reads_to({copy->path});
+            from_copy = local;
+            if (std::string again = load(local); !again.empty()) {
+                for (std::size_t at; (at = again.find(copy->path.string())) != std::string::npos;)
+                    again.erase(at, copy->path.string().size());
+                error += "\nnor from the copy of the files rank 0 read: " + again;
+            }
+        } catch (const std::exception& e) {
+            error += fmt::format("\nnor could it get rank 0's files: {}", e.what());
+        }
+    }
+    if (!job) {
+        glint::send_failure(*g_cluster, fmt::format("could not load the scene at frame {}:\n{}", args.frame, error));
+        return;
+    }
+    if (files_fingerprint(args, *job) != expected) {
+        glint::send_failure(*g_cluster, fmt::format("frame {}: the scene, its files or the options differ from rank 0's "
+                                                    "(each rank loads the scene itself: give every node the same files)",
+                                                    args.frame));
+        return;
+    }
+    try {
+        TempFolder out;
+        used.local = true;
+        used.quiet = true;
+        used.scene_label = args.scene;
+        used.output = (out.path / ("frame" + std::filesystem::path(args.output).extension().string())).string();
+        if (const int status = run_render(used, std::move(job)); status != 0)
+            throw glint::IoError(fmt::format("frame {} was interrupted", args.frame));
+        std::ifstream in(used.output, std::ios::binary);
+        const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in.good() && !in.eof()) throw glint::IoError(fmt::format("frame {}: cannot read back its image", args.frame));
+        glint::send_frame_image(*g_cluster, args.frame, bytes);
+    } catch (const std::exception& e) {
+        glint::send_failure(*g_cluster, fmt::format("frame {}: {}", args.frame, e.what()));
+    }
+}
+
 int run_rank_frame(const RenderArgs& args, std::optional<TempFolder>& copy, std::optional<RenderArgs>& from_copy) {
     std::optional<glint::RenderJob> job;
     std::unique_ptr<glint::ProgressiveRender> render;
@@ -469,20 +569,25 @@ int run_rank(const RenderArgs& args) {
     std::optional<TempFolder> copy;  // removed when this rank is done
     std::optional<RenderArgs> from_copy;
     if (args.frames.empty()) return run_rank_frame(args, copy, from_copy);
-    // An animation: one render per frame rank 0 announces, until it stops the job.
-    while (const std::optional<double> frame = glint::wait_frame(*g_cluster)) {
+    // An animation: one render per frame rank 0 announces, until it stops the job; a frame is
+    // either shared by tiles or this rank's alone.
+    while (const std::optional<glint::FrameOrder> order = glint::wait_frame(*g_cluster)) {
         RenderArgs a = args;
-        a.frame = *frame;
+        a.frame = order->frame;
         a.animation = true;
+        if (order->whole) {
+            run_rank_whole_frame(a, order->fingerprint, copy, from_copy);
+            continue;
+        }
         if (const int status = run_rank_frame(a, copy, from_copy); status != 0) return status;
     }
     return 0;
 }
 
-int run_render(const RenderArgs& args) {
-    const bool distributed = g_cluster && g_cluster->size() > 1;
+int run_render(const RenderArgs& args, std::optional<glint::RenderJob> preloaded) {
+    const bool distributed = !args.local && g_cluster && g_cluster->size() > 1;
     if (distributed && g_cluster->rank() > 0) return run_rank(args);
-    glint::RenderJob job = prepare_job(args);
+    glint::RenderJob job = preloaded ? std::move(*preloaded) : prepare_job(args);
     const std::filesystem::path out = output_path(args, job);
     glint::check_writable(out);  // fail before rendering, not after
     if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
@@ -728,14 +833,69 @@ int run_frames(RenderArgs args) {
     args.animation = true;
     if (distributed) g_ranks_stopped = g_animation_ranks = true;  // the ranks wait for a frame
     long long rendered = 0, skipped = 0;
+    std::vector<double> todo;
     for (long long f = first; f <= last; ++f) {
         const std::string out = frame_path(pattern, f, last > first);
         std::error_code ec;
         if (std::filesystem::exists(out, ec)) {  // written whole (images are renamed into place)
             ++skipped;
             if (!args.quiet) fmt::print(stderr, "glint: frame {}: {} exists; skipped\n", f, out);
-            continue;
+        } else {
+            todo.push_back(static_cast<double>(f));
         }
+    }
+    if (distributed && !todo.empty() && todo.size() >= static_cast<std::size_t>(g_cluster->size())) {
+        // At least a frame per rank: frames go out whole. The first frame is loaded here first, so
+        // its errors come before any rank starts and rank 0 knows its files for ranks that ask.
+        RenderArgs a = args;
+        a.frame = todo.front();
+        glint::forget_files_read();
+        const std::uint64_t fingerprint = files_fingerprint(a, prepare_job(a));
+        glint::SceneFiles files{std::filesystem::current_path(), glint::files_read(), {}};
+        for (const auto& f : glint::model_folders(std::filesystem::path(args.scene).parent_path()))
+            files.model_folders.push_back(std::filesystem::absolute(f).lexically_normal());
+        std::mutex print;
+        const auto said = [&](double f, int rank) {
+            if (args.quiet) return;
+            std::lock_guard lock(print);
+            fmt::print(stderr, "glint: frame {} written by rank {}: {}\n", f, rank,
+                       frame_path(pattern, static_cast<long long>(f), last > first));
+        };
+        g_animation_ranks = false;  // dispatch_frames stops the ranks however it ends
+        install_signal_handlers();
+        const std::vector<glint::FrameReport> reports = glint::dispatch_frames(
+            *g_cluster, todo, fingerprint, files,
+            [&](double f) {
+                RenderArgs one = args;
+                one.local = true;
+                one.quiet = true;
+                one.frame = f;
+                one.output = frame_path(pattern, static_cast<long long>(f), last > first);
+                if (run_render(one) != 0) return false;
+                said(f, 0);
+                return true;
+            },
+            [&](double f, int rank, const std::vector<std::uint8_t>& bytes) {
+                glint::write_file_atomically(frame_path(pattern, static_cast<long long>(f), last > first), bytes);
+                said(f, rank);
+            },
+            &g_stop);
+        for (const glint::FrameReport& r : reports) rendered += r.frames;
+        if (!args.quiet) {
+            fmt::print(stderr, "rank  frames\n");
+            for (const glint::FrameReport& r : reports) fmt::print(stderr, "{:>4}  {:>6}\n", r.rank, r.frames);
+            fmt::print(stderr, "glint: {} frame{} rendered, {} skipped (already written)\n", rendered,
+                       rendered == 1 ? "" : "s", skipped);
+        }
+        if (g_stop.load()) {
+            if (!args.quiet) fmt::print(stderr, "glint: interrupted by {}: the frames in flight on rank 0 were not written\n", signal_name(g_signal));
+            return kExitInterrupted;
+        }
+        return 0;
+    }
+    for (const double frame : todo) {
+        const auto f = static_cast<long long>(frame);
+        const std::string out = frame_path(pattern, f, last > first);
         if (!args.quiet) fmt::print(stderr, "glint: frame {} of {}:{}\n", f, first, last);
         RenderArgs a = args;
         a.output = out;

@@ -144,6 +144,11 @@ std::vector<std::filesystem::path> files_read() {
     return {read_set().begin(), read_set().end()};
 }
 
+void forget_files_read() {
+    const std::lock_guard lock(read_mutex());
+    read_set().clear();
+}
+
 void restrict_reads_to(const std::vector<std::filesystem::path>& folders) {
     roots().clear();
     for (const auto& f : folders) {

@@ -42,6 +42,8 @@ std::string why_not_readable(const std::filesystem::path& path);
 /// normal paths, sorted: the files a render read (a distributed render's rank 0 sends them to the
 /// ranks that cannot read them).
 std::vector<std::filesystem::path> files_read();
+/// Starts files_read() afresh (before loading one frame of an animation).
+void forget_files_read();
 
 /// --restrict-paths: from now on only files under `folders` (resolved: symbolic links and ".."
 /// followed) may be read; an empty list lifts the restriction. Set once, before reading starts.

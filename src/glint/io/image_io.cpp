@@ -243,6 +243,11 @@ void move_into_place(const fs::path& tmp, const fs::path& path) {
 
 }  // namespace
 
+void write_file_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+    write_atomically(path, bytes);
+    move_into_place(temporary_path(path), path);
+}
+
 void write_image(const fs::path& path, const Film& film, const DisplaySettings& display,
                  const ImageMetadata& metadata) {
     const ImageFormat format = image_format_for(path);

@@ -54,6 +54,9 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 /// The temporary file a write to `target` goes through before its rename: in the same folder,
 /// named after the target and the process, so a signal handler can find and remove it.
 std::filesystem::path temporary_path(const std::filesystem::path& target);
+/// `bytes` (an image file made elsewhere, e.g. by another rank) written to `path` atomically, as
+/// write_image writes: a temporary file beside it, renamed over it.
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
 
 /// PNG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values as
 /// 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as

@@ -12,7 +12,10 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <exception>
+#include <map>
 #include <mutex>
+#include <set>
 #include <optional>
 #include <thread>
 
@@ -39,7 +42,14 @@ enum : int {
     kWantFiles = 7,  // rank -> rank 0: nothing (it cannot read the scene's files)
     kFile = 8,       // rank 0 -> rank: FileHeader, the path, then the piece's bytes
     kFilesEnd = 9,   // rank 0 -> rank: u32 ok; then the working folder and the model folders, one a line, or the error
-    kFrame = 10,     // rank 0 -> rank: f64 the animation frame rendered next
+    kFrame = 10,     // rank 0 -> rank: f64 the animation frame rendered next, by tiles
+    kFrameWhole = 11,  // rank 0 -> rank: f64 an animation frame for this rank to render whole, u64 the files' fingerprint
+    kFramePiece = 12,  // rank -> rank 0: FramePiece, then that piece of the frame's image file
+};
+
+struct FramePiece {
+    double frame;
+    std::uint64_t size, offset;
 };
 
 // A file goes in pieces of at most this many bytes (MPI counts are ints).
@@ -507,6 +517,193 @@ void stop_ranks(Transport& transport) noexcept {
     }
 }
 
+// A stall of the test-only fault hook, for a rank rendering whole frames.
+void stall_once(int rank) {
+    static bool done = false;
+    if (done) return;
+    done = true;
+    if (const double s = stall_seconds(rank); s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(s));
+}
+
+std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector<double>& frames,
+                                         std::uint64_t fingerprint, const SceneFiles& files,
+                                         const std::function<bool(double)>& render_here,
+                                         const std::function<void(double, int, const std::vector<std::uint8_t>&)>& write,
+                                         const std::atomic<bool>* cancel) {
+    const int size = transport.size();
+    std::vector<FrameReport> reports(static_cast<std::size_t>(size));
+    for (int r = 0; r < size; ++r) reports[static_cast<std::size_t>(r)].rank = r;
+    std::mutex mutex;
+    std::deque<double> queue(frames.begin(), frames.end());
+    std::set<double> done;
+    std::map<double, std::set<int>> working;  // frame -> the ranks rendering it (duplicates: stragglers)
+    std::vector<std::optional<double>> given(static_cast<std::size_t>(size));
+    std::map<std::pair<int, double>, std::vector<std::uint8_t>> incoming;
+    std::exception_ptr local_error;
+    std::atomic<bool> local_done{false};
+    const auto start = Clock::now();
+
+    // The next frame for rank r: one nobody has, else a duplicate of the frame rendered by the
+    // fewest ranks (a straggler's), else none.
+    const auto next = [&](int r) -> std::optional<double> {
+        std::lock_guard lock(mutex);
+        if (!queue.empty()) {
+            const double f = queue.front();
+            queue.pop_front();
+            working[f].insert(r);
+            return f;
+        }
+        std::optional<double> best;
+        for (const auto& [f, ranks] : working)
+            if (!done.count(f) && !ranks.count(r) && ranks.size() < 2 && (!best || f < *best)) best = f;
+        if (best) working[*best].insert(r);
+        return best;
+    };
+    const auto finished = [&](double f, int r) {  // true if f was not done before
+        std::lock_guard lock(mutex);
+        working[f].erase(r);
+        return done.insert(f).second;
+    };
+    const auto give = [&](int r) {
+        given[static_cast<std::size_t>(r)] = next(r);
+        if (given[static_cast<std::size_t>(r)]) {
+            std::vector<std::uint8_t> bytes;
+            put(bytes, *given[static_cast<std::size_t>(r)]);
+            put(bytes, fingerprint);
+            transport.send(r, kFrameWhole, std::move(bytes));
+        }
+    };
+
+    // Rank 0 renders frames too, on a thread of its own; this thread serves the messages.
+    std::thread local([&] {
+        try {
+            while (!(cancel && cancel->load())) {
+                const std::optional<double> f = next(0);
+                if (!f) break;
+                const auto t0 = Clock::now();
+                const bool whole = render_here(*f);
+                reports[0].busy += since(t0);
+                if (!whole) break;  // interrupted: the frame was not written
+                std::lock_guard lock(mutex);
+                working[*f].erase(0);
+                if (done.insert(*f).second) ++reports[0].frames;
+            }
+        } catch (...) {
+            local_error = std::current_exception();
+        }
+        local_done = true;
+    });
+    // Every rank but 0 waits for STOP and says goodbye; their frames in flight are written if
+    // they arrive first (nothing finished is lost).
+    const auto stop_and_collect = [&](bool write_late) {
+        for (int r = 1; r < size; ++r) transport.send(r, kStop, {});
+        int left = size - 1;
+        while (left > 0) {
+            Message m = wait_message(transport);
+            if (m.tag == kBye) {
+                --left;
+            } else if (m.tag == kFramePiece && write_late) {
+                std::size_t at = 0;
+                const auto h = get<FramePiece>(m, at);
+                auto& buffer = incoming[{m.source, h.frame}];
+                if (buffer.size() != h.size) buffer.assign(h.size, 0);
+                if (h.offset <= h.size && m.bytes.size() - at <= h.size - h.offset)
+                    std::copy(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end(),
+                              buffer.begin() + static_cast<std::ptrdiff_t>(h.offset));
+                if (h.offset + (m.bytes.size() - at) == h.size && finished(h.frame, m.source)) {
+                    write(h.frame, m.source, buffer);
+                    ++reports[static_cast<std::size_t>(m.source)].frames;
+                }
+            }
+        }
+        transport.flush();
+    };
+    try {
+        for (int r = 1; r < size; ++r) give(r);
+        auto sleep = std::chrono::microseconds(50);
+        for (;;) {
+            {
+                std::lock_guard lock(mutex);
+                if (done.size() == frames.size()) break;
+            }
+            if (cancel && cancel->load()) break;
+            if (local_done && local_error) std::rethrow_exception(local_error);
+            Message m;
+            if (!transport.receive(m)) {
+                std::this_thread::sleep_for(sleep);
+                sleep = std::min(sleep * 2, std::chrono::microseconds(2000));
+                continue;
+            }
+            sleep = std::chrono::microseconds(50);
+            if (m.source <= 0 || m.source >= size) continue;
+            if (m.tag == kFail)
+                throw IoError(fmt::format("rank {}: {}", m.source, std::string(m.bytes.begin(), m.bytes.end())));
+            if (m.tag == kWantFiles) {
+                send_files(transport, m.source, files);
+                continue;
+            }
+            if (m.tag != kFramePiece) continue;
+            std::size_t at = 0;
+            const auto h = get<FramePiece>(m, at);
+            const std::size_t piece = m.bytes.size() - at;
+            if (h.size > (std::uint64_t{1} << 40) || h.offset > h.size || piece > h.size - h.offset)
+                throw IoError(fmt::format("rank {} sent a piece of frame {} out of place", m.source, h.frame));
+            auto& buffer = incoming[{m.source, h.frame}];
+            if (buffer.size() != h.size) buffer.assign(h.size, 0);
+            std::copy(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end(),
+                      buffer.begin() + static_cast<std::ptrdiff_t>(h.offset));
+            if (h.offset + piece < h.size) continue;
+            std::vector<std::uint8_t> image = std::move(buffer);
+            incoming.erase({m.source, h.frame});
+            FrameReport& report = reports[static_cast<std::size_t>(m.source)];
+            if (finished(h.frame, m.source)) {
+                write(h.frame, m.source, image);
+                ++report.frames;
+            }
+            give(m.source);
+        }
+    } catch (...) {
+        {  // rank 0's thread stops after its frame in flight
+            std::lock_guard lock(mutex);
+            queue.clear();
+        }
+        local.join();
+        try {
+            stop_and_collect(false);
+        } catch (...) {
+        }
+        throw;
+    }
+    {
+        std::lock_guard lock(mutex);
+        queue.clear();
+    }
+    local.join();
+    stop_and_collect(true);
+    if (local_error) std::rethrow_exception(local_error);
+    const double wall = since(start);
+    for (FrameReport& r : reports) r.wall = wall;
+    return reports;
+}
+
+void send_frame_image(Transport& transport, double frame, const std::vector<std::uint8_t>& image) {
+    stall_once(transport.rank());
+    std::uint64_t offset = 0;
+    do {
+        const std::uint64_t piece = std::min<std::uint64_t>(kFilePiece, image.size() - offset);
+        std::vector<std::uint8_t> bytes;
+        put(bytes, FramePiece{frame, image.size(), offset});
+        bytes.insert(bytes.end(), image.begin() + static_cast<std::ptrdiff_t>(offset),
+                     image.begin() + static_cast<std::ptrdiff_t>(offset + piece));
+        transport.send(0, kFramePiece, std::move(bytes));
+        offset += piece;
+    } while (offset < image.size());
+}
+
+void send_failure(Transport& transport, const std::string& text) {
+    transport.send(0, kFail, std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
 void send_frame(Transport& transport, double frame) {
     for (int r = 1; r < transport.size(); ++r) {
         std::vector<std::uint8_t> bytes;
@@ -517,7 +714,7 @@ void send_frame(Transport& transport, double frame) {
 
 // ---- the other ranks ----
 
-std::optional<double> wait_frame(Transport& transport) {
+std::optional<FrameOrder> wait_frame(Transport& transport) {
     const auto start = Clock::now();
     for (;;) {
         Message m = wait_message(transport);
@@ -526,9 +723,11 @@ std::optional<double> wait_frame(Transport& transport) {
             send_bye(transport, 0, 0, 0, 0, since(start));
             return std::nullopt;
         }
-        if (m.tag == kFrame) {
+        if (m.tag == kFrame || m.tag == kFrameWhole) {
             std::size_t at = 0;
-            return get<double>(m, at);
+            FrameOrder order{get<double>(m, at), m.tag == kFrameWhole, 0};
+            if (order.whole) order.fingerprint = get<std::uint64_t>(m, at);
+            return order;
         }
     }
 }

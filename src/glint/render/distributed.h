@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -131,9 +132,43 @@ int serve(Transport& transport, ProgressiveRender* render, std::uint64_t fingerp
 /// Animations (`--frames`): rank 0 tells every rank which frame comes next, before that frame's
 /// Coordinator; each frame is then a render of its own, ended by the Coordinator's finish.
 void send_frame(Transport& transport, double frame);
+/// What a rank other than 0 is told between frames: a frame rendered by tiles with everyone
+/// (serve), or one to render whole on its own (send_frame_image).
+struct FrameOrder {
+    double frame = 0;
+    bool whole = false;
+    std::uint64_t fingerprint = 0;  ///< whole: what the rank's files_fingerprint must be
+};
 /// A rank other than 0: the next frame, or nullopt when rank 0 stopped the job (this rank has
 /// then said goodbye and may exit).
-std::optional<double> wait_frame(Transport& transport);
+std::optional<FrameOrder> wait_frame(Transport& transport);
+
+/// What a rank did in an animation rendered by whole frames.
+struct FrameReport {
+    int rank = 0;
+    int frames = 0;   ///< frames of this rank's that were written
+    double busy = 0;  ///< rank 0: seconds rendering (the others' is not measured)
+    double wall = 0;
+};
+
+/// Rank 0 of an animation with at least as many frames as ranks: frames go out whole, one at a
+/// time, to each rank as it finishes its last (a slow rank takes fewer); when none is left, a
+/// rank that asks (rank 0's thread too) gets a duplicate of a frame still being rendered elsewhere (a straggler's), and
+/// the first image of a frame is the one written. Rank 0 renders frames on a thread of its own
+/// through `render_here` (false: interrupted, stop); `write(frame, rank, file bytes)` is called
+/// on this thread for every other rank's frame. Ends by stopping every rank, writing the frames
+/// that arrive meanwhile. Throws IoError with a rank's failure.
+/// `fingerprint` (files_fingerprint on rank 0) goes with every frame; a rank whose own differs
+/// reports a failure instead of rendering.
+std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector<double>& frames,
+                                         std::uint64_t fingerprint, const SceneFiles& files,
+                                         const std::function<bool(double)>& render_here,
+                                         const std::function<void(double, int, const std::vector<std::uint8_t>&)>& write,
+                                         const std::atomic<bool>* cancel);
+/// A rank other than 0: the image file of a frame it rendered whole, to rank 0.
+void send_frame_image(Transport& transport, double frame, const std::vector<std::uint8_t>& image);
+/// A rank other than 0: a failure, reported by rank 0 as its own error.
+void send_failure(Transport& transport, const std::string& text);
 
 /// Rank 0, leaving without a Coordinator's finish (an error before or during the render): tells
 /// every other rank to stop and waits until each has.
