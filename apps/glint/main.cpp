@@ -403,10 +403,7 @@ struct TempFolder {
     TempFolder& operator=(const TempFolder&) = delete;
 };
 
-// A rank other than 0 of a distributed render: loads what rank 0 loads and renders the tiles it
-// is given; what fails here is sent to rank 0, which reports it. A rank that cannot load the
-// scene from its own files loads a copy of the files rank 0 read.
-// `copy`: the folder of rank 0's files, kept from one frame of an animation to the next.
+// Renders one image (defined below; `preloaded`: the job, already loaded).
 int run_render(const RenderArgs& args, std::optional<glint::RenderJob> preloaded = std::nullopt);
 
 // What every frame of an animation shares, for ranks rendering whole frames to compare: the
@@ -423,6 +420,40 @@ std::uint64_t files_fingerprint(const RenderArgs& args, const glint::RenderJob& 
     const std::string settings = image_settings(args, job);
     std::uint64_t h = glint::hash_bytes(settings.data(), settings.size());
     return glint::hash_bytes(files.data(), files.size() * sizeof(files[0]), h);
+}
+
+// A rank whose own files failed it: asks rank 0 for the files it read, writes them into `copy`
+// (made on first use) and loads `load(args)` from there: the scene as rank 0 named it, in the
+// copy, and meshes found in rank 0's model folders, in the copy of them. `error` (this rank's
+// own failure) gets the copy's failure added, with rank 0's paths rather than the copy's; it is
+// cleared on success. False if rank 0 stopped the job first.
+template <class Load>
+bool load_from_rank0_copy(const RenderArgs& args, std::optional<TempFolder>& copy, std::optional<RenderArgs>& from_copy,
+                          std::deque<glint::Message>& pending, std::string& error, const Load& load) {
+    try {
+        if (!copy) copy.emplace();
+        const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
+        if (!files) return false;
+        RenderArgs local = args;
+        local.scene = (copy->path / (files->cwd / args.scene).lexically_normal().relative_path()).string();
+        std::string folders;
+        for (const auto& f : files->model_folders)
+            folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
+        ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
+        if (g_restrict_paths) glint::restrict_reads_to({copy->path});
+        from_copy = local;
+        std::string again = load(local);
+        if (again.empty()) {
+            error.clear();
+        } else {
+            for (std::size_t at; (at = again.find(copy->path.string())) != std::string::npos;)
+                again.erase(at, copy->path.string().size());
+            error += "\nnor from the copy of the files rank 0 read: " + again;
+        }
+    } catch (const std::exception& e) {
+        error += fmt::format("\nnor could it get rank 0's files: {}", e.what());
+    }
+    return true;
 }
 
 // A rank other than 0 of an animation handed out by whole frames: renders `args.frame` alone
@@ -451,27 +482,8 @@ void run_rank_whole_frame(const RenderArgs& args, std::uint64_t expected, std::o
         if (load(a).empty()) error.clear();
     }
     if (!job && !args.scene.empty()) {
-        try {
-            if (!copy) copy.emplace();
-            std::deque<glint::Message> pending;  // rank 0 sends nothing else while a frame is out
-            const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
-            if (!files) return;
-            RenderArgs local = args;
-            local.scene = (copy->path / (files->cwd / args.scene).lexically_normal().relative_path()).string();
-            std::string folders;
-            for (const auto& f : files->model_folders)
-                folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
-            ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
-            if (g_restrict_paths) glint::restrict_reads_to({copy->path});
-            from_copy = local;
-            if (std::string again = load(local); !again.empty()) {
-                for (std::size_t at; (at = again.find(copy->path.string())) != std::string::npos;)
-                    again.erase(at, copy->path.string().size());
-                error += "\nnor from the copy of the files rank 0 read: " + again;
-            }
-        } catch (const std::exception& e) {
-            error += fmt::format("\nnor could it get rank 0's files: {}", e.what());
-        }
+        std::deque<glint::Message> pending;  // rank 0 sends nothing else while a frame is out
+        if (!load_from_rank0_copy(args, copy, from_copy, pending, error, load)) return;
     }
     if (!job) {
         glint::send_failure(*g_cluster, fmt::format("could not load the scene at frame {}:\n{}", args.frame, error));
@@ -500,6 +512,10 @@ void run_rank_whole_frame(const RenderArgs& args, std::uint64_t expected, std::o
     }
 }
 
+// A rank other than 0 of a distributed render: loads what rank 0 loads and renders the tiles it
+// is given; what fails here is sent to rank 0, which reports it. A rank that cannot load the
+// scene from its own files loads a copy of the files rank 0 read.
+// `copy`: the folder of rank 0's files, kept from one frame of an animation to the next.
 int run_rank_frame(const RenderArgs& args, std::optional<TempFolder>& copy, std::optional<RenderArgs>& from_copy) {
     std::optional<glint::RenderJob> job;
     std::unique_ptr<glint::ProgressiveRender> render;
@@ -532,35 +548,9 @@ int run_rank_frame(const RenderArgs& args, std::optional<TempFolder>& copy, std:
         local.frame = args.frame;
         if (load(local).empty()) error.clear();
     }
-    if (!error.empty() && !args.scene.empty()) {
-        try {
-            if (!copy) copy.emplace();
-            const std::optional<glint::SceneFiles> files = glint::fetch_scene_files(*g_cluster, copy->path, pending);
-            if (!files) return 0;  // rank 0 stopped the job first
-            // The scene as rank 0 named it, in the copy; meshes found in rank 0's model folders, in
-            // the copy of them.
-            const std::filesystem::path scene = (files->cwd / args.scene).lexically_normal();
-            RenderArgs local = args;
-            local.scene = (copy->path / scene.relative_path()).string();
-            std::string folders;
-            for (const auto& f : files->model_folders)
-                folders += (folders.empty() ? "" : ":") + (copy->path / f.relative_path()).string();
-            ::setenv("GLINT_MODEL_PATH", folders.c_str(), 1);
-            if (g_restrict_paths) glint::restrict_reads_to({copy->path});
-            from_copy = local;
-            std::string again = load(local);
-            if (!again.empty()) {
-                // Rank 0's paths in the message, not the copy's.
-                for (std::size_t at; (at = again.find(copy->path.string())) != std::string::npos;)
-                    again.erase(at, copy->path.string().size());
-                error += "\nnor from the copy of the files rank 0 read: " + again;
-            } else {
-                error.clear();
-            }
-        } catch (const std::exception& e) {
-            error += fmt::format("\nnor could it get rank 0's files: {}", e.what());
-        }
-    }
+    if (!error.empty() && !args.scene.empty() &&
+        !load_from_rank0_copy(args, copy, from_copy, pending, error, load))
+        return 0;  // rank 0 stopped the job first
     return glint::serve(*g_cluster, render.get(), fingerprint, job ? job->options.threads : 1, error,
                         std::move(pending));
 }

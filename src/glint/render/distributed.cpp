@@ -593,6 +593,27 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
         }
         local_done = true;
     });
+    // A piece of a rank's image file; true when it completes the file, which is written unless
+    // another rank's copy of the frame came first.
+    const auto take_piece = [&](const Message& m) {
+        std::size_t at = 0;
+        const auto h = get<FramePiece>(m, at);
+        const std::size_t piece = m.bytes.size() - at;
+        if (h.size > (std::uint64_t{1} << 40) || h.offset > h.size || piece > h.size - h.offset)
+            throw IoError(fmt::format("rank {} sent a piece of frame {} out of place", m.source, h.frame));
+        auto& buffer = incoming[{m.source, h.frame}];
+        if (buffer.size() != h.size) buffer.assign(h.size, 0);
+        std::copy(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end(),
+                  buffer.begin() + static_cast<std::ptrdiff_t>(h.offset));
+        if (h.offset + piece < h.size) return false;
+        const std::vector<std::uint8_t> image = std::move(buffer);
+        incoming.erase({m.source, h.frame});
+        if (finished(h.frame, m.source)) {
+            write(h.frame, m.source, image);
+            ++reports[static_cast<std::size_t>(m.source)].frames;
+        }
+        return true;
+    };
     // Every rank but 0 waits for STOP and says goodbye; their frames in flight are written if
     // they arrive first (nothing finished is lost).
     const auto stop_and_collect = [&](bool write_late) {
@@ -603,16 +624,9 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
             if (m.tag == kBye) {
                 --left;
             } else if (m.tag == kFramePiece && write_late) {
-                std::size_t at = 0;
-                const auto h = get<FramePiece>(m, at);
-                auto& buffer = incoming[{m.source, h.frame}];
-                if (buffer.size() != h.size) buffer.assign(h.size, 0);
-                if (h.offset <= h.size && m.bytes.size() - at <= h.size - h.offset)
-                    std::copy(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end(),
-                              buffer.begin() + static_cast<std::ptrdiff_t>(h.offset));
-                if (h.offset + (m.bytes.size() - at) == h.size && finished(h.frame, m.source)) {
-                    write(h.frame, m.source, buffer);
-                    ++reports[static_cast<std::size_t>(m.source)].frames;
+                try {
+                    take_piece(m);
+                } catch (const IoError&) {  // a piece out of place is dropped; the goodbyes are still awaited
                 }
             }
         }
@@ -642,25 +656,7 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
                 send_files(transport, m.source, files);
                 continue;
             }
-            if (m.tag != kFramePiece) continue;
-            std::size_t at = 0;
-            const auto h = get<FramePiece>(m, at);
-            const std::size_t piece = m.bytes.size() - at;
-            if (h.size > (std::uint64_t{1} << 40) || h.offset > h.size || piece > h.size - h.offset)
-                throw IoError(fmt::format("rank {} sent a piece of frame {} out of place", m.source, h.frame));
-            auto& buffer = incoming[{m.source, h.frame}];
-            if (buffer.size() != h.size) buffer.assign(h.size, 0);
-            std::copy(m.bytes.begin() + static_cast<std::ptrdiff_t>(at), m.bytes.end(),
-                      buffer.begin() + static_cast<std::ptrdiff_t>(h.offset));
-            if (h.offset + piece < h.size) continue;
-            std::vector<std::uint8_t> image = std::move(buffer);
-            incoming.erase({m.source, h.frame});
-            FrameReport& report = reports[static_cast<std::size_t>(m.source)];
-            if (finished(h.frame, m.source)) {
-                write(h.frame, m.source, image);
-                ++report.frames;
-            }
-            give(m.source);
+            if (m.tag == kFramePiece && take_piece(m)) give(m.source);
         }
     } catch (...) {
         {  // rank 0's thread stops after its frame in flight
