@@ -7,7 +7,10 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libyaml-cpp-dev          # scene files
-  libopenimageio-dev       # image output (PNG, EXR, PPM)
+  libopenexr-dev           # EXR read and written through OpenEXR
+  libspng-dev              # PNG read with libspng (PNG written by glint over zlib)
+  libjpeg62-turbo-dev      # JPEG textures through libjpeg-turbo
+  libopenimageio-dev       # the long tail of texture formats (module libglint_oiio.so)
   openimageio-tools        # idiff / oiiotool, used by tests and docs
   libtbb-dev               # parallel tile loop
   libcli11-dev             # command line
