@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -119,6 +120,37 @@ TEST_F(Cli, RendersExrWithLinearValuesAndPrintsASummary) {
     std::vector<float> px(161 * 91 * 3);
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
     EXPECT_NEAR(px[(45 * 161 + 80) * 3], 0.1 + 1 / std::sqrt(3.0), 2e-6);
+}
+
+// The same render to every output format: PFM holds the EXR's floats exactly, HDR within an
+// RGBE bin of them, and JPEG the PNG's codes within JPEG's loss (both through the display
+// transform); each file is read back by OpenImageIO.
+TEST_F(Cli, EveryOutputFormatHoldsTheSameRender) {
+    const int w = 96, h = 54;
+    std::map<std::string, std::vector<float>> images;
+    for (const char* ext : {"exr", "pfm", "hdr", "png", "jpg"}) {
+        const std::string name = std::string("f.") + ext;
+        const Result r = run("render " + seed("fig10-diffuse.yaml") + " --width 96 --height 54 -q -o " + name);
+        ASSERT_EQ(r.status, 0) << ext << ": " << r.err;
+        auto in = OIIO::ImageInput::open((dir_ / name).string());
+        ASSERT_TRUE(in) << name << ": " << OIIO::geterror();
+        ASSERT_EQ(in->spec().width, w);
+        ASSERT_EQ(in->spec().height, h);
+        std::vector<float> px(w * h * 3);
+        ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
+        images[ext] = std::move(px);
+    }
+    EXPECT_EQ(images["pfm"], images["exr"]);
+    double jpeg_error = 0;
+    for (std::size_t i = 0; i < images["exr"].size(); ++i) {
+        // A bin of the pixel's largest component m, 2^(e-8) <= m / 128: OpenImageIO decodes a
+        // mantissa to its bin's floor (Radiance and glint, to its middle).
+        const float* px = &images["exr"][i - i % 3];
+        const float m = std::max({px[0], px[1], px[2]});
+        EXPECT_LE(std::abs(images["hdr"][i] - images["exr"][i]), m / 128) << i;
+        jpeg_error += std::abs(images["jpg"][i] - images["png"][i]);
+    }
+    EXPECT_LT(jpeg_error / static_cast<double>(images["png"].size()), 2.0 / 255);
 }
 
 TEST_F(Cli, AovsAreExrChannelsWithHandValues) {

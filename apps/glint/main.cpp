@@ -619,7 +619,7 @@ int run_render(const RenderArgs& args, std::optional<glint::RenderJob> preloaded
     // for PNG and PPM straight to 8-bit codes, with no float film (a 1080p film is 25 MB of
     // memory the kernel must clear and the encoder read back: docs/architecture.md).
     if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty() && !distributed) {
-        if (glint::image_format_for(out) != glint::ImageFormat::kExr) {
+        if (!glint::is_linear_format(glint::image_format_for(out))) {
             // PNG strips are encoded by the render's threads as their rows come in.
             glint::Image8Writer writer(out, w, h, job.display.encoding == glint::Encoding::kSrgb);
             const glint::RenderStats stats = glint::render_8bit(

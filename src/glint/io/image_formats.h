@@ -95,6 +95,25 @@ private:
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgb, int width, int height, bool srgb,
                                      const ImageMetadata& metadata, const PngOptions& options = {});
 
+/// 8-bit RGB (rows top first) as a baseline JPEG through libjpeg-turbo: `quality` (1-100),
+/// no chroma subsampling (4:4:4: a render's edges are in its colours as much as its brightness),
+/// and `metadata` as one COM marker of "name=value" lines. Throws IoError with libjpeg's reason.
+std::vector<std::uint8_t> encode_jpeg(const std::uint8_t* rgb, int width, int height, const ImageMetadata& metadata,
+                                      int quality = 95);
+
+/// Linear RGB floats (interleaved, rows top first) as a Radiance HDR file: 32-bit RGBE, rows
+/// run-length encoded (the "new" per-component encoding) when 8 <= width < 32768, flat
+/// otherwise; resolution "-Y height +X width"; `metadata` as NAME=value header lines. A value
+/// RGBE cannot hold is clamped: NaN and negatives to 0, anything above 1e38 to 1e38.
+std::vector<std::uint8_t> encode_hdr(const float* rgb, int width, int height, const ImageMetadata& metadata);
+/// The four RGBE bytes of one linear RGB value (Ward's encoding: the largest component's
+/// exponent e, each mantissa as floor(c * 256 / 2^e), e + 128).
+void rgbe_encode(float r, float g, float b, std::uint8_t out[4]);
+
+/// Linear RGB floats (interleaved, rows top first) as a colour PFM: "PF", the size, scale -1
+/// (little-endian), then the rows bottom to top, every float as it is (unclamped, NaN kept).
+std::vector<std::uint8_t> encode_pfm(const float* rgb, int width, int height);
+
 /// Writes `channels` named float channels (interleaved in `data`) as a ZIP-compressed OpenEXR
 /// file, with `metadata` as string attributes. Throws IoError with OpenEXR's reason (the caller
 /// names the file).

@@ -7,10 +7,12 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include <fmt/format.h>
@@ -268,6 +270,125 @@ TEST(JpegReader, GreyscaleIsReplicated) {
     ASSERT_EQ(im.width, 8);
     EXPECT_NEAR(im.texels[9].r, 200 / 255.0f, 1.5f / 255);  // a flat block survives JPEG
     EXPECT_EQ(im.texels[9].r, im.texels[9].b);
+}
+
+// The RGBE bytes of values worked by hand from Ward's definition: the largest component v is
+// m 2^e with m in [0.5, 1); each component c is stored as floor(c 2^(8-e)), and e as e + 128.
+TEST(HdrWriter, RgbeBytesByHand) {
+    std::uint8_t b[4];
+    rgbe_encode(1.0f, 1.0f, 1.0f, b);  // 1 = 0.5 2^1: 1 * 2^7 = 128
+    EXPECT_EQ(std::vector<int>(b, b + 4), (std::vector<int>{128, 128, 128, 129}));
+    rgbe_encode(0.5f, 0.25f, 0.0f, b);  // 0.5 = 0.5 2^0: 0.5 * 256, 0.25 * 256
+    EXPECT_EQ(std::vector<int>(b, b + 4), (std::vector<int>{128, 64, 0, 128}));
+    rgbe_encode(3.0f, 1.0f, 0.1f, b);  // 3 = 0.75 2^2: 3 * 64 = 192, 64, floor(6.4) = 6
+    EXPECT_EQ(std::vector<int>(b, b + 4), (std::vector<int>{192, 64, 6, 130}));
+    rgbe_encode(-1.0f, std::nanf(""), 0.0f, b);  // nothing positive: RGBE's zero
+    EXPECT_EQ(std::vector<int>(b, b + 4), (std::vector<int>{0, 0, 0, 0}));
+    rgbe_encode(std::numeric_limits<float>::infinity(), 0.0f, 0.0f, b);  // clamped to 1e38 < 2^127
+    EXPECT_EQ(b[3], 127 + 128);
+}
+
+// Values over eleven decades, zeros, negatives, NaN and rows of equal pixels (runs), written in
+// the run-length encoding (width >= 8) and flat (width < 8): glint's reader gives every component
+// back within half a bin, 2^(e-9), of what was written, OpenImageIO's within a bin.
+TEST(HdrWriter, EveryValueComesBackWithinItsBinInGlintAndOpenImageIO) {
+    testing::TempDir dir;
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> exponent(-5.0f, 6.0f);
+    for (const auto [w, h] : {std::pair{37, 5}, std::pair{5, 3}, std::pair{300, 2}}) {
+        SCOPED_TRACE(::testing::Message() << w << "x" << h);
+        std::vector<float> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::pow(10.0f, exponent(rng));
+        for (std::size_t i = 0; i < static_cast<std::size_t>(w) * 3; ++i) rgb[i] = i % 3 == 0 ? 0.75f : 0.25f;  // a run
+        rgb[3] = -2.0f;
+        rgb[4] = std::nanf("");
+        rgb[rgb.size() - 3] = rgb[rgb.size() - 2] = rgb[rgb.size() - 1] = 0.0f;
+        const auto p = dir.path() / "a.hdr";
+        write_bytes(p, encode_hdr(rgb.data(), w, h, {{"glint:spp", "16"}}));
+        const RawImage mine = read_hdr(p, 1 << 20);
+        auto in = OIIO::ImageInput::open(p.string());
+        ASSERT_TRUE(in) << OIIO::geterror();
+        ASSERT_EQ(in->spec().width, w);
+        ASSERT_EQ(in->spec().height, h);
+        std::vector<float> theirs(rgb.size());
+        ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, theirs.data()));
+        for (std::size_t i = 0; i < rgb.size(); i += 3) {
+            float v = 0;
+            for (int k = 0; k < 3; ++k) v = std::max(v, rgb[i + static_cast<std::size_t>(k)] > 0 ? rgb[i + static_cast<std::size_t>(k)] : 0.0f);
+            const float half_bin = v > 0 ? std::ldexp(1.0f, std::ilogb(v) + 1 - 9) : 0.0f;
+            for (std::size_t k = i; k < i + 3; ++k) {
+                const float want = rgb[k] > 0 ? rgb[k] : 0.0f;
+                EXPECT_LE(std::abs(mine.data[k] - want), half_bin * 1.0001f) << k << ": " << rgb[k];
+                // OpenImageIO decodes a mantissa to its bin's floor, m 2^(e-136): within a bin.
+                EXPECT_LE(std::abs(theirs[k] - want), 2 * half_bin * 1.0001f) << k << ": " << rgb[k];
+            }
+        }
+    }
+}
+
+// PFM bytes by hand: the header, then the bottom row first, each float little-endian and exactly
+// as given (NaN and negatives too); glint's reader and OpenImageIO's read the floats back.
+TEST(PfmWriter, BottomRowFirstEveryFloatExact) {
+    const std::vector<float> rgb = {1, 2, 3, 4, 5, 6,            // top row
+                                    -0.5f, 1e-30f, 7, 8, 9, 1e30f};  // bottom row
+    const auto bytes = encode_pfm(rgb.data(), 2, 2);
+    const std::string header = "PF\n2 2\n-1\n";
+    ASSERT_EQ(bytes.size(), header.size() + 12 * 4);
+    EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(header.size())), header);
+    const auto float_at = [&](std::size_t i) {
+        std::uint32_t u = 0;
+        for (int k = 3; k >= 0; --k) u = (u << 8) | bytes[header.size() + 4 * i + static_cast<std::size_t>(k)];
+        return std::bit_cast<float>(u);
+    };
+    EXPECT_EQ(float_at(0), -0.5f);  // the bottom-left pixel comes first
+    EXPECT_EQ(float_at(5), 1e30f);
+    EXPECT_EQ(float_at(6), 1.0f);   // then the top row
+    testing::TempDir dir;
+    write_bytes(dir.path() / "a.pfm", bytes);
+    const RawImage mine = read_pfm(dir.path() / "a.pfm", 100);
+    EXPECT_EQ(mine.data, rgb);
+    auto in = OIIO::ImageInput::open((dir.path() / "a.pfm").string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    std::vector<float> theirs(rgb.size());
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, theirs.data()));
+    EXPECT_EQ(theirs, rgb);
+}
+
+// A JPEG of a smooth image (what renders mostly are) decodes, by OpenImageIO and by glint's
+// reader, within a few codes of what was written; chroma is not subsampled; the metadata is in
+// the comment marker.
+TEST(JpegWriter, DecodesCloseToTheCodesWithFullChromaAndTheMetadata) {
+    const int w = 96, h = 64;
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)) * 3];
+            p[0] = static_cast<std::uint8_t>(x * 255 / (w - 1));
+            p[1] = static_cast<std::uint8_t>(y * 255 / (h - 1));
+            p[2] = static_cast<std::uint8_t>(128 + 100 * std::sin(0.1 * (x + y)));
+        }
+    testing::TempDir dir;
+    const auto p = dir.path() / "a.jpg";
+    write_bytes(p, encode_jpeg(rgb.data(), w, h, {{"glint:spp", "4"}, {"Software", "glint"}}));
+    auto in = OIIO::ImageInput::open(p.string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().get_string_attribute("jpeg:subsampling"), "4:4:4");
+    EXPECT_NE(in->spec().get_string_attribute("ImageDescription").find("glint:spp=4\n"), std::string::npos)
+        << in->spec().get_string_attribute("ImageDescription");
+    std::vector<std::uint8_t> theirs(rgb.size());
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, theirs.data()));
+    const Image mine = read_image(p, ImageEncoding::kLinear);
+    double sum = 0;
+    int worst = 0;
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        const int d = std::abs(int{theirs[i]} - int{rgb[i]});
+        sum += d;
+        worst = std::max(worst, d);
+        const Color c = mine.texels[i / 3];
+        EXPECT_EQ(std::lround((i % 3 == 0 ? c.r : i % 3 == 1 ? c.g : c.b) * 255.0f), theirs[i]);
+    }
+    EXPECT_LT(sum / static_cast<double>(rgb.size()), 1.0);
+    EXPECT_LE(worst, 8);
 }
 
 }  // namespace

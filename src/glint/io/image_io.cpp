@@ -42,7 +42,10 @@ ImageFormat image_format_for(const fs::path& path) {
     if (ext == ".png") return ImageFormat::kPng;
     if (ext == ".exr") return ImageFormat::kExr;
     if (ext == ".ppm") return ImageFormat::kPpm;
-    throw IoError(fmt::format("{}: unsupported output format '{}' (supported: .png, .exr, .ppm)",
+    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::kJpeg;
+    if (ext == ".hdr") return ImageFormat::kHdr;
+    if (ext == ".pfm") return ImageFormat::kPfm;
+    throw IoError(fmt::format("{}: unsupported output format '{}' (supported: .png, .exr, .jpg, .hdr, .pfm, .ppm)",
                               path.string(), ext.empty() ? std::string("no extension") : ext));
 }
 
@@ -231,6 +234,15 @@ std::vector<std::uint8_t> ppm_header(int width, int height) {
     return {header.begin(), header.end()};
 }
 
+std::vector<std::uint8_t> jpeg_bytes(const fs::path& path, const std::uint8_t* rgb, int w, int h,
+                                     const ImageMetadata& metadata) {
+    try {
+        return encode_jpeg(rgb, w, h, metadata);
+    } catch (const IoError& e) {
+        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), e.what()));
+    }
+}
+
 void move_into_place(const fs::path& tmp, const fs::path& path) {
     std::error_code ec;
     fs::rename(tmp, path, ec);
@@ -286,6 +298,13 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
         move_into_place(tmp, path);
         return;
     }
+    if (format == ImageFormat::kHdr || format == ImageFormat::kPfm) {
+        static_assert(sizeof(Color) == 3 * sizeof(float));
+        const float* rgb = n == 0 ? nullptr : &film.pixels()[0].r;
+        write_atomically(path, format == ImageFormat::kHdr ? encode_hdr(rgb, w, h, metadata) : encode_pfm(rgb, w, h));
+        move_into_place(tmp, path);
+        return;
+    }
     const auto row_bytes = [&](int y, std::uint8_t* out) {
         const Color* px = &film.pixels()[static_cast<std::size_t>(y) * static_cast<std::size_t>(w)];
         static_assert(sizeof(Color) == 3 * sizeof(float));
@@ -293,6 +312,10 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     };
     if (format == ImageFormat::kPng) {
         write_atomically(path, encode_png(row_bytes, w, h, display.encoding == Encoding::kSrgb, metadata));
+    } else if (format == ImageFormat::kJpeg) {
+        std::vector<std::uint8_t> rgb(n * 3);
+        tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &rgb[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
+        write_atomically(path, jpeg_bytes(path, rgb.data(), w, h, metadata));
     } else {  // binary PPM: no place for metadata
         std::vector<std::uint8_t> bytes = ppm_header(w, h);
         const std::size_t header = bytes.size();
@@ -307,18 +330,20 @@ struct Image8Writer::Impl {
     fs::path path;
     int width, height;
     bool srgb;
+    ImageFormat format;
     BigBuffer<std::uint8_t> rgb;
     std::optional<PngStrips> png;
-    Impl(fs::path p, int w, int h, bool s)
-        : path(std::move(p)), width(w), height(h), srgb(s),
+    Impl(fs::path p, int w, int h, bool s, ImageFormat f)
+        : path(std::move(p)), width(w), height(h), srgb(s), format(f),
           rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3) {}
 };
 
 Image8Writer::Image8Writer(fs::path path, int width, int height, bool srgb) {
     const ImageFormat format = image_format_for(path);
-    if (format == ImageFormat::kExr)
-        throw IoError(fmt::format("{}: an EXR image is written from the linear film, not from 8-bit codes", path.string()));
-    impl_ = std::make_unique<Impl>(std::move(path), width, height, srgb);
+    if (is_linear_format(format))
+        throw IoError(fmt::format("{}: a linear image (EXR, HDR, PFM) is written from the film, not from 8-bit codes",
+                                  path.string()));
+    impl_ = std::make_unique<Impl>(std::move(path), width, height, srgb, format);
     if (format == ImageFormat::kPng) {
         const std::uint8_t* rgb = impl_->rgb.data();
         const std::size_t row = static_cast<std::size_t>(width) * 3;
@@ -339,6 +364,8 @@ void Image8Writer::finish(const ImageMetadata& metadata) {
     const Impl& m = *impl_;
     if (impl_->png) {
         write_atomically(m.path, impl_->png->finish(m.srgb, metadata));
+    } else if (m.format == ImageFormat::kJpeg) {
+        write_atomically(m.path, jpeg_bytes(m.path, m.rgb.data(), m.width, m.height, metadata));
     } else {  // binary PPM: no place for metadata
         std::vector<std::uint8_t> bytes = ppm_header(m.width, m.height);
         bytes.insert(bytes.end(), m.rgb.data(), m.rgb.data() + m.rgb.size());

@@ -23,7 +23,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-enum class ImageFormat { kPng, kExr, kPpm };
+enum class ImageFormat { kPng, kExr, kPpm, kJpeg, kHdr, kPfm };
+
+/// EXR, HDR and PFM hold the film's linear values (no exposure, no curve); PNG, JPEG and PPM
+/// hold 8-bit codes through the display transform.
+constexpr bool is_linear_format(ImageFormat f) {
+    return f == ImageFormat::kExr || f == ImageFormat::kHdr || f == ImageFormat::kPfm;
+}
 
 /// How the values in an image file map to linear RGB: kAuto treats integer formats (8/16-bit
 /// PNG, JPEG, ...) as sRGB-encoded and floating-point ones (EXR, HDR) as linear.
@@ -39,8 +45,8 @@ float srgb_decode(float v);
 /// reading) or more than the memory budget allows.
 Image read_image(const std::filesystem::path& path, ImageEncoding encoding, long long max_pixels = 0);
 
-/// The format for a path's extension (.png, .exr, .ppm, case-insensitive); throws IoError
-/// naming the supported ones otherwise.
+/// The format for a path's extension (.png, .exr, .ppm, .jpg/.jpeg, .hdr, .pfm;
+/// case-insensitive); throws IoError naming the supported ones otherwise.
 ImageFormat image_format_for(const std::filesystem::path& path);
 
 /// Checks, before any rendering, that `path` can be written: a known extension and an existing,
@@ -58,18 +64,19 @@ std::filesystem::path temporary_path(const std::filesystem::path& target);
 /// write_image writes: a temporary file beside it, renamed over it.
 void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
 
-/// PNG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values as
-/// 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as
-/// channels albedo.R/G/B, N.X/Y/Z and Z, and its per-pixel sample counts as channel `spp`.
+/// PNG/JPEG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values
+/// as 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as
+/// channels albedo.R/G/B, N.X/Y/Z and Z, and its per-pixel sample counts as channel `spp`;
+/// HDR (RGBE) and PFM: the linear RGB values alone.
 void write_image(const std::filesystem::path& path, const Film& film,
                  const DisplaySettings& display, const ImageMetadata& metadata = {});
 
-/// A PNG or PPM written while it is rendered (render_8bit's output): the renderer fills rgb()
+/// A PNG, JPEG or PPM written while it is rendered (render_8bit's output): the renderer fills rgb()
 /// (width x height x 3 bytes, rows top first, codes already through the display transform) and
 /// announces final rows with rows_ready (from any thread), which encodes each PNG strip on that
 /// thread as soon as its rows are in; finish() encodes what is left and writes the file
-/// atomically, as write_image. The bytes are write_image's for the same codes. An EXR path is an
-/// error (it takes the linear film).
+/// atomically, as write_image. The bytes are write_image's for the same codes. A linear format's
+/// path (EXR, HDR, PFM) is an error: it takes the linear film. (JPEG is encoded in finish().)
 class Image8Writer {
 public:
     Image8Writer(std::filesystem::path path, int width, int height, bool srgb);

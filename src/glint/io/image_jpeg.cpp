@@ -2,6 +2,7 @@
 // return: it longjmps back here, where nothing with a destructor has been created since setjmp
 // (the pixels live in a vector made before it).
 #include <csetjmp>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <cerrno>
@@ -77,6 +78,51 @@ bool read_jpeg(const std::filesystem::path& path, long long max_pixels, RawImage
     out.data.resize(pixels.size());
     for (std::size_t i = 0; i < pixels.size(); ++i) out.data[i] = static_cast<float>(pixels[i]) / 255.0f;
     return true;
+}
+
+std::vector<std::uint8_t> encode_jpeg(const std::uint8_t* rgb, int width, int height, const ImageMetadata& metadata,
+                                      int quality) {
+    // One COM marker of name=value lines (a marker holds at most 65,533 bytes).
+    std::string comment;
+    for (const auto& [name, value] : metadata) comment += name + "=" + value + "\n";
+    if (comment.size() > 65533) comment.resize(65533);
+    // What libjpeg's memory destination allocates (with malloc) lives outside the frame setjmp
+    // saves, so that it is seen, and freed, after a longjmp.
+    struct Output {
+        unsigned char* buffer = nullptr;
+        unsigned long size = 0;
+        ~Output() { std::free(buffer); }
+    } output;
+    jpeg_compress_struct cinfo{};
+    ErrorManager err{};
+    cinfo.err = jpeg_std_error(&err.pub);
+    err.pub.error_exit = on_error;
+    if (setjmp(err.jump) != 0) {
+        jpeg_destroy_compress(&cinfo);
+        throw IoError(fmt::format("libjpeg: {}", err.message));
+    }
+    jpeg_create_compress(&cinfo);
+    jpeg_mem_dest(&cinfo, &output.buffer, &output.size);
+    cinfo.image_width = static_cast<JDIMENSION>(width);
+    cinfo.image_height = static_cast<JDIMENSION>(height);
+    cinfo.input_components = 3;
+    cinfo.in_color_space = JCS_RGB;
+    jpeg_set_defaults(&cinfo);
+    jpeg_set_quality(&cinfo, quality, TRUE);
+    for (int c = 0; c < 3; ++c) cinfo.comp_info[c].h_samp_factor = cinfo.comp_info[c].v_samp_factor = 1;
+    jpeg_start_compress(&cinfo, TRUE);
+    if (!comment.empty())
+        jpeg_write_marker(&cinfo, JPEG_COM, reinterpret_cast<const JOCTET*>(comment.data()),
+                          static_cast<unsigned>(comment.size()));
+    const std::size_t row_bytes = static_cast<std::size_t>(width) * 3;
+    while (cinfo.next_scanline < cinfo.image_height) {
+        // libjpeg's rows are not const, but it only reads them.
+        JSAMPROW row = const_cast<JSAMPROW>(rgb + static_cast<std::size_t>(cinfo.next_scanline) * row_bytes);
+        jpeg_write_scanlines(&cinfo, &row, 1);
+    }
+    jpeg_finish_compress(&cinfo);
+    jpeg_destroy_compress(&cinfo);
+    return {output.buffer, output.buffer + output.size};
 }
 
 }  // namespace glint

@@ -1,5 +1,6 @@
-// The formats simple enough to read directly: Radiance HDR (RGBE), PFM (pbrt's float maps) and
-// the binary and ASCII Netpbm maps (PGM, PPM).
+// The formats simple enough to read and write directly: Radiance HDR (RGBE), PFM (pbrt's float
+// maps) and the binary and ASCII Netpbm maps (PGM, PPM; read only here, PPM is written in
+// image_io.cpp).
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -286,6 +287,99 @@ RawImage read_pnm(const fs::path& path, long long max_pixels) {
         raw.data[i] = static_cast<float>(std::min<unsigned>(v, static_cast<unsigned>(maxval))) * scale;
     }
     return raw;
+}
+
+void rgbe_encode(float r, float g, float b, std::uint8_t out[4]) {
+    const auto clean = [](float c) { return c > 0 ? std::min(c, 1e38f) : 0.0f; };  // NaN fails c > 0
+    r = clean(r), g = clean(g), b = clean(b);
+    const float v = std::max({r, g, b});
+    if (v < 1e-32f) {
+        out[0] = out[1] = out[2] = out[3] = 0;
+        return;
+    }
+    int e = 0;
+    std::frexp(v, &e);  // v = m 2^e with m in [0.5, 1)
+    // Scaling by the power of two 2^(8-e) is exact, so the largest component lands in [128, 256).
+    const float scale = std::ldexp(1.0f, 8 - e);
+    out[0] = static_cast<std::uint8_t>(r * scale);
+    out[1] = static_cast<std::uint8_t>(g * scale);
+    out[2] = static_cast<std::uint8_t>(b * scale);
+    out[3] = static_cast<std::uint8_t>(e + 128);
+}
+
+namespace {
+
+// One component of a row in the new run-length encoding: runs of 4 to 127 equal bytes as
+// (128 + n, byte), everything between as literals of at most 128 bytes (n, bytes...).
+void rle_component(const std::uint8_t* row, std::size_t width, std::vector<std::uint8_t>& out) {
+    const auto at = [row](std::size_t x) { return row[4 * x]; };
+    const auto literals = [&](std::size_t from, std::size_t to) {
+        while (from < to) {
+            const std::size_t n = std::min<std::size_t>(to - from, 128);
+            out.push_back(static_cast<std::uint8_t>(n));
+            for (std::size_t k = 0; k < n; ++k) out.push_back(at(from + k));
+            from += n;
+        }
+    };
+    std::size_t pending = 0;  // the first byte not yet written
+    for (std::size_t x = 0; x < width;) {
+        std::size_t run = 1;
+        while (x + run < width && run < 127 && at(x + run) == at(x)) ++run;
+        if (run >= 4) {
+            literals(pending, x);
+            out.push_back(static_cast<std::uint8_t>(128 + run));
+            out.push_back(at(x));
+            pending = x + run;
+        }
+        x += run;
+    }
+    literals(pending, width);
+}
+
+std::string header_value(std::string v) {  // a header line cannot hold a line break
+    std::replace(v.begin(), v.end(), '\n', ' ');
+    std::replace(v.begin(), v.end(), '\r', ' ');
+    return v;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_hdr(const float* rgb, int width, int height, const ImageMetadata& metadata) {
+    std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n";
+    for (const auto& [name, value] : metadata) header += header_value(name) + "=" + header_value(value) + "\n";
+    header += fmt::format("\n-Y {} +X {}\n", height, width);
+    std::vector<std::uint8_t> out(header.begin(), header.end());
+    const auto W = static_cast<std::size_t>(width);
+    const bool rle = width >= 8 && width < 32768;
+    std::vector<std::uint8_t> row(W * 4);
+    out.reserve(out.size() + W * static_cast<std::size_t>(height) * 4);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) {
+        for (std::size_t x = 0; x < W; ++x) {
+            const float* p = rgb + (y * W + x) * 3;
+            rgbe_encode(p[0], p[1], p[2], &row[4 * x]);
+        }
+        if (!rle) {
+            out.insert(out.end(), row.begin(), row.end());
+            continue;
+        }
+        out.insert(out.end(), {2, 2, static_cast<std::uint8_t>(W >> 8), static_cast<std::uint8_t>(W & 255)});
+        for (std::size_t c = 0; c < 4; ++c) rle_component(&row[c], W, out);
+    }
+    return out;
+}
+
+std::vector<std::uint8_t> encode_pfm(const float* rgb, int width, int height) {
+    const std::string header = fmt::format("PF\n{} {}\n-1\n", width, height);
+    std::vector<std::uint8_t> out(header.begin(), header.end());
+    const std::size_t row = static_cast<std::size_t>(width) * 3;
+    out.reserve(out.size() + row * static_cast<std::size_t>(height) * 4);
+    for (std::size_t y = static_cast<std::size_t>(height); y-- > 0;) {  // bottom row first
+        for (std::size_t i = 0; i < row; ++i) {
+            const auto u = std::bit_cast<std::uint32_t>(rgb[y * row + i]);
+            for (int k = 0; k < 4; ++k) out.push_back(static_cast<std::uint8_t>(u >> (8 * k)));  // little endian
+        }
+    }
+    return out;
 }
 
 }  // namespace glint
