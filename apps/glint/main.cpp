@@ -456,6 +456,22 @@ bool load_from_rank0_copy(const RenderArgs& args, std::optional<TempFolder>& cop
     return true;
 }
 
+// One frame of an animation handed out by whole frames, rendered alone into a private folder:
+// the image file's bytes, or nothing if the render was interrupted. (Ranks send the bytes to rank
+// 0; rank 0 writes them only if no other rank's copy of the frame came first, so no two
+// renders of a frame ever write its file.)
+std::optional<std::vector<std::uint8_t>> render_frame_file(RenderArgs args, std::optional<glint::RenderJob> job) {
+    TempFolder out;
+    args.local = true;
+    args.quiet = true;
+    args.output = (out.path / ("frame" + std::filesystem::path(args.output).extension().string())).string();
+    if (run_render(args, std::move(job)) != 0) return std::nullopt;
+    std::ifstream in(args.output, std::ios::binary);
+    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) throw glint::IoError(fmt::format("frame {}: cannot read back its image", args.frame));
+    return bytes;
+}
+
 // A rank other than 0 of an animation handed out by whole frames: renders `args.frame` alone
 // (from its own files, else rank 0's copy) into a private folder and sends the image file to
 // rank 0. A failure goes to rank 0, which ends the job.
@@ -496,17 +512,10 @@ void run_rank_whole_frame(const RenderArgs& args, std::uint64_t expected, std::o
         return;
     }
     try {
-        TempFolder out;
-        used.local = true;
-        used.quiet = true;
         used.scene_label = args.scene;
-        used.output = (out.path / ("frame" + std::filesystem::path(args.output).extension().string())).string();
-        if (const int status = run_render(used, std::move(job)); status != 0)
-            throw glint::IoError(fmt::format("frame {} was interrupted", args.frame));
-        std::ifstream in(used.output, std::ios::binary);
-        const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (!in.good() && !in.eof()) throw glint::IoError(fmt::format("frame {}: cannot read back its image", args.frame));
-        glint::send_frame_image(*g_cluster, args.frame, bytes);
+        std::optional<std::vector<std::uint8_t>> bytes = render_frame_file(used, std::move(job));
+        if (!bytes) throw glint::IoError(fmt::format("frame {} was interrupted", args.frame));
+        glint::send_frame_image(*g_cluster, args.frame, *bytes);
     } catch (const std::exception& e) {
         glint::send_failure(*g_cluster, fmt::format("frame {}: {}", args.frame, e.what()));
     }
@@ -857,13 +866,9 @@ int run_frames(RenderArgs args) {
             *g_cluster, todo, fingerprint, files,
             [&](double f) {
                 RenderArgs one = args;
-                one.local = true;
-                one.quiet = true;
                 one.frame = f;
                 one.output = frame_path(pattern, static_cast<long long>(f), last > first);
-                if (run_render(one) != 0) return false;
-                said(f, 0);
-                return true;
+                return render_frame_file(one, std::nullopt);
             },
             [&](double f, int rank, const std::vector<std::uint8_t>& bytes) {
                 glint::write_file_atomically(frame_path(pattern, static_cast<long long>(f), last > first), bytes);

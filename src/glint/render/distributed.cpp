@@ -527,7 +527,7 @@ void stall_once(int rank) {
 
 std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector<double>& frames,
                                          std::uint64_t fingerprint, const SceneFiles& files,
-                                         const std::function<bool(double)>& render_here,
+                                         const std::function<std::optional<std::vector<std::uint8_t>>(double)>& render_here,
                                          const std::function<void(double, int, const std::vector<std::uint8_t>&)>& write,
                                          const std::atomic<bool>* cancel) {
     const int size = transport.size();
@@ -581,12 +581,14 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
                 const std::optional<double> f = next(0);
                 if (!f) break;
                 const auto t0 = Clock::now();
-                const bool whole = render_here(*f);
+                const std::optional<std::vector<std::uint8_t>> image = render_here(*f);
                 reports[0].busy += since(t0);
-                if (!whole) break;  // interrupted: the frame was not written
-                std::lock_guard lock(mutex);
-                working[*f].erase(0);
-                if (done.insert(*f).second) ++reports[0].frames;
+                if (!image) break;  // interrupted: the frame is not written
+                if (finished(*f, 0)) {  // unless another rank's copy came first
+                    write(*f, 0, *image);
+                    std::lock_guard lock(mutex);
+                    ++reports[0].frames;
+                }
             }
         } catch (...) {
             local_error = std::current_exception();

@@ -155,14 +155,15 @@ struct FrameReport {
 /// time, to each rank as it finishes its last (a slow rank takes fewer); when none is left, a
 /// rank that asks (rank 0's thread too) gets a duplicate of a frame still being rendered elsewhere (a straggler's), and
 /// the first image of a frame is the one written. Rank 0 renders frames on a thread of its own
-/// through `render_here` (false: interrupted, stop); `write(frame, rank, file bytes)` is called
-/// on this thread for every other rank's frame. Ends by stopping every rank, writing the frames
+/// through `render_here`, which returns the image file's bytes (nothing: interrupted, stop);
+/// `write(frame, rank, file bytes)` is called once per frame, for the first copy to arrive,
+/// on this thread or rank 0's render thread (never twice for a frame, possibly at once for two). Ends by stopping every rank, writing the frames
 /// that arrive meanwhile. Throws IoError with a rank's failure.
 /// `fingerprint` (files_fingerprint on rank 0) goes with every frame; a rank whose own differs
 /// reports a failure instead of rendering.
 std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector<double>& frames,
                                          std::uint64_t fingerprint, const SceneFiles& files,
-                                         const std::function<bool(double)>& render_here,
+                                         const std::function<std::optional<std::vector<std::uint8_t>>(double)>& render_here,
                                          const std::function<void(double, int, const std::vector<std::uint8_t>&)>& write,
                                          const std::atomic<bool>* cancel);
 /// A rank other than 0: the image file of a frame it rendered whole, to rank 0.
