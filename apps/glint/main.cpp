@@ -916,7 +916,7 @@ int main(int argc, char** argv) {
                  "Whitted shading with shadows and reflections, or physically based path "
                  "tracing with area lights, metals, glass and HDR environments; spheres, planes, "
                  "quads, disks, triangles, polygons and boxes; image textures; depth of field) "
-                 "to PNG, EXR or PPM.",
+                 "to PNG, EXR, JPEG, HDR, PFM or PPM.",
                  "glint"};
     app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
     app.require_subcommand(1);
@@ -929,8 +929,8 @@ int main(int argc, char** argv) {
     const char* strict_help = "pbrt files: what glint cannot render is an error, not a warning";
     render->add_flag("--strict", args.strict, strict_help);
     render->add_option("-o,--output", args.output,
-                       "Output image; the format comes from the extension: .png (8-bit), "
-                       ".exr (linear float), .ppm (8-bit)");
+                       "Output image; the format comes from the extension: .png, .jpg, .ppm (8-bit), "
+                       ".exr, .hdr, .pfm (linear)");
     render->add_option("--width", args.width, "Film width in pixels (overrides the scene)");
     render->add_option("--height", args.height, "Film height in pixels (overrides the scene)");
     render->add_option("--spp", args.spp,
