@@ -17,7 +17,7 @@ done
 names=(version info-bunny render-64)
 cmds=("$glint --version"
       "$glint info scenes/bunny.yaml"
-      "$glint render scenes/seed/fig14-reflections.yaml --width 64 --height 36 -q -o $out/small.png")
+      "$glint render scenes/seed/fig14-reflections.yaml --width 64 --height 64 -q -o $out/small.png")
 args=()
 for i in "${!names[@]}"; do args+=(-n "${names[$i]}" "${cmds[$i]}"); done
 hyperfine --style basic --warmup 3 --runs "$runs" -N --export-json "$out/t.json" "${args[@]}" >&2
