@@ -84,8 +84,16 @@ protected:
     // The frames rank `rank` rendered, from rank 0's report of an animation by whole frames.
     static long frames_of(const std::string& err, int rank) {
         std::smatch m;
-        const std::regex line("\n\\s*" + std::to_string(rank) + "\\s+(\\d+)\n");
-        return std::regex_search(err, m, line) ? std::stol(m[1]) : -1;
+        return std::regex_search(err, m, frame_row(rank)) ? std::stol(m[1]) : -1;
+    }
+    // Rank `rank`'s busy seconds in rank 0's report of an animation by whole frames.
+    static double frame_busy_of(const std::string& err, int rank) {
+        std::smatch m;
+        return std::regex_search(err, m, frame_row(rank)) ? std::stod(m[2]) : -1;
+    }
+    // "rank  frames   share   busy (s)   idle (s)": a row's frames and busy seconds.
+    static std::regex frame_row(int rank) {
+        return std::regex("\n\\s*" + std::to_string(rank) + "\\s+(\\d+)\\s+[\\d.]+ %\\s+([\\d.]+)\\s+[\\d.]+\n");
     }
     // The tiles rank `rank` rendered, from rank 0's report.
     static long tiles_of(const std::string& err, int rank) {
@@ -248,6 +256,7 @@ TEST_F(Mpi, AnAnimationAcrossRanksGivesTheSingleProcessFramesAndSkipsWrittenOnes
     r = run("mpirun --oversubscribe -np 2 env GLINT_TEST_STALL=1:4 {glint}" + options + " -o d_%d.exr");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_GE(frames_of(r.err, 0), 3) << r.err;
+    EXPECT_GE(frame_busy_of(r.err, 1), 4.0) << r.err;  // the stall counts as rank 1's time on its frame
     for (int f = 0; f <= 3; ++f) {
         const std::string n = std::to_string(f);
         EXPECT_TRUE(same_bits(pixels("s_" + n + ".exr"), pixels("d_" + n + ".exr"))) << "frame " << f;

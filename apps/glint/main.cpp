@@ -877,8 +877,7 @@ int run_frames(RenderArgs args) {
             &g_stop);
         for (const glint::FrameReport& r : reports) rendered += r.frames;
         if (!args.quiet) {
-            fmt::print(stderr, "rank  frames\n");
-            for (const glint::FrameReport& r : reports) fmt::print(stderr, "{:>4}  {:>6}\n", r.rank, r.frames);
+            fmt::print(stderr, "{}", glint::format_frame_reports(reports));
             fmt::print(stderr, "glint: {} frame{} rendered, {} skipped (already written)\n", rendered,
                        rendered == 1 ? "" : "s", skipped);
         }

@@ -226,6 +226,17 @@ std::string format_reports(const std::vector<RankReport>& reports) {
     return s;
 }
 
+std::string format_frame_reports(const std::vector<FrameReport>& reports) {
+    int frames = 0;
+    for (const FrameReport& r : reports) frames += r.frames;
+    std::string s = "rank  frames   share   busy (s)   idle (s)\n";
+    for (const FrameReport& r : reports) {
+        s += fmt::format("{:>4}  {:>6}  {:>5.1f} %  {:>9.2f}  {:>9.2f}\n", r.rank, r.frames,
+                         frames ? 100.0 * r.frames / frames : 0.0, r.busy, std::max(0.0, r.wall - r.busy));
+    }
+    return s;
+}
+
 // ---- rank 0 ----
 
 struct Coordinator::Impl {
@@ -538,6 +549,7 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
     std::set<double> done;
     std::map<double, std::set<int>> working;  // frame -> the ranks rendering it (duplicates: stragglers)
     std::vector<std::optional<double>> given(static_cast<std::size_t>(size));
+    std::vector<Clock::time_point> given_at(static_cast<std::size_t>(size));  // when rank r got its frame
     std::map<std::pair<int, double>, std::vector<std::uint8_t>> incoming;
     std::exception_ptr local_error;
     std::atomic<bool> local_done{false};
@@ -566,6 +578,7 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
     };
     const auto give = [&](int r) {
         given[static_cast<std::size_t>(r)] = next(r);
+        given_at[static_cast<std::size_t>(r)] = Clock::now();
         if (given[static_cast<std::size_t>(r)]) {
             std::vector<std::uint8_t> bytes;
             put(bytes, *given[static_cast<std::size_t>(r)]);
@@ -610,6 +623,9 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
         if (h.offset + piece < h.size) return false;
         const std::vector<std::uint8_t> image = std::move(buffer);
         incoming.erase({m.source, h.frame});
+        // Busy from the hand-out to the image's arrival (loading, rendering, sending), a
+        // discarded duplicate's too.
+        reports[static_cast<std::size_t>(m.source)].busy += since(given_at[static_cast<std::size_t>(m.source)]);
         if (finished(h.frame, m.source)) {
             write(h.frame, m.source, image);
             ++reports[static_cast<std::size_t>(m.source)].frames;

@@ -147,8 +147,10 @@ std::optional<FrameOrder> wait_frame(Transport& transport);
 struct FrameReport {
     int rank = 0;
     int frames = 0;   ///< frames of this rank's that were written
-    double busy = 0;  ///< rank 0: seconds rendering (the others' is not measured)
-    double wall = 0;
+    /// Seconds at work: rank 0's render thread rendering; another rank, from each frame's
+    /// hand-out to its image's arrival at rank 0 (loading, rendering and sending).
+    double busy = 0;
+    double wall = 0;  ///< the whole dispatch
 };
 
 /// Rank 0 of an animation with at least as many frames as ranks: frames go out whole, one at a
@@ -177,5 +179,8 @@ void stop_ranks(Transport& transport) noexcept;
 
 /// The per-rank table printed at the end of a distributed render.
 std::string format_reports(const std::vector<RankReport>& reports);
+/// The same for an animation rendered by whole frames: frames written, their share, busy and idle
+/// seconds (idle = the dispatch's wall time less busy).
+std::string format_frame_reports(const std::vector<FrameReport>& reports);
 
 }  // namespace glint
