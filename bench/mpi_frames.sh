@@ -13,12 +13,7 @@ build=${1:-build}
 runs=${2:-3}
 frames=${FRAMES:-0:47}
 spp=${SPP:-16}
-glint=$build/apps/glint/glint
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-command -v mpirun >/dev/null || { echo "missing mpirun: run scripts/install-deps.sh" >&2; exit 1; }
-command -v idiff >/dev/null || { echo "missing idiff (openimageio-tools)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source bench/mpi_common.sh
 args=(render scenes/animation.yaml --frames "$frames" --spp "$spp" -q)
 
 # One run of "$@" into a fresh folder $1: prints the wall seconds.

@@ -12,12 +12,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 runs=${2:-3}
 spp=${SPP:-256}
-glint=$build/apps/glint/glint
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-command -v mpirun >/dev/null || { echo "missing mpirun: run scripts/install-deps.sh" >&2; exit 1; }
-command -v idiff >/dev/null || { echo "missing idiff (openimageio-tools)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source bench/mpi_common.sh
 
 # One run: prints "render_seconds wall_seconds".
 run() {
