@@ -96,6 +96,11 @@ TEST_F(Cli, UnwritableOutputIsRefusedBeforeRendering) {
     Result r = run("render " + seed("fig07-sphere.yaml") + " -o picture.gif");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("unsupported output format '.gif'"), std::string::npos) << r.err;
+    r = run("render " + seed("fig07-sphere.yaml") + " --width 65536 --height 2 -o wide.jpg");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("wide.jpg: JPEG holds at most 65500 x 65500 pixels; the image is 65536 x 2"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("rendered"), std::string::npos);  // refused before the render
     r = run("render " + seed("fig07-sphere.yaml") + " -o missing/dir/a.png");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;

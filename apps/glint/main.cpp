@@ -588,7 +588,7 @@ int run_render(const RenderArgs& args, std::optional<glint::RenderJob> preloaded
     if (distributed && g_cluster->rank() > 0) return run_rank(args);
     glint::RenderJob job = preloaded ? std::move(*preloaded) : prepare_job(args);
     const std::filesystem::path out = output_path(args, job);
-    glint::check_writable(out);  // fail before rendering, not after
+    glint::check_writable(out, job.film_width, job.film_height);  // fail before rendering, not after
     if (job.aovs && glint::image_format_for(out) != glint::ImageFormat::kExr) {
         throw glint::IoError(fmt::format(
             "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",

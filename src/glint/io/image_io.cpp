@@ -191,8 +191,10 @@ Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pix
     return image;
 }
 
-void check_writable(const fs::path& path) {
-    image_format_for(path);
+void check_writable(const fs::path& path, int width, int height) {
+    if (image_format_for(path) == ImageFormat::kJpeg && std::max(width, height) > 65500)
+        throw IoError(fmt::format("{}: JPEG holds at most 65500 x 65500 pixels; the image is {} x {} (write .png or .exr)",
+                                  path.string(), width, height));
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) {

@@ -49,9 +49,10 @@ Image read_image(const std::filesystem::path& path, ImageEncoding encoding, long
 /// case-insensitive); throws IoError naming the supported ones otherwise.
 ImageFormat image_format_for(const std::filesystem::path& path);
 
-/// Checks, before any rendering, that `path` can be written: a known extension and an existing,
-/// writable folder. Throws IoError with the reason.
-void check_writable(const std::filesystem::path& path);
+/// Checks, before any rendering, that `path` can be written: a known extension, an existing,
+/// writable folder, and (when given) a size the format can hold (JPEG: at most 65,500 pixels a
+/// side). Throws IoError with the reason.
+void check_writable(const std::filesystem::path& path, int width = 0, int height = 0);
 
 /// Name and value pairs written into the image's header (EXR attributes, PNG text chunks):
 /// glint writes the spp reached, the render time and the scene.
