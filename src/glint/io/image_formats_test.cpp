@@ -288,6 +288,18 @@ TEST(HdrWriter, RgbeBytesByHand) {
     EXPECT_EQ(b[3], 127 + 128);
 }
 
+// The run-length encoding by hand: a 300-pixel row of one colour is, per component, runs of
+// 127, 127 and 46 (128 + n, byte), after the row's marker 2 2 1 44 (300 = 1 * 256 + 44).
+TEST(HdrWriter, ARowOfOneColourIsThreeRunsPerComponent) {
+    const std::vector<float> rgb(300 * 3, 1.0f);  // RGBE 128 128 128 129
+    const auto bytes = encode_hdr(rgb.data(), 300, 1, {});
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 300\n";
+    ASSERT_EQ(std::string(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(header.size())), header);
+    std::vector<int> want = {2, 2, 1, 44};
+    for (const int v : {128, 128, 128, 129}) want.insert(want.end(), {128 + 127, v, 128 + 127, v, 128 + 46, v});
+    EXPECT_EQ(std::vector<int>(bytes.begin() + static_cast<std::ptrdiff_t>(header.size()), bytes.end()), want);
+}
+
 // Values over eleven decades, zeros, negatives, NaN and rows of equal pixels (runs), written in
 // the run-length encoding (width >= 8) and flat (width < 8): glint's reader gives every component
 // back within half a bin, 2^(e-9), of what was written, OpenImageIO's within a bin.

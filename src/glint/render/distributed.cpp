@@ -548,7 +548,6 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
     std::deque<double> queue(frames.begin(), frames.end());
     std::set<double> done;
     std::map<double, std::set<int>> working;  // frame -> the ranks rendering it (duplicates: stragglers)
-    std::vector<std::optional<double>> given(static_cast<std::size_t>(size));
     std::vector<Clock::time_point> given_at(static_cast<std::size_t>(size));  // when rank r got its frame
     std::map<std::pair<int, double>, std::vector<std::uint8_t>> incoming;
     std::exception_ptr local_error;
@@ -577,11 +576,11 @@ std::vector<FrameReport> dispatch_frames(Transport& transport, const std::vector
         return done.insert(f).second;
     };
     const auto give = [&](int r) {
-        given[static_cast<std::size_t>(r)] = next(r);
+        const std::optional<double> f = next(r);
         given_at[static_cast<std::size_t>(r)] = Clock::now();
-        if (given[static_cast<std::size_t>(r)]) {
+        if (f) {
             std::vector<std::uint8_t> bytes;
-            put(bytes, *given[static_cast<std::size_t>(r)]);
+            put(bytes, *f);
             put(bytes, fingerprint);
             transport.send(r, kFrameWhole, std::move(bytes));
         }
