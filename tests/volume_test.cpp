@@ -403,5 +403,33 @@ objects:
     expect_close(mean_li(job, Ray{{9, 1.7f, 1.9f}, {1, 0, 0}}, 60000), expect, "emitting grid", 2e-3f);
 }
 
+// A small spherical light inside a large interface box (an empty medium) lights the ground
+// outside the box: the irradiance is pi L (r/d)^2 cos(theta) whatever the box, so the ground's
+// radiance is albedo L (r/d)^2 cos(theta). The shadow rays cross the box wall three units from
+// the origin while the light is within one: a segment re-spawned past the wall must still end
+// before the light. (It used to keep its length, so it overshot by the push off the wall, which
+// grows with the distance from the origin, and struck the light: the ground went dark.)
+TEST(Volume, AreaLightInsideInterfaceBoxGivesClosedFormIrradiance) {
+    for (const float x : {0.0f, 10.0f}) {
+        const auto at = [x](float v) { return std::to_string(x + v); };
+        const RenderJob job = job_from(R"(
+integrator: {type: path, max_depth: 1}
+background: {type: constant, color: [0, 0, 0]}
+media:
+  empty: {type: homogeneous, sigma_a: [0, 0, 0], sigma_s: [0, 0, 0]}
+materials:
+  lamp: {type: diffuse, albedo: [0, 0, 0], emission: [100, 100, 100]}
+  ground: {type: diffuse, albedo: [0.5, 0.5, 0.5]}
+objects:
+  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], material: ground}
+  - {type: sphere, center: [)" + at(0) + R"(, 0.5, 0], radius: 0.1, material: lamp}
+  - {type: box, min: [)" + at(-3) + R"(, 0.1, -3], max: [)" + at(3) + R"(, 3, 3], material: interface, interior: empty}
+)");
+        // The ground point (x + 4, 0, 0): d^2 = 16.25, cos(theta) = 0.5 / d.
+        const float d2 = 16.25f, expect = 0.5f * 100 * (0.01f / d2) * (0.5f / std::sqrt(d2));
+        const Vector3 d = normalize(Vector3{-2, -1, 0});
+        expect_close(mean_li(job, Ray{{x + 6, 1, 0}, d}, 40000), Color{expect}, "light at x = " + at(0), 1e-5f);
+    }
+}
 }  // namespace
 }  // namespace glint

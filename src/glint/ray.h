@@ -1,5 +1,6 @@
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "glint/math/vector.h"
@@ -29,6 +30,20 @@ inline Ray spawn_ray(Point3 p, Normal3 n, Vector3 d,
     Float offset = 1e-4f * std::max(Float(1), max_abs_component(p));
     Vector3 push = to_vector(n) * (dot(n, d) >= 0 ? offset : -offset);
     return Ray{p + push, d, t_max};
+}
+
+/// The rest of `ray` after it crossed a surface at p (normal n) that it passes through (a medium
+/// interface, a transparent shadow blocker): the origin is pushed off the surface as spawn_ray's
+/// is, and the segment still ends where `ray` ended. (Keeping the remaining length t_max - t
+/// instead moves the end forward by the push; the push grows with |p|, so far from the origin
+/// the segment overshot a light-side end point and struck the light itself.)
+inline Ray continue_ray(const Ray& ray, Point3 p, Normal3 n) {
+    Ray next = spawn_ray(p, n, ray.direction, ray.t_max);
+    if (std::isinf(ray.t_max)) return next;
+    const Point3 end = ray.at(ray.t_max);
+    const Float t = dot(end - next.origin, ray.direction);  // the direction is unit length
+    next.t_max = t > 0 ? t : Float(0);
+    return next;
 }
 
 /// A shadow ray from surface point p (normal n) to point q on a light's surface (normal n_q):

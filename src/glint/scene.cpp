@@ -403,7 +403,7 @@ std::optional<Hit> Scene::intersect_opaque(const Ray& ray_in) const {
         const Point3 p = ray.at(hit->t);
         const Normal3 n = interaction(ray, *hit).n;
         travelled += hit->t;
-        ray = spawn_ray(p, n, ray.direction, ray.t_max - hit->t);
+        ray = continue_ray(ray, p, n);
     }
     return std::nullopt;
 }

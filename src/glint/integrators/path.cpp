@@ -59,7 +59,7 @@ Color shadow_transmittance(const Scene& scene, Ray ray, MediumId medium, HashRng
         if (const MediumInterface* mi = scene.medium_interface(si.material))
             medium = mi->side(dot(si.n, ray.direction));
         ++rays;
-        ray = spawn_ray(si.p, si.n, ray.direction, ray.t_max - hit->t);
+        ray = continue_ray(ray, si.p, si.n);
     }
     return Color{0};
 }
