@@ -341,7 +341,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!bs || bs->f.max_component() <= 0 || !same_side(si, bs->wi)) break;
         beta *= bs->f * (std::abs(dot(si.ns, bs->wi)) / bs->pdf);
         specular = bs->specular;
-        bsdf_pdf = bs->pdf;
+        bsdf_pdf = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi) : bs->pdf;
         prev_p = si.p;
         if (bs->eta != 1) eta_scale *= bs->eta * bs->eta;
         if (!is_finite(beta)) break;

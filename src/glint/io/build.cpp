@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <limits>
 #include <map>
 #include <cmath>
 #include <cstdlib>
@@ -148,6 +149,27 @@ public:
                     PlasticMaterial{add_texture(d.color), make_plastic(Color{0}, d.ior, alpha)});
                 break;
             case K::kInterface: scene_.materials.push_back(InterfaceMaterial{}); break;
+            case K::kCoated: {
+                CoatedMaterial c;
+                c.lobe.eta = d.ior;
+                c.lobe.coat = Ggx{d.coat_roughness * d.coat_roughness};
+                c.lobe.conductor_base = d.coated_conductor;
+                if (d.coated_conductor) {
+                    // The metal's index relative to the coat it lies under, as pbrt-v4 takes it.
+                    c.lobe.conductor = make_conductor(ConductorLobe::FresnelKind::kComplex, d.eta / d.ior, d.k / d.ior, alpha);
+                    c.lobe.conductor.single_scattering = true;  // pbrt-v4's ConductorBxDF
+                    if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
+                } else {
+                    c.base = add_texture(d.color);
+                }
+                c.lobe.thickness = std::max(d.thickness, std::numeric_limits<float>::min());
+                c.lobe.albedo = d.layer_albedo;
+                c.lobe.g = d.g;
+                c.lobe.max_depth = d.layer_depth;
+                c.lobe.samples = d.layer_samples;
+                scene_.materials.push_back(c);
+                break;
+            }
             case K::kDiffuseTransmission: {
                 TextureDesc t;
                 t.value = Color{0.25f};

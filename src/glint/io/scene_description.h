@@ -159,7 +159,7 @@ struct MediumDesc {
 
 struct MaterialDesc {
     enum class Kind { kArticle, kDiffuse, kConductor, kDielectric, kPlastic, kPbr, kInterface,
-                      kDiffuseTransmission, kMix };
+                      kDiffuseTransmission, kMix, kCoated };
     Kind kind = Kind::kArticle;
     TextureDesc color;  ///< article colour, diffuse/plastic albedo, pbr base colour
     float shininess = 0;
@@ -190,6 +190,17 @@ struct MaterialDesc {
     /// weight in red, roughness in green; sheen: colour, roughness (grey); specular: weight (grey),
     /// colour (KHR_materials_clearcoat, _sheen, _specular).
     std::optional<TextureDesc> clearcoat, clearcoat_roughness, sheen, sheen_roughness, specular, specular_color;
+    /// coated (pbrt-v4's coateddiffuse / coatedconductor): the base is diffuse (albedo `color`)
+    /// or, with coated_conductor, a conductor (eta, k or reflectance; `roughness`); the coat has
+    /// index `ior` and its own roughness; between them a slab of `thickness` filled with a
+    /// medium of `layer_albedo` and HG `g`; `layer_depth` bounces and `layer_samples` walks.
+    bool coated_conductor = false;
+    float coat_roughness = 0;
+    float thickness = 0.01f;
+    Color layer_albedo{0};
+    float g = 0;
+    int layer_depth = 10;
+    int layer_samples = 1;
     /// Set by importers (glTF's KHR_materials_volume): an absorbing interior medium for every
     /// surface of this material.
     std::optional<MediumDesc> interior;

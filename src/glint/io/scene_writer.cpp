@@ -118,6 +118,17 @@ std::string Writer::material(const MaterialDesc& m) const {
                             texture(m.color), num(m.metallic), num(m.roughness), num(m.transmission), num(m.ior));
             break;
         case K::kInterface: s = "type: interface"; break;
+        case K::kCoated:
+            if (m.coated_conductor) {
+                s = m.reflectance ? fmt::format("type: coated_conductor, reflectance: {}", texture(*m.reflectance))
+                                  : fmt::format("type: coated_conductor, eta: {}, k: {}", vec(m.eta), vec(m.k));
+                s += fmt::format(", roughness: {}, coat_roughness: {}", num(m.roughness), num(m.coat_roughness));
+            } else {
+                s = fmt::format("type: coated_diffuse, albedo: {}, roughness: {}", texture(m.color), num(m.coat_roughness));
+            }
+            s += fmt::format(", ior: {}, thickness: {}, layer_albedo: {}, g: {}, max_depth: {}, samples: {}", num(m.ior),
+                             num(m.thickness), vec(m.layer_albedo), num(m.g), m.layer_depth, m.layer_samples);
+            break;
         case K::kDiffuseTransmission:
             s = fmt::format("type: diffuse_transmission, reflectance: {}, transmittance: {}", texture(m.color),
                             texture(m.transmittance.value_or(TextureDesc{})));

@@ -631,7 +631,7 @@ private:
         }
         const auto type = type_of(node, "material",
                                   {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr",
-                                   "interface", "diffuse_transmission", "mix"},
+                                   "interface", "diffuse_transmission", "mix", "coated_diffuse", "coated_conductor"},
                                   "article");
         if (!type) return d;
         if (*type == "interface") {
@@ -651,6 +651,14 @@ private:
         if (*type == "plastic") d.kind = K::kPlastic, add({"albedo", "ior", "roughness"});
         if (*type == "diffuse_transmission") d.kind = K::kDiffuseTransmission, add({"reflectance", "transmittance"});
         if (*type == "mix") d.kind = K::kMix, add({"materials", "amount"});
+        if (*type == "coated_diffuse" || *type == "coated_conductor") {
+            d.kind = K::kCoated;
+            d.coated_conductor = *type == "coated_conductor";
+            d.color.value = Color{0.5f};  // pbrt-v4's coateddiffuse reflectance
+            add({"ior", "thickness", "layer_albedo", "g", "max_depth", "samples"});
+            if (d.coated_conductor) add({"metal", "eta", "k", "reflectance", "roughness", "coat_roughness"});
+            else add({"albedo", "roughness"});
+        }
         if (*type == "pbr") {
             d.kind = K::kPbr;
             d.roughness = 0.5f;
@@ -699,6 +707,18 @@ private:
         }
         assign(m.get("shininess"), d.shininess, unit("shininess"));
         assign(m.get("roughness"), d.roughness, unit("roughness"));
+        if (d.kind == K::kCoated) {
+            // A coated diffuse's roughness is its coat's; a coated conductor's is the metal's.
+            if (!d.coated_conductor) std::swap(d.roughness, d.coat_roughness);
+            assign(m.get("coat_roughness"), d.coat_roughness, unit("coat_roughness"));
+            assign(m.get("thickness"), d.thickness, [this](const YAML::Node& v) {
+                return r_.number_in(v, "thickness", 0, 1e30, true);
+            });
+            assign(m.get("layer_albedo"), d.layer_albedo, color());
+            assign(m.get("g"), d.g, [this](const YAML::Node& v) { return r_.number_in(v, "g", -0.999, 0.999); });
+            assign(m.get("max_depth"), d.layer_depth, [this](const YAML::Node& v) { return r_.integer_in(v, "max_depth", 1, 10000); });
+            assign(m.get("samples"), d.layer_samples, [this](const YAML::Node& v) { return r_.integer_in(v, "samples", 1, 1000); });
+        }
         assign(m.get("metallic"), d.metallic, unit("metallic"));
         assign(m.get("transmission"), d.transmission, unit("transmission"));
         assign(m.get("ior"), d.ior, [this](const YAML::Node& v) {
@@ -709,7 +729,7 @@ private:
         assign(m.get("emission"), d.emission.radiance, color());
         assign(m.get("two_sided"), d.emission.two_sided,
                [this](const YAML::Node& v) { return r_.boolean(v); });
-        if (d.kind == K::kConductor) {
+        if (d.kind == K::kConductor || (d.kind == K::kCoated && d.coated_conductor)) {
             const auto metal = m.get("metal");
             const auto eta = m.get("eta"), k = m.get("k"), reflectance = m.get("reflectance");
             const int forms = (metal ? 1 : 0) + (eta || k ? 1 : 0) + (reflectance ? 1 : 0);

@@ -345,7 +345,7 @@ TEST(SceneYaml, PathTracerMistakesAreReported) {
                   "      b: {type: conductor, metal: gold, reflectance: 1}\n" +
                   caret(6, 46) +
                   "scene.yaml:7:13: error: unknown material type 'glass' "
-                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface, diffuse_transmission, mix)\n"
+                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface, diffuse_transmission, mix, coated_diffuse, coated_conductor)\n"
                   "      c: {type: glass}\n" +
                   caret(13, 5));
 }

@@ -24,8 +24,6 @@ auto upper(Vector3 wo, Vector3 wi, F f) {
     return wo.z < 0 ? f(flip_z(wo), flip_z(wi)) : f(wo, wi);
 }
 
-Vector3 reflect_about(Vector3 wo, Vector3 m) { return m * (2 * dot(wo, m)) - wo; }
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------- diffuse
@@ -167,7 +165,7 @@ Color ConductorLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
         // Kulla-Conty: f_ms = (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg)), coloured by
         // F_avg^2 E_avg / (1 - F_avg (1 - E_avg)).
         const float e_avg = ggx_albedo_average(ggx.alpha);
-        if (e_avg >= 1) return single;
+        if (e_avg >= 1 || single_scattering) return single;
         const float ms = (1 - ggx_albedo(wo.z, ggx.alpha)) * (1 - ggx_albedo(wi.z, ggx.alpha)) /
                          (std::numbers::pi_v<float> * (1 - e_avg));
         const Color f_ms{sqr(f_avg.r) * e_avg / (1 - f_avg.r * (1 - e_avg)),
@@ -181,7 +179,7 @@ float ConductorLobe::pdf(Vector3 wo_in, Vector3 wi_in) const {
     if (ggx.smooth()) return 0;
     return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
         if (wo.z <= 0 || wi.z <= 0) return 0.0f;
-        const float p_ms = 1 - ggx_albedo(wo.z, ggx.alpha);
+        const float p_ms = single_scattering ? 0 : 1 - ggx_albedo(wo.z, ggx.alpha);
         const Vector3 wm = normalize(wo + wi);
         const float spec = ggx.d_visible(wo, wm) / (4 * dot(wo, wm));
         return (1 - p_ms) * spec + p_ms * wi.z * kInvPi;
@@ -198,7 +196,7 @@ std::optional<BsdfSample> ConductorLobe::sample(Vector3 wo_in, float uc, Sample2
         BsdfSample s{fresnel(wo.z) / wi.z, below ? flip_z(wi) : wi, 1, true};
         return s;
     }
-    const float p_ms = 1 - ggx_albedo(wo.z, ggx.alpha);
+    const float p_ms = single_scattering ? 0 : 1 - ggx_albedo(wo.z, ggx.alpha);
     if (uc < p_ms) {
         wi = sample_cosine_hemisphere(u);
     } else {
@@ -211,24 +209,6 @@ std::optional<BsdfSample> ConductorLobe::sample(Vector3 wo_in, float uc, Sample2
 }
 
 // ------------------------------------------------------------------------------- dielectric
-
-namespace {
-
-// The half vector of a reflection or refraction pair, facing +z, and the index ratio etap
-// (1 for reflection). False when the pair is impossible (grazing or back-facing microfacet).
-bool generalized_half(Vector3 wo, Vector3 wi, float eta, Vector3& wm, float& etap) {
-    const float cos_o = wo.z, cos_i = wi.z;
-    if (cos_o == 0 || cos_i == 0) return false;
-    const bool reflect = cos_o * cos_i > 0;
-    etap = reflect ? 1 : (cos_o > 0 ? eta : 1 / eta);
-    wm = wi * etap + wo;
-    if (dot(wm, wm) == 0) return false;
-    wm = normalize(wm);
-    if (wm.z < 0) wm = -wm;
-    return !(dot(wm, wi) * cos_i < 0 || dot(wm, wo) * cos_o < 0);
-}
-
-}  // namespace
 
 Color DielectricLobe::eval(Vector3 wo, Vector3 wi) const {
     if (thin || ggx.smooth() || eta == 1) return Color{0};

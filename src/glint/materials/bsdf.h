@@ -28,6 +28,10 @@ struct BsdfSample {
     float pdf = 0;      ///< solid-angle density (a delta: the discrete probability of choosing it)
     bool specular = false;
     float eta = 1;      ///< the relative index crossed (1 for reflection)
+    /// The sample came from a random walk (LayeredLobe): f / pdf is its unbiased weight, but pdf
+    /// is the walk's own density, not the lobe's; MIS must ask the Bsdf's pdf (pbrt-v4's
+    /// pdfIsProportional).
+    bool pdf_is_proportional = false;
 };
 
 /// Lambert: f = albedo / pi on the side of wo (two-sided).
@@ -54,6 +58,8 @@ struct DiffuseTransmissionLobe {
 struct ConductorLobe {
     enum class FresnelKind : std::uint8_t { kComplex, kSchlick, kConstant };
     FresnelKind kind = FresnelKind::kConstant;
+    /// Without Kulla and Conty's term: pbrt-v4's conductor, as its coatedconductor holds it.
+    bool single_scattering = false;
     Color eta{1}, k{0};  ///< kComplex; kSchlick and kConstant use eta as f0 / reflectance
     Ggx ggx{0};
     Color fresnel(float cos_i) const;
@@ -126,7 +132,33 @@ float clearcoat_albedo(float mu, float roughness);
 /// given roughness, single scattering only.
 ConductorLobe clearcoat_lobe(float roughness);
 
-using Lobe = std::variant<DiffuseLobe, ConductorLobe, DielectricLobe, PlasticLobe, DiffuseTransmissionLobe>;
+/// pbrt-v4's layered BSDF (coateddiffuse, coatedconductor; Guo et al. 2018's position-free
+/// Monte Carlo as pbrt-v4 implements it): a dielectric coat of index eta (GGX width `coat`,
+/// smooth below Ggx::kSmooth) over a base (a diffuse or a conductor lobe), with a slab of
+/// `thickness` between them, optionally filled with a scattering medium of `albedo` and
+/// Henyey-Greenstein `g` (sigma_t = 1). Two-sided. f and pdf are stochastic estimates from
+/// `samples` random walks of at most `max_depth` bounces, seeded by a hash of the directions,
+/// so every call with the same arguments returns the same value; sample() follows one walk
+/// and marks its pdf as proportional. A Bsdf holding a LayeredLobe must hold it alone (a
+/// mixture would weigh a walk's sample by the noisy pdf estimate).
+struct LayeredLobe {
+    float eta = 1.5f;
+    Ggx coat{0};
+    bool conductor_base = false;
+    DiffuseLobe diffuse{Color{0.5f}};  ///< the base unless conductor_base
+    ConductorLobe conductor;           ///< the base if conductor_base
+    float thickness = 0.01f;
+    Color albedo{0};
+    float g = 0;
+    int max_depth = 10;
+    int samples = 1;
+    Color eval(Vector3 wo, Vector3 wi) const;
+    float pdf(Vector3 wo, Vector3 wi) const;
+    std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const;
+};
+
+using Lobe = std::variant<DiffuseLobe, ConductorLobe, DielectricLobe, PlasticLobe,
+                          DiffuseTransmissionLobe, LayeredLobe>;
 
 ConductorLobe make_conductor(ConductorLobe::FresnelKind kind, Color eta, Color k, float alpha);
 PlasticLobe make_plastic(Color albedo, float eta, float alpha);

@@ -46,6 +46,8 @@ std::vector<Case> cases() {
                                               kMetals[3].eta, kMetals[3].k, 0.09f);
     const ConductorLobe white_rough =
         make_conductor(ConductorLobe::FresnelKind::kConstant, Color{1}, Color{0}, 0.5f);
+    ConductorLobe gold_single = gold;  // pbrt-v4's conductor (a coated conductor's metal)
+    gold_single.single_scattering = true;
     ConductorLobe mirror;  // smooth, constant reflectance 1
     DielectricLobe glass_rough;
     glass_rough.eta = 1.5f;
@@ -63,6 +65,7 @@ std::vector<Case> cases() {
     return {
         {"diffuse", Bsdf(n, {{DiffuseLobe{Color{0.7f}}, 1.0f}})},
         {"gold rough", Bsdf(n, {{gold, 1.0f}})},
+        {"gold rough, single scattering", Bsdf(n, {{gold_single, 1.0f}})},
         {"white conductor alpha 0.5", Bsdf(n, {{white_rough, 1.0f}})},
         {"mirror", Bsdf(n, {{mirror, 1.0f}})},
         {"rough glass", Bsdf(n, {{glass_rough, 1.0f}})},

@@ -12,6 +12,10 @@ namespace {
 
 float f0_dielectric(float eta) { return fresnel_dielectric(1, eta); }
 
+Color clamp01(Color c) {
+    return {std::clamp(c.r, 0.0f, 1.0f), std::clamp(c.g, 0.0f, 1.0f), std::clamp(c.b, 0.0f, 1.0f)};
+}
+
 }  // namespace
 
 Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
@@ -39,6 +43,23 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 PlasticLobe lobe = m.coat;
                 lobe.albedo = scene.texture(m.albedo, si);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
+            } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
+                LayeredLobe lobe = m.lobe;
+                if (!lobe.conductor_base) {
+                    lobe.diffuse.albedo = clamp01(scene.texture(m.base, si));
+                } else if (m.reflectance) {
+                    // pbrt-v4's form: the complex Fresnel of eta 1 and k = 2 sqrt(r) / sqrt(1 - r),
+                    // whose normal-incidence reflectance is r (f_avg as Schlick's, for the
+                    // multiple-scattering colour).
+                    const Color r = clamp01(scene.texture(*m.reflectance, si));
+                    const auto k = [](float v) { v = std::min(v, 0.9999f); return 2 * std::sqrt(v) / std::sqrt(1 - v); };
+                    // (Relative to the coat the metal lies under: both divided by its index.)
+                    lobe.conductor.kind = ConductorLobe::FresnelKind::kComplex;
+                    lobe.conductor.eta = Color{1 / lobe.eta};
+                    lobe.conductor.k = Color{k(r.r), k(r.g), k(r.b)} / lobe.eta;
+                    lobe.conductor.f_avg = r + (Color{1} - r) * (1.0f / 21);
+                }
+                return Bsdf(si.ns, {{lobe, 1.0f}});  // alone: see LayeredLobe
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return Bsdf();  // no lobes: nothing scatters (the integrators pass through)
             } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {
@@ -108,6 +129,10 @@ ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
                 return {m.lobe.tint, f0_dielectric(m.lobe.eta)};
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 return {scene.texture(m.albedo, si), f0_dielectric(m.coat.eta)};
+            } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
+                if (!m.lobe.conductor_base) return {scene.texture(m.base, si), f0_dielectric(m.lobe.eta)};
+                return {m.reflectance ? scene.texture(*m.reflectance, si) : m.lobe.conductor.fresnel(1),
+                        1 - std::sqrt(m.lobe.conductor.ggx.alpha)};
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return {Color{0}, 0};
             } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {

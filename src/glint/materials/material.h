@@ -44,6 +44,15 @@ struct PlasticMaterial {
     PlasticLobe coat;  ///< eta, width and the precomputed internal reflectance; albedo set per hit
 };
 
+/// pbrt-v4's coateddiffuse and coatedconductor: a dielectric coat over a diffuse or a conductor
+/// base with a slab between (LayeredLobe, evaluated by random walks). `base`: the diffuse
+/// base's albedo; `reflectance`: a conductor base's Schlick f0 instead of its complex index.
+struct CoatedMaterial {
+    LayeredLobe lobe;
+    TextureId base = 0;
+    std::optional<TextureId> reflectance;
+};
+
 /// glTF 2.0 metallic-roughness: mix(dielectric, metal, metallic), where the metal is GGX with
 /// Schlick's Fresnel and f0 = base colour, and the dielectric is a plastic of base colour under
 /// a coat of index ior, or, in proportion `transmission`, rough glass tinted by the base colour.
@@ -85,7 +94,7 @@ struct InterfaceMaterial {};
 
 using Material = std::variant<ArticleMaterial, DiffuseMaterial, ConductorMaterial,
                               DielectricMaterial, PlasticMaterial, PbrMaterial, InterfaceMaterial,
-                              DiffuseTransmissionMaterial, MixMaterial>;
+                              DiffuseTransmissionMaterial, MixMaterial, CoatedMaterial>;
 
 /// Light a surface emits, in radiance, on the side its normal faces (both when two_sided).
 struct Emission {

@@ -65,4 +65,22 @@ struct Ggx {
     }
 };
 
+/// The mirror image of wo about the microfacet normal m.
+inline Vector3 reflect_about(Vector3 wo, Vector3 m) { return m * (2 * dot(wo, m)) - wo; }
+
+/// The half vector of a reflection or refraction pair (wo, wi) at an interface of relative index
+/// eta (inside / outside), facing +z, and the index ratio etap crossed (1 for reflection). False
+/// when the pair is impossible (grazing, or a microfacet seen from behind).
+inline bool generalized_half(Vector3 wo, Vector3 wi, float eta, Vector3& wm, float& etap) {
+    const float cos_o = wo.z, cos_i = wi.z;
+    if (cos_o == 0 || cos_i == 0) return false;
+    const bool reflect = cos_o * cos_i > 0;
+    etap = reflect ? 1 : (cos_o > 0 ? eta : 1 / eta);
+    wm = wi * etap + wo;
+    if (dot(wm, wm) == 0) return false;
+    wm = normalize(wm);
+    if (wm.z < 0) wm = -wm;
+    return !(dot(wm, wi) * cos_i < 0 || dot(wm, wo) * cos_o < 0);
+}
+
 }  // namespace glint
