@@ -130,6 +130,63 @@ TEST(Pbrt, UnsupportedIsAWarningOrUnderStrictAnError) {
     EXPECT_EQ(first_error(text, true), "test.pbrt:2:1: material \"measured\" not supported; using diffuse 0.5 (--strict)");
 }
 
+// coateddiffuse and coatedconductor become glint's layered materials with every parameter
+// pbrt-v4 reads (its defaults where absent); roughness remapped as pbrt-v4 does (alpha = sqrt r).
+TEST(Pbrt, CoatedMaterialsKeepTheirLayers) {
+    const SceneDescription d = parse(R"(WorldBegin
+MakeNamedMaterial "a" "string type" "coateddiffuse" "rgb reflectance" [ 0.2 0.4 0.6 ] "float roughness" 0.0625
+  "float eta" 1.33 "float thickness" 0.05 "rgb albedo" [ 0.5 0.5 0.5 ] "float g" 0.3 "integer maxdepth" 20 "integer nsamples" 4
+MakeNamedMaterial "b" "string type" "coateddiffuse"
+MakeNamedMaterial "c" "string type" "coatedconductor" "float interface.roughness" 0.0016 "float interface.eta" 1.6
+  "spectrum conductor.eta" "metal-Au-eta" "spectrum conductor.k" "metal-Au-k" "float conductor.roughness" 0.01
+)");
+    const auto named = [&](const char* name) {
+        return std::find_if(d.materials.begin(), d.materials.end(), [&](const NamedMaterial& m) { return m.name == name; })->material;
+    };
+    const MaterialDesc a = named("a"), b = named("b"), c = named("c");
+    EXPECT_EQ(a.kind, MaterialDesc::Kind::kCoated);
+    EXPECT_FALSE(a.coated_conductor);
+    EXPECT_EQ(a.color.value, (Color{0.2f, 0.4f, 0.6f}));
+    EXPECT_NEAR(a.coat_roughness, 0.5f, 1e-6f);  // alpha = sqrt(0.0625) = 0.25, roughness = 0.5
+    EXPECT_FLOAT_EQ(a.ior, 1.33f);
+    EXPECT_FLOAT_EQ(a.thickness, 0.05f);
+    EXPECT_EQ(a.layer_albedo, (Color{0.5f}));
+    EXPECT_FLOAT_EQ(a.g, 0.3f);
+    EXPECT_EQ(a.layer_depth, 20);
+    EXPECT_EQ(a.layer_samples, 4);
+    // pbrt-v4's defaults.
+    EXPECT_EQ(b.color.value, (Color{0.5f}));
+    EXPECT_EQ(b.coat_roughness, 0);
+    EXPECT_FLOAT_EQ(b.ior, 1.5f);
+    EXPECT_FLOAT_EQ(b.thickness, 0.01f);
+    EXPECT_EQ(b.layer_albedo, (Color{0}));
+    EXPECT_EQ(b.layer_depth, 10);
+    EXPECT_EQ(b.layer_samples, 1);
+    EXPECT_EQ(c.kind, MaterialDesc::Kind::kCoated);
+    EXPECT_TRUE(c.coated_conductor);
+    EXPECT_NEAR(c.coat_roughness, 0.2f, 1e-6f);  // sqrt(sqrt(0.0016))
+    EXPECT_NEAR(c.roughness, std::sqrt(0.1f), 1e-6f);
+    EXPECT_FLOAT_EQ(c.ior, 1.6f);
+    EXPECT_EQ(c.eta, kMetals[3].eta);
+    EXPECT_TRUE(d.warnings.empty());
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"coateddiffuse\" \"integer nsamples\" 0\n"),
+              "test.pbrt:2:26: nsamples: must be in [1, 1000]");
+}
+
+// Parameter names as pbrt-v4 spells them: the spot light's cone edge is conedeltaangle
+// (conedelta is unknown to pbrt-v4, and so to glint); the film's imaging ratio reads iso only.
+TEST(Pbrt, ParameterNamesArePbrtV4s) {
+    const SceneDescription d = parse("WorldBegin\nLightSource \"spot\" \"float coneangle\" 40 \"float conedeltaangle\" 10\n");
+    const auto& spot = std::get<SpotLight>(d.lights.at(0));
+    EXPECT_NEAR(spot.cos_outer, std::cos(40 * std::numbers::pi / 180), 1e-6);
+    EXPECT_NEAR(spot.cos_inner, std::cos(30 * std::numbers::pi / 180), 1e-6);
+    EXPECT_EQ(first_error("WorldBegin\nLightSource \"spot\" \"float conedelta\" 10\n"),
+              "test.pbrt:2:20: LightSource \"spot\": unknown parameter \"float conedelta\"");
+    const SceneDescription f = parse("Film \"rgb\" \"float iso\" 200 \"float fnumber\" 2\nWorldBegin\n");
+    ASSERT_EQ(f.warnings.size(), 1u);
+    EXPECT_NE(f.warnings[0].message.find("fnumber"), std::string::npos) << f.warnings[0].message;
+}
+
 Point3 apply(const ObjectDesc& o, Point3 p) { return o.transform ? o.transform->to_world.apply(p) : p; }
 
 void expect_point(Point3 got, Point3 want) {
@@ -608,7 +665,7 @@ TEST(Pbrt, KillerooSceneFromThePbrtV4Collection) {
 TEST(Pbrt, LightPowerAndIlluminance) {
     const SceneDescription d = parse(R"(WorldBegin
 LightSource "point" "rgb I" [ 1 0.5 1 ] "float power" [ 25.132741228718345 ]
-LightSource "spot" "float coneangle" [ 60 ] "float conedelta" [ 0 ] "float power" [ 3.141592653589793 ]
+LightSource "spot" "float coneangle" [ 60 ] "float conedeltaangle" [ 0 ] "float power" [ 3.141592653589793 ]
 LightSource "distant" "float illuminance" [ 3 ]
 LightSource "infinite" "rgb L" [ 1 1 1 ] "float illuminance" [ 6.283185307179586 ]
 AttributeBegin

@@ -379,6 +379,7 @@ private:
     void film(const Token& t, const std::string& type, ParamList pl);
     void shape(const Token& t, const std::string& type, ParamList pl);
     std::optional<MaterialDesc> material(const Token& t, const std::string& type, ParamList& pl);
+    void layer(MaterialDesc& m, ParamList& pl);
     void light(const Token& t, const std::string& type, ParamList pl);
     void area_light(const Token& t, const std::string& type, ParamList pl);
     void apply_area_power(const ObjectDesc& o, const std::vector<double>& areas);
@@ -1065,14 +1066,14 @@ void Parser::film(const Token& t, const std::string& type, ParamList pl) {
             d_.film.pixel_bounds = Located<std::array<int, 4>>{v, pl.find("pixelbounds")->loc};
         }
     }
-    // pbrt-v4's imaging ratio relative to its pass-through defaults (iso 100, fnumber 1,
-    // c = 100 pi): exposure time x iso / 100 / fnumber^2 x 100 pi / c.
-    const double iso = get_float(pl, "iso").value_or(100), fnumber = get_float(pl, "fnumber").value_or(1),
-                 c = get_float(pl, "c").value_or(100 * std::numbers::pi);
-    if (!(iso > 0 && fnumber > 0 && c > 0))
-        diag_.error(t.loc(), "Film: iso, fnumber and c must be positive");
+    // pbrt-v4's imaging ratio (PixelSensor::Create): exposure time x iso / 100, 1 with its
+    // pass-through defaults. (Older pbrt-v4 versions also read fnumber and C; this one does not,
+    // and neither does glint: they are ignored with a warning, as any parameter glint skips.)
+    const double iso = get_float(pl, "iso").value_or(100);
+    if (!(iso > 0))
+        diag_.error(pl.find("iso") ? pl.find("iso")->loc : t.loc(), "Film: iso must be positive");
     else
-        film_ratio_ = iso / 100 / (fnumber * fnumber) * (100 * std::numbers::pi / c);
+        film_ratio_ = iso / 100;
     if (auto sensor = get_string(pl, "sensor"); sensor && *sensor != "cie1931")
         warn(pl.find("sensor")->loc, fmt::format("sensor \"{}\" not simulated; using cie1931 (plain RGB)", *sensor));
     if (get_float(pl, "whitebalance").value_or(0) != 0)
@@ -1430,20 +1431,41 @@ void Parser::shape(const Token& t, const std::string& type, ParamList pl) {
     }
 }
 
+// The slab of pbrt-v4's coated materials: thickness (0.01), albedo (0) and g (0) of its medium,
+// maxdepth (10) and nsamples (1) of the random walks. Constants only (textures are refused by
+// the getters, with the spot).
+void Parser::layer(MaterialDesc& m, ParamList& pl) {
+    const auto check = [&](const char* name, bool ok, const char* what) {
+        if (!ok) diag_.error(pl.find(name)->loc, fmt::format("{}: {}", name, what));
+        return ok;
+    };
+    if (auto v = get_float(pl, "thickness"); v && check("thickness", *v > 0 && std::isfinite(*v), "must be positive"))
+        m.thickness = float(*v);
+    if (auto v = get_color(pl, "albedo", false)) {
+        m.layer_albedo = Color{std::clamp(v->r, 0.0f, 1.0f), std::clamp(v->g, 0.0f, 1.0f), std::clamp(v->b, 0.0f, 1.0f)};
+    }
+    if (auto v = get_float(pl, "g"); v && check("g", std::isfinite(*v), "must be a number"))
+        m.g = float(std::clamp(*v, -0.999, 0.999));
+    if (auto v = get_int(pl, "maxdepth"); v && check("maxdepth", *v >= 1 && *v <= 10000, "must be in [1, 10000]"))
+        m.layer_depth = *v;
+    if (auto v = get_int(pl, "nsamples"); v && check("nsamples", *v >= 1 && *v <= 1000, "must be in [1, 1000]"))
+        m.layer_samples = *v;
+}
+
 std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& type, ParamList& pl) {
     using K = MaterialDesc::Kind;
     MaterialDesc m;
     // pbrt's roughness: alpha = sqrt(r) when remapped (the default), r otherwise; glint's
     // roughness is sqrt(alpha).
-    const auto roughness = [&](double fallback) {
+    const auto roughness = [&](double fallback, const std::string& prefix = "") {
+        const bool remap = get_bool(pl, "remaproughness").value_or(true);
         double r = fallback;
-        if (auto v = get_float(pl, "roughness")) r = *v;
-        const auto u = get_float(pl, "uroughness"), v = get_float(pl, "vroughness");
+        if (auto v = get_float(pl, prefix + "roughness")) r = *v;
+        const auto u = get_float(pl, prefix + "uroughness"), v = get_float(pl, prefix + "vroughness");
         if (u || v) {
-            if (u && v && *u != *v) warn(pl.find("uroughness")->loc, "anisotropic roughness not supported; using the mean");
+            if (u && v && *u != *v) warn(pl.find(prefix + "uroughness")->loc, "anisotropic roughness not supported; using the mean");
             r = ((u ? *u : r) + (v ? *v : r)) / 2;
         }
-        const bool remap = get_bool(pl, "remaproughness").value_or(true);
         const double alpha = remap ? std::sqrt(std::max(0.0, r)) : std::max(0.0, r);
         return float(std::sqrt(alpha));
     };
@@ -1453,19 +1475,21 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         m.color = get_texture(pl, "reflectance", false, 0.5f).value_or(TextureDesc{});
         if (!pl.find("reflectance")) m.color.value = Color{0.5f};
     } else if (type == "coateddiffuse") {
-        m.kind = K::kPlastic;  // a diffuse base under a dielectric coat
+        m.kind = K::kCoated;  // pbrt-v4's layered BSDF: a diffuse base under a dielectric coat
         m.color = get_texture(pl, "reflectance", false, 0.5f).value_or(TextureDesc{});
         if (!pl.find("reflectance")) m.color.value = Color{0.5f};
-        m.roughness = roughness(0);
+        m.coat_roughness = roughness(0);
         if (auto eta = get_float(pl, "eta")) m.ior = float(*eta);
-        ignore(pl, {"thickness", "albedo", "g", "maxdepth", "nsamples"}, "ignored (glint's plastic: no layer medium)");
+        layer(m, pl);
     } else if (type == "conductor" || type == "coatedconductor") {
         m.kind = K::kConductor;
         const std::string prefix = type == "coatedconductor" ? "conductor." : "";
         if (type == "coatedconductor") {
-            warn(t.loc(), "coatedconductor approximated by its conductor (no coat)");
-            ignore(pl, {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta", "thickness",
-                    "albedo", "g", "maxdepth", "nsamples"}, "ignored (no coat)");
+            m.kind = K::kCoated;  // a conductor base under a dielectric coat
+            m.coated_conductor = true;
+            m.coat_roughness = roughness(0, "interface.");
+            if (auto eta = get_float(pl, "interface.eta")) m.ior = float(*eta);
+            layer(m, pl);
         }
         if (pl.find("reflectance")) {
             m.reflectance = get_texture(pl, "reflectance", false, 1);
@@ -1475,17 +1499,7 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
             if (const auto eta = get_color(pl, prefix + "eta", false)) m.eta = *eta;
             if (const auto k = get_color(pl, prefix + "k", false)) m.k = *k;
         }
-        if (type == "coatedconductor") {
-            const auto r = pl.find("conductor.roughness");
-            if (r) {
-                r->used = true;
-                const double alpha = std::sqrt(std::max(0.0, r->numbers.empty() ? 0.0 : r->numbers[0]));
-                m.roughness = float(std::sqrt(alpha));
-            }
-            get_bool(pl, "remaproughness");
-        } else {
-            m.roughness = roughness(0);
-        }
+        m.roughness = roughness(0, prefix);
     } else if (type == "dielectric" || type == "thindielectric") {
         m.kind = K::kDielectric;
         m.thin = type == "thindielectric";
@@ -1564,7 +1578,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         d_.lights.push_back(PointLight{to_point(gs_.ctm.point(f[0], f[1], f[2])), I});
     } else if (type == "spot") {
         const D3 f = pt("from", {0, 0, 0}), to = pt("to", {0, 0, 1});
-        const double cone = get_float(pl, "coneangle").value_or(30), delta = get_float(pl, "conedelta").value_or(5);
+        const double cone = get_float(pl, "coneangle").value_or(30), delta = get_float(pl, "conedeltaangle").value_or(5);
         if (const auto p = target("power")) {  // the cone's solid angle, the falloff counted half
             const double to_rad = std::numbers::pi / 180, c_end = std::cos(cone * to_rad),
                          c_start = std::cos((cone - delta) * to_rad);
