@@ -151,22 +151,23 @@ public:
             case K::kInterface: scene_.materials.push_back(InterfaceMaterial{}); break;
             case K::kCoated: {
                 CoatedMaterial c;
-                c.lobe.eta = d.ior;
-                c.lobe.coat = Ggx{d.coat_roughness * d.coat_roughness};
-                c.lobe.conductor_base = d.coated_conductor;
+                c.layer.eta = d.ior;
+                c.layer.coat = Ggx{d.coat_roughness * d.coat_roughness};
+                c.layer.conductor_base = d.coated_conductor;
                 if (d.coated_conductor) {
                     // The metal's index relative to the coat it lies under, as pbrt-v4 takes it.
-                    c.lobe.conductor = make_conductor(ConductorLobe::FresnelKind::kComplex, d.eta / d.ior, d.k / d.ior, alpha);
-                    c.lobe.conductor.single_scattering = true;  // pbrt-v4's ConductorBxDF
+                    c.layer.metal = Ggx{alpha};
+                    c.eta = d.eta / d.ior;
+                    c.k = d.k / d.ior;
                     if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
                 } else {
                     c.base = add_texture(d.color);
                 }
-                c.lobe.thickness = std::max(d.thickness, std::numeric_limits<float>::min());
-                c.lobe.albedo = d.layer_albedo;
-                c.lobe.g = d.g;
-                c.lobe.max_depth = d.layer_depth;
-                c.lobe.samples = d.layer_samples;
+                c.layer.thickness = std::max(d.thickness, std::numeric_limits<float>::min());
+                c.layer.albedo = d.layer_albedo;
+                c.layer.g = d.g;
+                c.layer.max_depth = d.layer_depth;
+                c.layer.samples = d.layer_samples;
                 scene_.materials.push_back(c);
                 break;
             }

@@ -132,26 +132,34 @@ float clearcoat_albedo(float mu, float roughness);
 /// given roughness, single scattering only.
 ConductorLobe clearcoat_lobe(float roughness);
 
-/// pbrt-v4's layered BSDF (coateddiffuse, coatedconductor; Guo et al. 2018's position-free
-/// Monte Carlo as pbrt-v4 implements it): a dielectric coat of index eta (GGX width `coat`,
-/// smooth below Ggx::kSmooth) over a base (a diffuse or a conductor lobe), with a slab of
-/// `thickness` between them, optionally filled with a scattering medium of `albedo` and
-/// Henyey-Greenstein `g` (sigma_t = 1). Two-sided. f and pdf are stochastic estimates from
-/// `samples` random walks of at most `max_depth` bounces, seeded by a hash of the directions,
-/// so every call with the same arguments returns the same value; sample() follows one walk
-/// and marks its pdf as proportional. A Bsdf holding a LayeredLobe must hold it alone (a
-/// mixture would weigh a walk's sample by the noisy pdf estimate).
-struct LayeredLobe {
+/// The constant part of a layered BSDF (below), held by its material: a dielectric coat of
+/// index eta (GGX width `coat`, smooth below Ggx::kSmooth) over a diffuse base or, with
+/// `conductor_base`, a metal (GGX width `metal`, single scattering as pbrt-v4's); a slab of
+/// `thickness` between them, filled with a medium of `albedo` and Henyey-Greenstein `g`
+/// (sigma_t = 1); `samples` random walks of at most `max_depth` bounces per estimate.
+struct LayeredParams {
     float eta = 1.5f;
     Ggx coat{0};
     bool conductor_base = false;
-    DiffuseLobe diffuse{Color{0.5f}};  ///< the base unless conductor_base
-    ConductorLobe conductor;           ///< the base if conductor_base
+    Ggx metal{0};
     float thickness = 0.01f;
     Color albedo{0};
     float g = 0;
     int max_depth = 10;
     int samples = 1;
+};
+
+/// pbrt-v4's layered BSDF (coateddiffuse, coatedconductor; Guo et al. 2018's position-free
+/// Monte Carlo as pbrt-v4 implements it), two-sided. f and pdf are stochastic estimates from
+/// random walks seeded by a hash of the directions, so every call with the same arguments
+/// returns the same value; sample() follows one walk and marks its pdf as proportional. A Bsdf
+/// holding a LayeredLobe must hold it alone (a mixture would weigh a walk's sample by the noisy
+/// pdf estimate). Per hit it carries only the base's colours (the lobe stays as small as the
+/// others); the rest is the material's, which outlives every Bsdf made from it.
+struct LayeredLobe {
+    const LayeredParams* layer = nullptr;
+    Color base{0.5f};  ///< the diffuse base's albedo, or the metal's eta relative to the coat
+    Color k{0};        ///< the metal's k relative to the coat
     Color eval(Vector3 wo, Vector3 wi) const;
     float pdf(Vector3 wo, Vector3 wi) const;
     std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const;

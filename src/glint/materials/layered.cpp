@@ -103,12 +103,23 @@ struct Coat {
 
 // The base: reflection only (a diffuse or a conductor lobe), so it has no transmission part.
 struct Base {
-    const LayeredLobe& l;
-    bool specular() const { return l.conductor_base && l.conductor.ggx.smooth(); }
-    Color f(Vector3 wo, Vector3 wi) const { return l.conductor_base ? l.conductor.eval(wo, wi) : l.diffuse.eval(wo, wi); }
-    float pdf(Vector3 wo, Vector3 wi) const { return l.conductor_base ? l.conductor.pdf(wo, wi) : l.diffuse.pdf(wo, wi); }
+    bool conductor;
+    DiffuseLobe diffuse;
+    ConductorLobe metal;
+    explicit Base(const LayeredLobe& l) : conductor(l.layer->conductor_base), diffuse{l.base} {
+        if (conductor) {
+            metal.kind = ConductorLobe::FresnelKind::kComplex;
+            metal.eta = l.base;
+            metal.k = l.k;
+            metal.ggx = l.layer->metal;
+            metal.single_scattering = true;  // pbrt-v4's ConductorBxDF
+        }
+    }
+    bool specular() const { return conductor && metal.ggx.smooth(); }
+    Color f(Vector3 wo, Vector3 wi) const { return conductor ? metal.eval(wo, wi) : diffuse.eval(wo, wi); }
+    float pdf(Vector3 wo, Vector3 wi) const { return conductor ? metal.pdf(wo, wi) : diffuse.pdf(wo, wi); }
     std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const {
-        return l.conductor_base ? l.conductor.sample(wo, uc, u) : l.diffuse.sample(wo, uc, u);
+        return conductor ? metal.sample(wo, uc, u) : diffuse.sample(wo, uc, u);
     }
 };
 
@@ -148,13 +159,14 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
     if (wo.z < 0) wo = -wo, wi = -wi;  // two-sided: always entered through the coat
     // The base transmits nothing, so light leaves through the coat: f is 0 across the surface.
     if (!same_hemisphere(wo, wi)) return Color{0};
-    const Coat top{eta, coat};
-    const Base bottom{*this};
-    const int n = std::max(1, samples);
+    const LayeredParams& p = *layer;
+    const Coat top{p.eta, p.coat};
+    const Base bottom(*this);
+    const int n = std::max(1, p.samples);
     Color f = top.f(wo, wi, Mode::kRadiance) * float(n);
     WalkRng r(hash_vector(0x6c61796bU, wo), hash_vector(0x65726564U, wi));
-    const HgPhase phase{g};
-    const bool scatters = albedo.max_component() > 0;
+    const HgPhase phase{p.g};
+    const bool scatters = p.albedo.max_component() > 0;
     for (int s = 0; s < n; ++s) {
         // Into the slab through the coat, from wo; and the virtual light's way in from wi.
         const auto wos = top.sample(wo, r(), r.two(), Mode::kRadiance, Part::kTransmission);
@@ -162,45 +174,45 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
         const auto wis = top.sample(wi, r(), r.two(), Mode::kImportance, Part::kTransmission);
         if (!wis || wis->f.max_component() <= 0 || !(wis->pdf > 0) || wis->wi.z == 0) continue;
         Color beta = wos->f * std::abs(wos->wi.z) / wos->pdf;
-        float z = thickness;
+        float z = p.thickness;
         Vector3 w = wos->wi;
-        for (int depth = 0; depth < max_depth; ++depth) {
+        for (int depth = 0; depth < p.max_depth; ++depth) {
             if (depth > 3 && beta.max_component() < 0.25f) {
                 const float q = std::max(0.0f, 1 - beta.max_component());
                 if (r() < q) break;
                 beta = beta / (1 - q);
             }
             if (!scatters) {
-                z = z == thickness ? 0 : thickness;
-                beta = beta * slab_tr(thickness, w);
+                z = z == p.thickness ? 0 : p.thickness;
+                beta = beta * slab_tr(p.thickness, w);
             } else {
                 const float dz = -std::log(1 - r()) * std::abs(w.z);  // sigma_t = 1
                 const float zp = w.z > 0 ? z + dz : z - dz;
                 if (zp == z) continue;
-                if (0 < zp && zp < thickness) {
+                if (0 < zp && zp < p.thickness) {
                     // Scattering in the slab: next-event estimation out through the coat along wis.
                     float wt = 1;
                     if (!top.smooth()) wt = power_heuristic(wis->pdf, phase.pdf(-w, -wis->wi));
-                    f += beta * albedo * phase.p(-w, -wis->wi) * wt * slab_tr(zp - thickness, wis->wi) *
+                    f += beta * p.albedo * phase.p(-w, -wis->wi) * wt * slab_tr(zp - p.thickness, wis->wi) *
                          wis->f / wis->pdf;
                     const PhaseSample ps = phase.sample(-w, r.two());
                     if (!(ps.pdf > 0) || ps.wi.z == 0) continue;
-                    beta *= albedo * ps.p / ps.pdf;
+                    beta *= p.albedo * ps.p / ps.pdf;
                     w = ps.wi;
                     z = zp;
                     // The phase sample itself may leave through the coat towards wi.
-                    if (z < thickness && w.z > 0 && !top.smooth()) {
+                    if (z < p.thickness && w.z > 0 && !top.smooth()) {
                         const Color f_exit = top.f(-w, wi, Mode::kRadiance);
                         if (f_exit.max_component() > 0) {
                             const float exit_pdf = top.pdf(wi, -w, Part::kTransmission);
-                            f += beta * slab_tr(zp - thickness, ps.wi) * f_exit * power_heuristic(ps.pdf, exit_pdf);
+                            f += beta * slab_tr(zp - p.thickness, ps.wi) * f_exit * power_heuristic(ps.pdf, exit_pdf);
                         }
                     }
                     continue;
                 }
-                z = std::clamp(zp, 0.0f, thickness);
+                z = std::clamp(zp, 0.0f, p.thickness);
             }
-            if (z == thickness) {
+            if (z == p.thickness) {
                 // Back at the coat from below: reflect into the slab again.
                 const auto bs = top.sample(-w, r(), r.two(), Mode::kRadiance, Part::kReflection);
                 if (!bs || bs->f.max_component() <= 0 || !(bs->pdf > 0) || bs->wi.z == 0) break;
@@ -212,7 +224,7 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
                     float wt = 1;
                     if (!top.smooth()) wt = power_heuristic(wis->pdf, bottom.pdf(-w, -wis->wi));
                     f += beta * bottom.f(-w, -wis->wi) * std::abs(wis->wi.z) * wt *
-                         slab_tr(thickness, wis->wi) * wis->f / wis->pdf;
+                         slab_tr(p.thickness, wis->wi) * wis->f / wis->pdf;
                 }
                 const auto bs = bottom.sample(-w, r(), r.two());
                 if (!bs || bs->f.max_component() <= 0 || !(bs->pdf > 0) || bs->wi.z == 0) break;
@@ -223,7 +235,7 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
                     if (f_exit.max_component() > 0) {
                         float wt = 1;
                         if (!bottom.specular()) wt = power_heuristic(bs->pdf, top.pdf(wi, -w, Part::kTransmission));
-                        f += beta * slab_tr(thickness, bs->wi) * f_exit * wt;
+                        f += beta * slab_tr(p.thickness, bs->wi) * f_exit * wt;
                     }
                 }
             }
@@ -234,9 +246,10 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
 
 float LayeredLobe::pdf(Vector3 wo, Vector3 wi) const {
     if (wo.z < 0) wo = -wo, wi = -wi;
-    const Coat top{eta, coat};
-    const Base bottom{*this};
-    const int n = std::max(1, samples);
+    const LayeredParams& p = *layer;
+    const Coat top{p.eta, p.coat};
+    const Base bottom(*this);
+    const int n = std::max(1, p.samples);
     WalkRng r(hash_vector(0x70646677U, wi), hash_vector(0x70646f77U, wo));
     float sum = 0;
     if (same_hemisphere(wo, wi)) {
@@ -272,8 +285,9 @@ float LayeredLobe::pdf(Vector3 wo, Vector3 wi) const {
 std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) const {
     const bool flip = wo.z < 0;
     if (flip) wo = -wo;
-    const Coat top{eta, coat};
-    const Base bottom{*this};
+    const LayeredParams& p = *layer;
+    const Coat top{p.eta, p.coat};
+    const Base bottom(*this);
     auto bs = top.sample(wo, uc, u, Mode::kRadiance, Part::kAll);
     if (!bs || bs->f.max_component() <= 0 || !(bs->pdf > 0) || bs->wi.z == 0) return std::nullopt;
     if (bs->wi.z > 0) {  // reflected by the coat
@@ -288,10 +302,10 @@ std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) c
                                                                       std::bit_cast<std::uint32_t>(u.y))));
     Color f = bs->f * std::abs(bs->wi.z);
     float pdf = bs->pdf;
-    float z = thickness;
-    const HgPhase phase{g};
-    const bool scatters = albedo.max_component() > 0;
-    for (int depth = 0; depth < max_depth; ++depth) {
+    float z = p.thickness;
+    const HgPhase phase{p.g};
+    const bool scatters = p.albedo.max_component() > 0;
+    for (int depth = 0; depth < p.max_depth; ++depth) {
         const float rr_beta = f.max_component() / pdf;
         if (depth > 3 && rr_beta < 0.25f) {
             const float q = std::max(0.0f, 1 - rr_beta);
@@ -303,20 +317,20 @@ std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) c
             const float dz = -std::log(1 - r()) * std::abs(w.z);
             const float zp = w.z > 0 ? z + dz : z - dz;
             if (zp == z) return std::nullopt;
-            if (0 < zp && zp < thickness) {
+            if (0 < zp && zp < p.thickness) {
                 const PhaseSample ps = phase.sample(-w, r.two());
                 if (!(ps.pdf > 0) || ps.wi.z == 0) return std::nullopt;
-                f *= albedo * ps.p;
+                f *= p.albedo * ps.p;
                 pdf *= ps.pdf;
                 specular_path = false;
                 w = ps.wi;
                 z = zp;
                 continue;
             }
-            z = std::clamp(zp, 0.0f, thickness);
+            z = std::clamp(zp, 0.0f, p.thickness);
         } else {
-            z = z == thickness ? 0 : thickness;
-            f = f * slab_tr(thickness, w);
+            z = z == p.thickness ? 0 : p.thickness;
+            f = f * slab_tr(p.thickness, w);
         }
         std::optional<BsdfSample> is;
         if (z == 0) {
@@ -329,7 +343,7 @@ std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) c
         pdf *= is->pdf;
         specular_path = specular_path && is->specular;
         w = is->wi;
-        if (z == thickness && w.z > 0) {  // out through the coat
+        if (z == p.thickness && w.z > 0) {  // out through the coat
             BsdfSample out{f, flip ? -w : w, pdf, specular_path};
             out.pdf_is_proportional = true;
             return out;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -38,14 +39,24 @@ Vector3 sample_uniform_hemisphere(Sample2 u) {
     return {w.x, w.y, std::abs(w.z)};
 }
 
-LayeredLobe coated_diffuse(Color base, float eta, float alpha, float thickness, Color albedo, float g) {
-    LayeredLobe l;
-    l.diffuse = DiffuseLobe{base};
-    l.eta = eta;
-    l.coat = Ggx{alpha};
-    l.thickness = thickness;
-    l.albedo = albedo;
-    l.g = g;
+// A layered lobe with its own parameters (a material holds them in a render).
+struct Coated {
+    std::shared_ptr<LayeredParams> p = std::make_shared<LayeredParams>();
+    Color base{0.5f}, k{0};
+    LayeredLobe lobe() const { return {p.get(), base, k}; }
+    Color eval(Vector3 wo, Vector3 wi) const { return lobe().eval(wo, wi); }
+    float pdf(Vector3 wo, Vector3 wi) const { return lobe().pdf(wo, wi); }
+    std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const { return lobe().sample(wo, uc, u); }
+};
+
+Coated coated_diffuse(Color base, float eta, float alpha, float thickness, Color albedo, float g) {
+    Coated l;
+    l.base = base;
+    l.p->eta = eta;
+    l.p->coat = Ggx{alpha};
+    l.p->thickness = thickness;
+    l.p->albedo = albedo;
+    l.p->g = g;
     return l;
 }
 
@@ -58,7 +69,7 @@ struct Mean {
 };
 
 // The directional albedo from wo by sampling: the mean of f |cos| / pdf (what a path carries).
-Mean albedo_by_sampling(const LayeredLobe& l, Vector3 wo, int n, int channel = 0) {
+Mean albedo_by_sampling(const Coated& l, Vector3 wo, int n, int channel = 0) {
     Mean m;
     for (int i = 0; i < n; ++i) {
         const auto s = l.sample(wo, rnd(7, std::uint32_t(i)), rnd2(8, std::uint32_t(i)));
@@ -70,9 +81,9 @@ Mean albedo_by_sampling(const LayeredLobe& l, Vector3 wo, int n, int channel = 0
 // The same by evaluation: f cos over the hemisphere, cosine-weighted directions (each f itself
 // a random-walk estimate from its own seed), plus the smooth coat's mirror reflection, which
 // eval leaves out as a delta.
-Mean albedo_by_evaluation(const LayeredLobe& l, Vector3 wo, int n, int channel = 0) {
+Mean albedo_by_evaluation(const Coated& l, Vector3 wo, int n, int channel = 0) {
     Mean m;
-    const double mirror = l.coat.smooth() ? fresnel_dielectric(wo.z, l.eta) : 0.0;
+    const double mirror = l.p->coat.smooth() ? fresnel_dielectric(wo.z, l.p->eta) : 0.0;
     for (int i = 0; i < n; ++i) {
         const Vector3 wi = sample_cosine_hemisphere(rnd2(9, std::uint32_t(i)));
         if (!(wi.z > 0)) {
@@ -90,8 +101,8 @@ TEST(Layered, WhiteFurnaceLosslessCoatOverWhiteBaseReflectsEverything) {
     // coat loses what its single-scattering microfacet model loses at each of the many passes
     // light makes; the analog simulation below checks that case.)
     for (const float alpha : {0.0f}) {
-        LayeredLobe l = coated_diffuse(Color{1}, 1.5f, alpha, 1e-7f, Color{0}, 0);
-        l.max_depth = 10000;
+        Coated l = coated_diffuse(Color{1}, 1.5f, alpha, 1e-7f, Color{0}, 0);
+        l.p->max_depth = 10000;
         for (const double theta : {0.0, 45.0, 80.0}) {
             const Vector3 wo = direction(theta);
             const Mean s = albedo_by_sampling(l, wo, 40000);
@@ -103,12 +114,13 @@ TEST(Layered, WhiteFurnaceLosslessCoatOverWhiteBaseReflectsEverything) {
 }
 
 TEST(Layered, EnergyIsConservedAndSamplingAgreesWithEvaluation) {
-    LayeredLobe copper;
-    copper.conductor_base = true;
-    copper.conductor = make_conductor(ConductorLobe::FresnelKind::kComplex, kMetals[2].eta / 1.5f, kMetals[2].k / 1.5f, 0.1f);
-    copper.conductor.single_scattering = true;  // as build() makes a coated conductor's metal
-    copper.coat = Ggx{0.05f};
-    const std::vector<std::pair<std::string, LayeredLobe>> lobes{
+    Coated copper;  // relative to the coat, as build() makes it
+    copper.p->conductor_base = true;
+    copper.base = kMetals[2].eta / 1.5f;
+    copper.k = kMetals[2].k / 1.5f;
+    copper.p->metal = Ggx{0.1f};
+    copper.p->coat = Ggx{0.05f};
+    const std::vector<std::pair<std::string, Coated>> lobes{
         {"smooth coat, absorbing slab", coated_diffuse(Color{0.8f, 0.4f, 0.2f}, 1.5f, 0, 0.3f, Color{0}, 0)},
         {"rough coat, scattering slab", coated_diffuse(Color{0.6f}, 1.33f, 0.3f, 0.5f, Color{0.9f, 0.5f, 0.2f}, 0.4f)},
         {"coated copper", copper},
@@ -129,8 +141,8 @@ TEST(Layered, EnergyIsConservedAndSamplingAgreesWithEvaluation) {
 }
 
 TEST(Layered, EstimateIsReciprocal) {
-    LayeredLobe l = coated_diffuse(Color{0.7f, 0.5f, 0.3f}, 1.5f, 0.2f, 0.2f, Color{0.8f}, 0.3f);
-    l.samples = 20000;  // the estimate's noise well below the tolerance
+    Coated l = coated_diffuse(Color{0.7f, 0.5f, 0.3f}, 1.5f, 0.2f, 0.2f, Color{0.8f}, 0.3f);
+    l.p->samples = 20000;  // the estimate's noise well below the tolerance
     for (const auto& [a, b] : {std::pair{direction(20, 10), direction(70, 200)}, {direction(5, 0), direction(50, 90)}}) {
         const Color ab = l.eval(a, b), ba = l.eval(b, a);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(ab[c], ba[c], 0.03 * ab[c]) << "channel " << c;
@@ -141,7 +153,7 @@ TEST(Layered, SampledDirectionsCarryTheWeightEvaluationGivesEachCell) {
     // Cells of equal theta extent over the upper hemisphere: the walk's samples put the weight
     // f cos / pdf into the cells they land in; integrated f cos over each cell must agree, cell
     // by cell (a chi-square over the cells with both estimates' variances).
-    const LayeredLobe l = coated_diffuse(Color{0.9f}, 1.5f, 0.15f, 0.1f, Color{0.7f}, -0.3f);
+    const Coated l = coated_diffuse(Color{0.9f}, 1.5f, 0.15f, 0.1f, Color{0.7f}, -0.3f);
     const Vector3 wo = direction(35);
     constexpr int kCells = 9;
     std::vector<Mean> by_sample(kCells), by_eval(kCells);
@@ -248,11 +260,11 @@ TEST(Layered, ValueMatchesAnAnalogSimulationOfTheSlab) {
         constexpr int kCells = 6;
         const int n = 400000;
         const std::vector<double> photons = analog_photons(c.base, 1.5f, c.alpha, c.thickness, c.albedo, c.g, wi_in, n, kCells);
-        LayeredLobe l = coated_diffuse(Color{c.base}, 1.5f, c.alpha, c.thickness, Color{c.albedo}, c.g);
-        l.max_depth = 1000;
+        Coated l = coated_diffuse(Color{c.base}, 1.5f, c.alpha, c.thickness, Color{c.albedo}, c.g);
+        l.p->max_depth = 1000;
         // The fraction into each cell: the integral of f(wo, wi_in) cos(wo) over the cell, by
         // a midpoint rule in (theta, phi), each f a walk estimate of 16 samples.
-        l.samples = 16;
+        l.p->samples = 16;
         for (int k = 0; k < kCells; ++k) {
             const int nt = 16, np = 48;
             double sum = 0;
@@ -274,7 +286,7 @@ TEST(Layered, ValueMatchesAnAnalogSimulationOfTheSlab) {
 }
 
 TEST(Layered, DensityIsPositiveWhereTheValueIs) {
-    const LayeredLobe l = coated_diffuse(Color{0.5f}, 1.5f, 0.2f, 0.01f, Color{0}, 0);
+    const Coated l = coated_diffuse(Color{0.5f}, 1.5f, 0.2f, 0.01f, Color{0}, 0);
     for (int i = 0; i < 200; ++i) {
         const Vector3 wo = sample_uniform_hemisphere(rnd2(4, std::uint32_t(i)));
         const Vector3 wi = sample_uniform_hemisphere(rnd2(5, std::uint32_t(i)));

@@ -44,20 +44,17 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 lobe.albedo = scene.texture(m.albedo, si);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
-                LayeredLobe lobe = m.lobe;
-                if (!lobe.conductor_base) {
-                    lobe.diffuse.albedo = clamp01(scene.texture(m.base, si));
+                LayeredLobe lobe{&m.layer, m.eta, m.k};
+                if (!m.layer.conductor_base) {
+                    lobe.base = clamp01(scene.texture(m.base, si));
                 } else if (m.reflectance) {
-                    // pbrt-v4's form: the complex Fresnel of eta 1 and k = 2 sqrt(r) / sqrt(1 - r),
-                    // whose normal-incidence reflectance is r (f_avg as Schlick's, for the
-                    // multiple-scattering colour).
+                    // pbrt-v4's form: the complex index of eta 1 and k = 2 sqrt(r) / sqrt(1 - r),
+                    // whose normal-incidence reflectance is r, relative to the coat (both
+                    // divided by its index).
                     const Color r = clamp01(scene.texture(*m.reflectance, si));
                     const auto k = [](float v) { v = std::min(v, 0.9999f); return 2 * std::sqrt(v) / std::sqrt(1 - v); };
-                    // (Relative to the coat the metal lies under: both divided by its index.)
-                    lobe.conductor.kind = ConductorLobe::FresnelKind::kComplex;
-                    lobe.conductor.eta = Color{1 / lobe.eta};
-                    lobe.conductor.k = Color{k(r.r), k(r.g), k(r.b)} / lobe.eta;
-                    lobe.conductor.f_avg = r + (Color{1} - r) * (1.0f / 21);
+                    lobe.base = Color{1 / m.layer.eta};
+                    lobe.k = Color{k(r.r), k(r.g), k(r.b)} / m.layer.eta;
                 }
                 return Bsdf(si.ns, {{lobe, 1.0f}});  // alone: see LayeredLobe
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
@@ -130,9 +127,9 @@ ArticleView article_view(const Scene& scene, const SurfaceInteraction& si) {
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 return {scene.texture(m.albedo, si), f0_dielectric(m.coat.eta)};
             } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
-                if (!m.lobe.conductor_base) return {scene.texture(m.base, si), f0_dielectric(m.lobe.eta)};
-                return {m.reflectance ? scene.texture(*m.reflectance, si) : m.lobe.conductor.fresnel(1),
-                        1 - std::sqrt(m.lobe.conductor.ggx.alpha)};
+                if (!m.layer.conductor_base) return {scene.texture(m.base, si), f0_dielectric(m.layer.eta)};
+                return {m.reflectance ? scene.texture(*m.reflectance, si) : fresnel_conductor(1, m.eta, m.k),
+                        1 - std::sqrt(m.layer.metal.alpha)};
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return {Color{0}, 0};
             } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {

@@ -46,10 +46,12 @@ struct PlasticMaterial {
 
 /// pbrt-v4's coateddiffuse and coatedconductor: a dielectric coat over a diffuse or a conductor
 /// base with a slab between (LayeredLobe, evaluated by random walks). `base`: the diffuse
-/// base's albedo; `reflectance`: a conductor base's Schlick f0 instead of its complex index.
+/// base's albedo; a metal base has its complex index relative to the coat (eta, k), or a
+/// `reflectance` texture turned into one per hit as pbrt-v4 does.
 struct CoatedMaterial {
-    LayeredLobe lobe;
+    LayeredParams layer;
     TextureId base = 0;
+    Color eta{1}, k{0};
     std::optional<TextureId> reflectance;
 };
 
