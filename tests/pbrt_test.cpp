@@ -170,7 +170,7 @@ MakeNamedMaterial "c" "string type" "coatedconductor" "float interface.roughness
     EXPECT_EQ(c.eta, kMetals[3].eta);
     EXPECT_TRUE(d.warnings.empty());
     EXPECT_EQ(first_error("WorldBegin\nMaterial \"coateddiffuse\" \"integer nsamples\" 0\n"),
-              "test.pbrt:2:26: nsamples: must be in [1, 1000]");
+              "test.pbrt:2:26: nsamples: must be in [1, 100]");
 }
 
 // Parameter names as pbrt-v4 spells them: the spot light's cone edge is conedeltaangle
@@ -182,6 +182,18 @@ TEST(Pbrt, ParameterNamesArePbrtV4s) {
     EXPECT_NEAR(spot.cos_inner, std::cos(30 * std::numbers::pi / 180), 1e-6);
     EXPECT_EQ(first_error("WorldBegin\nLightSource \"spot\" \"float conedelta\" 10\n"),
               "test.pbrt:2:20: LightSource \"spot\": unknown parameter \"float conedelta\"");
+    // A 3D checkerboard's cells are 1 in its own space, scaled by the transform at the Texture
+    // directive; uscale belongs to (u, v) lookups only, and is unknown here, as in pbrt-v4.
+    const SceneDescription c = parse("WorldBegin\nAttributeBegin\nScale 0.5 0.5 0.5\n"
+                                     "Texture \"c\" \"spectrum\" \"checkerboard\" \"integer dimension\" 3\nAttributeEnd\n"
+                                     "MakeNamedMaterial \"m\" \"string type\" \"diffuse\" \"texture reflectance\" \"c\"\n");
+    ASSERT_EQ(c.materials.size(), 1u);
+    EXPECT_EQ(c.materials[0].material.color.kind, TextureDesc::Kind::kChecker);
+    EXPECT_FLOAT_EQ(c.materials[0].material.color.checker.size, 0.5f);
+    EXPECT_TRUE(c.warnings.empty());
+    EXPECT_NE(first_error("WorldBegin\nTexture \"c\" \"float\" \"checkerboard\" \"integer dimension\" 3 \"float uscale\" 4\n")
+                  .find("unknown parameter \"float uscale\""),
+              std::string::npos);
     const SceneDescription f = parse("Film \"rgb\" \"float iso\" 200 \"float fnumber\" 2\nWorldBegin\n");
     ASSERT_EQ(f.warnings.size(), 1u);
     EXPECT_NE(f.warnings[0].message.find("fnumber"), std::string::npos) << f.warnings[0].message;

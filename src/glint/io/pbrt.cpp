@@ -1446,9 +1446,9 @@ void Parser::layer(MaterialDesc& m, ParamList& pl) {
     }
     if (auto v = get_float(pl, "g"); v && check("g", std::isfinite(*v), "must be a number"))
         m.g = float(std::clamp(*v, -0.999, 0.999));
-    if (auto v = get_int(pl, "maxdepth"); v && check("maxdepth", *v >= 1 && *v <= 10000, "must be in [1, 10000]"))
+    if (auto v = get_int(pl, "maxdepth"); v && check("maxdepth", *v >= 1 && *v <= 1000, "must be in [1, 1000]"))
         m.layer_depth = *v;
-    if (auto v = get_int(pl, "nsamples"); v && check("nsamples", *v >= 1 && *v <= 1000, "must be in [1, 1000]"))
+    if (auto v = get_int(pl, "nsamples"); v && check("nsamples", *v >= 1 && *v <= 100, "must be in [1, 100]"))
         m.layer_samples = *v;
 }
 
@@ -1664,12 +1664,21 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
     TextureEntry e;
     e.is_float = is_float;
     using K = TextureDesc::Kind;
-    for (const char* quiet : {"filter", "maxanisotropy"})  // filtering is glint's own choice
-        if (Param* p = pl.find(quiet)) p->used = true;
-    for (const char* n : {"invert", "mapping", "udelta", "vdelta"})
-        ignore(pl, n, fmt::format("texture \"{}\": \"{}\" ignored", name, n));
-    const double us = get_float(pl, "uscale").value_or(1), vs = get_float(pl, "vscale").value_or(1);
+    // pbrt-v4 reads a 2D mapping's parameters (uscale, vscale, udelta, vdelta, mapping) only
+    // for textures looked up by (u, v): an image and a 2D checkerboard; elsewhere they are
+    // unknown, as in pbrt-v4.
+    double us = 1, vs = 1;
+    const auto uv_mapping = [&] {
+        for (const char* n : {"mapping", "udelta", "vdelta"})
+            ignore(pl, n, fmt::format("texture \"{}\": \"{}\" ignored", name, n));
+        us = get_float(pl, "uscale").value_or(1);
+        vs = get_float(pl, "vscale").value_or(1);
+    };
     if (type == "imagemap") {
+        uv_mapping();
+        for (const char* quiet : {"filter", "maxanisotropy"})  // filtering is glint's own choice
+            if (Param* p = pl.find(quiet)) p->used = true;
+        ignore(pl, "invert", fmt::format("texture \"{}\": \"invert\" ignored", name));
         e.desc.kind = K::kImage;
         const auto file = get_string(pl, "filename");
         if (!file) {
@@ -1713,11 +1722,25 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
             if (tx && tx->kind != K::kConstant) warn(pl.find(n)->loc, "checkerboard of textures: using constant colours");
             return tx && tx->kind == K::kConstant ? tx->value : Color{fallback};
         };
-        e.desc.checker = CheckerTexture{Float(1 / std::max(us, 1e-6)), constant("tex1", 1), constant("tex2", 0)};
-        if (auto dim = get_int(pl, "dimension"); dim && *dim != 3)
-            warn(pl.find("dimension")->loc, "2D checkerboard rendered as glint's 3D checker");
-        else if (!dim)
-            warn(t.loc(), "2D checkerboard rendered as glint's 3D checker");
+        const auto dim = get_int(pl, "dimension");
+        double size = 1;
+        if (dim && *dim == 3) {
+            // pbrt-v4's 3D checker has cells of 1 in the texture's space, placed by the
+            // transform at the Texture directive: a uniform scale s gives cells of s.
+            const auto x = gs_.ctm.vector(1, 0, 0), y = gs_.ctm.vector(0, 1, 0), z = gs_.ctm.vector(0, 0, 1);
+            size = len3(x);
+            const bool uniform = std::abs(len3(y) - size) <= 1e-6 * size && std::abs(len3(z) - size) <= 1e-6 * size &&
+                                 std::abs(x[0] * y[0] + x[1] * y[1] + x[2] * y[2]) <= 1e-6 * size * size;
+            const auto o = gs_.ctm.point(0, 0, 0);
+            if (!uniform || o[0] != 0 || o[1] != 0 || o[2] != 0 || !(size > 0))
+                warn(t.loc(), "3D checkerboard: only a uniform scale of its space is applied");
+            if (!(size > 0) || !std::isfinite(size)) size = 1;
+        } else {
+            uv_mapping();
+            size = 1 / std::max(us, 1e-6);
+            warn(dim ? pl.find("dimension")->loc : t.loc(), "2D checkerboard rendered as glint's 3D checker");
+        }
+        e.desc.checker = CheckerTexture{Float(size), constant("tex1", 1), constant("tex2", 0)};
     } else {
         warn(t.loc(), fmt::format("texture \"{}\" not supported; using a constant 0.5", type));
         pl.use_all();

@@ -716,8 +716,8 @@ private:
             });
             assign(m.get("layer_albedo"), d.layer_albedo, color());
             assign(m.get("g"), d.g, [this](const YAML::Node& v) { return r_.number_in(v, "g", -0.999, 0.999); });
-            assign(m.get("max_depth"), d.layer_depth, [this](const YAML::Node& v) { return r_.integer_in(v, "max_depth", 1, 10000); });
-            assign(m.get("samples"), d.layer_samples, [this](const YAML::Node& v) { return r_.integer_in(v, "samples", 1, 1000); });
+            assign(m.get("max_depth"), d.layer_depth, [this](const YAML::Node& v) { return r_.integer_in(v, "max_depth", 1, 1000); });
+            assign(m.get("samples"), d.layer_samples, [this](const YAML::Node& v) { return r_.integer_in(v, "samples", 1, 100); });
         }
         assign(m.get("metallic"), d.metallic, unit("metallic"));
         assign(m.get("transmission"), d.transmission, unit("transmission"));
