@@ -38,6 +38,10 @@ Ray medium_shadow_ray(Point3 p, const LightLiSample& ls) {
     return Ray{p, d / dist, dist * (1 - 1e-5f)};
 }
 
+// The density MIS weighs a layered BSDF's sample by (its sample carries the walk's own
+// density): out of line, so that the common path keeps Bsdf::pdf inlined where it is used.
+[[gnu::noinline]] float walk_pdf(const Bsdf& bsdf, Vector3 wo, Vector3 wi) { return bsdf.pdf(wo, wi); }
+
 // A path may cross at most this many interface surfaces between two scattering events (and a
 // shadow ray as many): a bound against a malformed scene, far above any real nesting.
 constexpr int kMaxInterfaceCrossings = 256;
@@ -341,7 +345,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!bs || bs->f.max_component() <= 0 || !same_side(si, bs->wi)) break;
         beta *= bs->f * (std::abs(dot(si.ns, bs->wi)) / bs->pdf);
         specular = bs->specular;
-        bsdf_pdf = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi) : bs->pdf;
+        bsdf_pdf = bs->pdf_is_proportional ? walk_pdf(bsdf, wo, bs->wi) : bs->pdf;
         prev_p = si.p;
         if (bs->eta != 1) eta_scale *= bs->eta * bs->eta;
         if (!is_finite(beta)) break;
