@@ -425,10 +425,16 @@ objects:
   - {type: sphere, center: [)" + at(0) + R"(, 0.5, 0], radius: 0.1, material: lamp}
   - {type: box, min: [)" + at(-3) + R"(, 0.1, -3], max: [)" + at(3) + R"(, 3, 3], material: interface, interior: empty}
 )");
-        // The ground point (x + 4, 0, 0): d^2 = 16.25, cos(theta) = 0.5 / d.
+        // The ground point (x + 4, 0, 0), beside the box: d^2 = 16.25, cos(theta) = 0.5 / d.
         const float d2 = 16.25f, expect = 0.5f * 100 * (0.01f / d2) * (0.5f / std::sqrt(d2));
         const Vector3 d = normalize(Vector3{-2, -1, 0});
         expect_close(mean_li(job, Ray{{x + 6, 1, 0}, d}, 40000), Color{expect}, "light at x = " + at(0), 1e-5f);
+        // The ground point (x, 0, 4.5), beyond the far wall, whose shadow rays cross it slanting
+        // (a segment continued parallel to itself, shifted by the push off the wall, ended
+        // inside the light): d^2 = 20.5, cos(theta) = 0.5 / d.
+        const float d2b = 20.5f, expect_b = 0.5f * 100 * (0.01f / d2b) * (0.5f / std::sqrt(d2b));
+        expect_close(mean_li(job, Ray{{x, 1, 6.5f}, normalize(Vector3{0, -1, -2})}, 40000), Color{expect_b},
+                     "beyond the wall, light at x = " + at(0), 1e-5f);
     }
 }
 }  // namespace

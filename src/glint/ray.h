@@ -34,15 +34,22 @@ inline Ray spawn_ray(Point3 p, Normal3 n, Vector3 d,
 
 /// The rest of `ray` after it crossed a surface at p (normal n) that it passes through (a medium
 /// interface, a transparent shadow blocker): the origin is pushed off the surface as spawn_ray's
-/// is, and the segment still ends where `ray` ended. (Keeping the remaining length t_max - t
-/// instead moves the end forward by the push; the push grows with |p|, so far from the origin
-/// the segment overshot a light-side end point and struck the light itself.)
+/// is, and a segment with an end is aimed at that end again, as pbrt-v4's SpawnRayTo is at each
+/// crossing. (Keeping the remaining length t_max - t moved the end forward by the push, which
+/// grows with |p|; keeping the direction instead shifts the segment sideways by the push. Either
+/// way a segment that ended just short of a light, pushed off it by its own smaller amount,
+/// could end inside the light, which then blocked its own shadow ray.)
 inline Ray continue_ray(const Ray& ray, Point3 p, Normal3 n) {
     Ray next = spawn_ray(p, n, ray.direction, ray.t_max);
     if (std::isinf(ray.t_max)) return next;
-    const Point3 end = ray.at(ray.t_max);
-    const Float t = dot(end - next.origin, ray.direction);  // the direction is unit length
-    next.t_max = t > 0 ? t : Float(0);
+    const Vector3 to_end = ray.at(ray.t_max) - next.origin;
+    const Float dist = length(to_end);
+    if (!(dist > 0) || dot(to_end, ray.direction) <= 0) {
+        next.t_max = 0;  // the crossing was at the end: nothing is left
+        return next;
+    }
+    next.direction = to_end / dist;
+    next.t_max = dist;
     return next;
 }
 
