@@ -290,7 +290,9 @@ TEST(Layered, DensityIsPositiveWhereTheValueIs) {
     for (int i = 0; i < 200; ++i) {
         const Vector3 wo = sample_uniform_hemisphere(rnd2(4, std::uint32_t(i)));
         const Vector3 wi = sample_uniform_hemisphere(rnd2(5, std::uint32_t(i)));
-        if (l.eval(wo, wi).max_component() > 0) EXPECT_GT(l.pdf(wo, wi), 0);
+        if (l.eval(wo, wi).max_component() > 0) {
+            EXPECT_GT(l.pdf(wo, wi), 0);
+        }
         EXPECT_TRUE(std::isfinite(l.pdf(wo, wi)));
         EXPECT_EQ(l.eval(wo, -wi).max_component(), 0) << "nothing crosses a coated surface";
     }
