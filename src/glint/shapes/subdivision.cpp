@@ -58,8 +58,9 @@ std::vector<Ring> one_rings(std::size_t nv, const std::vector<std::uint32_t>& in
         // The start: a `from` that is no link's `to` (a boundary vertex), else the first link's.
         std::uint32_t start = l[0].first;
         int starts = 0;
-        for (const auto& [from, to] : l) {
-            const bool reached = std::any_of(l.begin(), l.end(), [&](const auto& x) { return x.second == from; });
+        for (const auto& link : l) {
+            const std::uint32_t from = link.first;
+            const bool reached = std::any_of(l.begin(), l.end(), [from](const auto& x) { return x.second == from; });
             if (!reached) start = from, ++starts;
         }
         if (starts > 1) continue;
