@@ -7,7 +7,7 @@
 // relative difference of the means of named regions (an object, the ground beside a light).
 // A block darker than a tenth of B's mean is judged against that tenth (its difference relative
 // to it), so that the noise of nearly black blocks does not count as disagreement.
-// Exit status: 0, or 1 when the images cannot be read or differ in size.
+// Exit status: 0; 1 when the images cannot be read or differ in size; 2 on a usage error.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -5,17 +5,11 @@
 #include "glint/integrators/integrator.h"
 #include "glint/materials/make_bsdf.h"
 #include "glint/media/transmittance.h"
+#include "glint/samplers/warp.h"
 
 namespace glint {
 
 namespace {
-
-// Veach's power heuristic with beta = 2, for one sample from each of two strategies.
-float power_heuristic(float pdf_a, float pdf_b) {
-    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-    if (std::isinf(a)) return 1;
-    return a + b > 0 ? a / (a + b) : 0;
-}
 
 // Whether direction w lies on the same side of the shading surface as of the geometric one.
 bool same_side(const SurfaceInteraction& si, Vector3 w) { return dot(si.n, w) * dot(si.ns, w) > 0; }

@@ -123,12 +123,6 @@ struct Base {
     }
 };
 
-float power_heuristic(float f, float g) {
-    const float a = f * f, b = g * g;
-    if (std::isinf(a)) return 1;
-    return a + b > 0 ? a / (a + b) : 0;
-}
-
 // Transmittance of the slab's medium (sigma_t = 1) along w over a height difference dz.
 float slab_tr(float dz, Vector3 w) {
     if (std::abs(dz) <= std::numeric_limits<float>::min()) return 1;

@@ -67,4 +67,12 @@ inline float uniform_cone_pdf(float one_minus_cos) {
     return 1 / (2 * std::numbers::pi_v<float> * one_minus_cos);
 }
 
+/// Veach's power heuristic with beta = 2: the weight of a sample of density pdf_a against a
+/// second strategy of density pdf_b at the same point (1 when pdf_a is infinite: a delta).
+inline float power_heuristic(float pdf_a, float pdf_b) {
+    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+    if (std::isinf(a)) return 1;
+    return a + b > 0 ? a / (a + b) : 0;
+}
+
 }  // namespace glint
