@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/distributed.h"
 #include "glint/render/progressive.h"
 

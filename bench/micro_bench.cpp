@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "glint/io/build.h"
-#include "glint/io/pbrt.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/pbrt.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 #include "glint/samplers/hash.h"
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/image_formats.h"
+#include "glint/image/image_formats.h"
 
 namespace {
 

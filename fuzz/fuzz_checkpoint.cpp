@@ -1,6 +1,6 @@
 // The checkpoint reader (glint's own binary format: header, planes, checksum).
 #include "fuzz_common.h"
-#include "glint/io/checkpoint.h"
+#include "glint/session/checkpoint.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;

@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
-#include "glint/io/diagnostics.h"
-#include "glint/io/image_io.h"
-#include "glint/io/limits.h"
+#include "glint/base/diagnostics.h"
+#include "glint/image/image_io.h"
+#include "glint/base/limits.h"
 
 namespace glint::fuzz {
 

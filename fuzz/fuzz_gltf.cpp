@@ -1,7 +1,7 @@
 // glTF: a binary .glb when the input starts with its magic "glTF", a .gltf (JSON) otherwise.
 // External buffers and images resolve in the scratch folder only.
 #include "fuzz_common.h"
-#include "glint/io/mesh_import.h"
+#include "glint/assets/mesh_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;

@@ -1,7 +1,7 @@
 // OBJ + MTL: the input is an OBJ text, optionally followed by "\n#MTL\n" and the text of the
 // material library it may name as `mtllib m.mtl`.
 #include "fuzz_common.h"
-#include "glint/io/mesh_import.h"
+#include "glint/assets/mesh_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;

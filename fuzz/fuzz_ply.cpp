@@ -1,6 +1,6 @@
 // PLY in its three encodings (ascii, binary little- and big-endian), from memory.
 #include "fuzz_common.h"
-#include "glint/io/mesh_import.h"
+#include "glint/assets/mesh_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;

@@ -4,9 +4,9 @@
 // small: the size limits themselves are the subject of tests, and the fuzzer looks for what the
 // text can do.
 #include "fuzz_common.h"
-#include "glint/io/build.h"
-#include "glint/io/pbrt.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/pbrt.h"
+#include "glint/formats/scene_yaml.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;

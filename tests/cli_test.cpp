@@ -328,7 +328,7 @@ TEST_F(Cli, MeshFilesRenderDirectlyAndInfoAndBenchReportThem) {
 #include <cstring>
 #include <map>
 
-#include "glint/io/checkpoint.h"
+#include "glint/session/checkpoint.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "glint/io/build.h"
-#include "glint/io/image_io.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/image/image_io.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 #include "reference.h"
 #include "testing.h"

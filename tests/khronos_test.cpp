@@ -11,8 +11,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "glint/io/image_io.h"
-#include "glint/io/mesh_import.h"
+#include "glint/image/image_io.h"
+#include "glint/assets/mesh_import.h"
 #include "testing.h"
 
 namespace glint {

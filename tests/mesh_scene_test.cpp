@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "glint/film/film.h"
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 #include "testing.h"
 

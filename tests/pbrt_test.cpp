@@ -12,12 +12,12 @@
 #include <string>
 
 #include "glint/background.h"
-#include "glint/io/build.h"
-#include "glint/io/limits.h"
-#include "glint/io/mesh_import.h"
-#include "glint/io/pbrt.h"
-#include "glint/io/scene_writer.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/base/limits.h"
+#include "glint/assets/mesh_import.h"
+#include "glint/formats/pbrt.h"
+#include "glint/formats/scene_writer.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/materials/metals.h"
 #include "glint/render/render.h"
 

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 #include "glint/samplers/hash.h"
 

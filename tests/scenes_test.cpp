@@ -7,9 +7,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "glint/io/build.h"
-#include "glint/io/image_io.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/image/image_io.h"
+#include "glint/formats/scene_yaml.h"
 #include "testing.h"
 
 namespace glint {

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "glint/integrators/integrator.h"
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
-#include "glint/io/vdb.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
+#include "glint/assets/vdb.h"
 #include "glint/render/render.h"
 
 #include "testing.h"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/image_io.h"
+#include "glint/image/image_io.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 
 #include "glint/background.h"
 #include "glint/film/film.h"
-#include "glint/io/image_io.h"
+#include "glint/image/image_io.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-#include "glint/io/vdb.h"
+#include "glint/assets/vdb.h"
 #include "glint/samplers/hash.h"
 
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "glint/integrators/integrator.h"
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 
 namespace glint {

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "glint/io/image_io.h"
-#include "glint/io/vdb.h"
+#include "glint/image/image_io.h"
+#include "glint/assets/vdb.h"
 #include "glint/media/medium.h"
 #include "glint/media/transmittance.h"
 #include "sphere_chi2.h"

@@ -19,8 +19,8 @@
 #include <optional>
 #include <thread>
 
-#include "glint/io/build.h"
-#include "glint/io/module.h"
+#include "glint/base/errors.h"
+#include "glint/base/module.h"
 #include "glint/render/mpi_module.h"
 
 namespace glint {

@@ -6,10 +6,10 @@
 #include <cstring>
 #include <filesystem>
 
-#include "glint/io/build.h"
-#include "glint/io/checkpoint.h"
-#include "glint/io/image_io.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/session/checkpoint.h"
+#include "glint/image/image_io.h"
+#include "glint/formats/scene_yaml.h"
 #include "testing.h"
 
 namespace glint {

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "glint/io/build.h"
-#include "glint/io/scene_yaml.h"
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
 
 namespace glint {
 namespace {

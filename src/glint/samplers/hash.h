@@ -18,7 +18,7 @@ constexpr std::uint32_t mix32(std::uint32_t x) {
 }
 
 /// A 64-bit finaliser (Stafford's "variant 13", as in splitmix64): for checksums and
-/// fingerprints (io/checkpoint.cpp).
+/// fingerprints (session/checkpoint.cpp).
 constexpr std::uint64_t mix64(std::uint64_t h) {
     h ^= h >> 30;
     h *= 0xbf58476d1ce4e5b9ULL;

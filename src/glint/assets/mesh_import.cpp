@@ -1,0 +1,48 @@
+#include "glint/assets/mesh_import.h"
+
+#include "glint/base/limits.h"
+
+#include <cctype>
+
+#include <fmt/format.h>
+
+namespace glint {
+
+std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".ply") return MeshFormat::kPly;
+    if (ext == ".gz") {  // a gzip-compressed PLY (pbrt-v4's scenes ship them)
+        std::string inner = path.stem().extension().string();
+        for (char& c : inner) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (inner == ".ply") return MeshFormat::kPly;
+    }
+    if (ext == ".obj") return MeshFormat::kObj;
+    if (ext == ".gltf") return MeshFormat::kGltf;
+    if (ext == ".glb") return MeshFormat::kGlb;
+    return std::nullopt;
+}
+
+std::string mesh_size_error(long long vertices, long long triangles) {
+    if (vertices > limit(Limit::kVertices)) return over_limit(Limit::kVertices, vertices);
+    if (triangles > limit(Limit::kTriangles)) return over_limit(Limit::kTriangles, triangles);
+    // 44 bytes a vertex (position, normal, uv, colour), 80 a triangle (indices, material, the
+    // BVH's share, the intersection kernels' copy).
+    return charge_memory(44 * vertices + 80 * triangles, fmt::format("a mesh of {} vertices and {} triangles", vertices, triangles));
+}
+
+ImportedFile import_mesh_file(const std::filesystem::path& path, double time) {
+    const auto format = mesh_format(path);
+    if (!format)
+        throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .ply.gz, .gltf, .glb)", path.string(),
+                                  path.extension().string()));
+    switch (*format) {
+        case MeshFormat::kPly: return import_ply(path);
+        case MeshFormat::kObj: return import_obj(path);
+        case MeshFormat::kGltf:
+        case MeshFormat::kGlb: return import_gltf(path, "", time);
+    }
+    return {};  // unreachable: every format is covered
+}
+
+}  // namespace glint

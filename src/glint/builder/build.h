@@ -1,0 +1,55 @@
+#pragma once
+// build: SceneDescription (+ command-line overrides) -> everything a render needs. Resolves
+// material names to ids, applies defaults, and checks limits (film size, spp, depth) before
+// anything large is allocated. All errors are collected and thrown as one SceneError.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "glint/cameras/camera.h"
+#include "glint/film/tonemap.h"
+#include "glint/integrators/integrator.h"
+#include "glint/base/diagnostics.h"
+#include "glint/assets/mesh_import.h"
+#include "glint/description/scene_description.h"
+#include "glint/render/render.h"
+#include "glint/scene.h"
+
+namespace glint {
+
+/// Values from the command line that override the scene file.
+struct Overrides {
+    std::optional<long long> width, height, spp, max_depth, threads;
+    std::optional<std::uint64_t> seed;
+    bool aovs = false;  ///< --aovs: write the AOVs even if the scene does not ask
+    std::optional<AccelKind> accel;  ///< --accel
+};
+
+struct RenderJob {
+    Scene scene;
+    Camera camera;
+    std::unique_ptr<Integrator> integrator;
+    RenderOptions options;
+    int width = 0, height = 0;  ///< the camera's whole frame
+    /// The film written: the whole frame, or the crop (options.offset_x/y place it).
+    int film_width = 0, film_height = 0;
+    DisplaySettings display;
+    bool aovs = false;
+    std::string filename;  ///< the scene's film.filename, or empty
+    std::vector<std::string> notes;  ///< for the user: dropped triangles, importer warnings
+    /// The first camera found in an included glTF file (used when rendering that file directly).
+    std::optional<GltfCamera> file_camera;
+    /// Every camera of the included glTF files, placed (listed by `glint info`).
+    std::vector<GltfCamera> file_cameras;
+    /// The text of every scene file read (for messages, and a checkpoint's fingerprint).
+    std::shared_ptr<SourceFiles> sources;
+};
+
+/// Where mesh files named by a scene are looked for, in order: the scene's folder, each folder of
+/// $GLINT_MODEL_PATH (colon-separated), then the models folder found at configure time.
+std::vector<std::filesystem::path> model_folders(const std::filesystem::path& scene_dir);
+
+RenderJob build(const SceneDescription& description, const Overrides& overrides,
+                std::shared_ptr<SourceFiles> sources);
+
+}  // namespace glint

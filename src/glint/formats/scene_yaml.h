@@ -1,0 +1,22 @@
+#pragma once
+// Scene files in YAML (yaml-cpp). JSON is accepted too: it is YAML 1.2. The format is documented
+// in docs/scene-format.md.
+#include <memory>
+#include <string>
+
+#include "glint/base/diagnostics.h"
+#include "glint/description/scene_description.h"
+
+namespace glint {
+
+/// Reads and parses a scene file. All errors (syntax, unknown keys, wrong types, out-of-range
+/// values) are collected and thrown together as one SceneError; a missing file is a SceneError
+/// too. `sources` receives the file text for later diagnostics (build's name resolution).
+/// `frame`: the animation frame whose keyframed values are read (docs/scene-format.md, "Animation").
+SceneDescription load_scene_file(const std::string& path, std::shared_ptr<SourceFiles> sources, double frame = 0);
+
+/// Parses scene text; `path` names it in messages and resolves nothing else.
+SceneDescription parse_scene(const std::string& text, const std::string& path,
+                             std::shared_ptr<SourceFiles> sources, double frame = 0);
+
+}  // namespace glint

@@ -1,0 +1,380 @@
+#include "glint/formats/scene_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include "glint/builder/build.h"
+
+namespace glint {
+namespace {
+
+// Parses and builds `text` as scene.yaml; returns the full error text ("" if it succeeded).
+std::string errors_of(const std::string& text, const Overrides& overrides = {}) {
+    auto sources = std::make_shared<SourceFiles>();
+    try {
+        const SceneDescription d = parse_scene(text, "scene.yaml", sources);
+        build(d, overrides, sources);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The caret line under a token of `length` characters at 1-based `column` (source lines are
+// quoted with a 4-space indent).
+std::string caret(int column, int length) {
+    return std::string(static_cast<std::size_t>(4 + column - 1), ' ') + "^" +
+           std::string(static_cast<std::size_t>(length - 1), '~') + "\n";
+}
+
+TEST(SceneYaml, MisspeltKeyReportsLineColumnAndSuggestion) {
+    const std::string text =
+        "objects:\n"
+        "  - type: sphere\n"
+        "    center: [0, 0, 1]\n"
+        "    radiuss: 1\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:4:5: error: sphere: unknown key 'radiuss'; did you mean 'radius'? "
+              "(known: type, center, radius, material, transform, interior, exterior)\n"
+              "        radiuss: 1\n" +
+                  caret(5, 7) +
+                  "scene.yaml:2:5: error: sphere: missing required key 'radius'\n"
+                  "      - type: sphere\n" +
+                  caret(5, 4));
+}
+
+TEST(SceneYaml, UnknownMaterialReportsLineAndColumn) {
+    const std::string text =
+        "materials:\n"
+        "  red: {color: [1, 0, 0]}\n"
+        "  chrome2: {color: [1, 1, 1], shininess: 1}\n"
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: 1, material: chrome}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:5:60: error: unknown material 'chrome'; did you mean 'chrome2'? "
+              "(known: red, chrome2)\n"
+              "      - {type: sphere, center: [0, 0, 1], radius: 1, material: chrome}\n" +
+                  caret(60, 6));
+}
+
+TEST(SceneYaml, WrongTypesAreReported) {
+    const std::string text =
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0], radius: big}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:28: error: expected a list of 3 numbers [x, y, z], got a list of 2\n"
+              "      - {type: sphere, center: [0, 0], radius: big}\n" +
+                  caret(28, 6) +
+                  "scene.yaml:2:44: error: expected a number, got 'big'\n"
+                  "      - {type: sphere, center: [0, 0], radius: big}\n" +
+                  caret(44, 3));
+}
+
+TEST(SceneYaml, OutOfRangeValuesAreReported) {
+    const std::string text =
+        "film: {width: -5, height: 10}\n"
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: 0}\n"
+        "  - {type: sphere, center: [0, 0, 1], radius: -1}\n"
+        "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 0]}\n"
+        "materials:\n"
+        "  m: {color: {type: checker, size: -1, even: [1, 1, 1], odd: [0, 0, 0]}, shininess: 2}\n";
+    const std::string e = errors_of(text);
+    EXPECT_NE(e.find("scene.yaml:1:15: error: width must be in [1, 65536], got -5\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:47: error: radius must be > 0, got 0\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:4:47: error: radius must be > 0, got -1\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:5:45: error: normal must not be zero-length\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:7:36: error: size must be > 0, got -1\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:7:85: error: shininess must be in [0, 1], got 2\n"), std::string::npos) << e;
+}
+
+TEST(SceneYaml, NonFiniteNumbersAreReported) {
+    const std::string text =
+        "lights:\n"
+        "  - {type: directional, direction: [.nan, -1, 1]}\n"
+        "  - {type: point, position: [0, .inf, 0]}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:37: error: expected a finite number, got '.nan'\n"
+              "      - {type: directional, direction: [.nan, -1, 1]}\n" +
+                  caret(37, 4) +
+                  "scene.yaml:3:33: error: expected a finite number, got '.inf'\n"
+                  "      - {type: point, position: [0, .inf, 0]}\n" +
+                  caret(33, 4));
+}
+
+TEST(SceneYaml, NumbersBeyondFloatRangeAreReported) {
+    const std::string text = "background: {type: constant, color: [1e39, 0, 0]}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:38: error: number '1e39' is out of range (largest magnitude: "
+              "3.4e+38)\n"
+              "    background: {type: constant, color: [1e39, 0, 0]}\n" +
+                  caret(38, 4));
+}
+
+TEST(SceneYaml, UnknownTypeSuggestsTheClosest) {
+    const std::string text = "objects:\n  - {type: sphre, center: [0, 0, 1], radius: 1}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:2:12: error: unknown object type 'sphre'; did you mean 'sphere'? "
+              "(known: sphere, plane, quad, disk, triangle, polygon, box, mesh)\n"
+              "      - {type: sphre, center: [0, 0, 1], radius: 1}\n" +
+                  caret(12, 5));
+}
+
+TEST(SceneYaml, YamlSyntaxErrorPointsAtTheSpot) {
+    const std::string e = errors_of("camera:\n  position: [0, 0, -1\n");
+    EXPECT_EQ(e.rfind("scene.yaml:", 0), 0u) << e;
+    EXPECT_NE(e.find("error: invalid YAML: "), std::string::npos) << e;
+}
+
+TEST(SceneYaml, DuplicateKeysAreErrors) {
+    const std::string text = "film: {width: 10, width: 20}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:19: error: film: duplicate key 'width'\n"
+              "    film: {width: 10, width: 20}\n" +
+                  caret(19, 5));
+}
+
+TEST(SceneYaml, UnknownTopLevelKeyIsAnError) {
+    EXPECT_EQ(errors_of("objets: []\n"),
+              "scene.yaml:1:1: error: scene: unknown key 'objets'; did you mean 'objects'? "
+              "(known: camera, film, sampler, integrator, background, lights, materials, "
+              "media, medium, objects, animation)\n"
+              "    objets: []\n" +
+                  caret(1, 6));
+}
+
+TEST(SceneYaml, AbsurdFilmIsRefusedBeforeAllocation) {
+    EXPECT_EQ(errors_of("film: {width: 60000, height: 60000}\n"),
+              "scene.yaml:1:15: error: a film of 60000 x 60000: 3600000000 film pixels exceed the limit of "
+              "134217728 (raise it with --limit film-pixels=N)\n"
+              "    film: {width: 60000, height: 60000}\n" +
+                  caret(15, 5));
+    Overrides huge;
+    huge.width = 1000000;
+    huge.height = 1000000;
+    EXPECT_EQ(errors_of("{}\n", huge),
+              "<command line>: error: --width must be in [1, 65536], got 1000000\n"
+              "<command line>: error: --height must be in [1, 65536], got 1000000\n");
+}
+
+TEST(SceneYaml, MissingFileIsAnError) {
+    auto sources = std::make_shared<SourceFiles>();
+    try {
+        load_scene_file("/nonexistent/scene.yaml", sources);
+        FAIL() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_STREQ(e.what(),
+                     "/nonexistent/scene.yaml: error: cannot open scene file: No such file or "
+                     "directory\n");
+    }
+}
+
+TEST(SceneYaml, BoxIsSixOutwardFacingQuads) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(
+        parse_scene("objects: [{type: box, min: [1, 2, 3], max: [4, 6, 8]}]\n", "s.yaml", sources),
+        {}, sources);
+    ASSERT_EQ(job.scene.quads.size(), 6u);
+    const Point3 centre{2.5f, 4, 5.5f};
+    Float area = 0;
+    for (const Quad& q : job.scene.quads) {
+        const Point3 face_centre = q.corner + (q.edge1 + q.edge2) * 0.5f;
+        EXPECT_GT(dot(q.normal(), face_centre - centre), 0);  // outward
+        area += q.area();
+    }
+    EXPECT_NEAR(area, 2 * (3 * 4 + 4 * 5 + 3 * 5), 1e-4);  // 2(ab + bc + ca)
+}
+
+TEST(SceneYaml, DegenerateShapesAreReported) {
+    const std::string text =
+        "objects:\n"
+        "  - {type: quad, corner: [0, 0, 0], edge1: [1, 0, 0], edge2: [2, 0, 0]}\n"
+        "  - {type: triangle, vertices: [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}\n"
+        "  - {type: box, min: [0, 0, 0], max: [1, 0, 1]}\n"
+        "  - {type: disk, center: [0, 0, 0], normal: [0, 1, 0], radius: 0}\n"
+        "  - {type: triangle, vertices: [[0, 0, 0], [1, 1, 1]]}\n";
+    const std::string e = errors_of(text);
+    EXPECT_NE(e.find("scene.yaml:2:62: error: quad: edge1 and edge2 must not be parallel\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:32: error: triangle: the vertices are collinear (zero area)\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:4:38: error: box: max must exceed min on every axis\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:5:64: error: radius must be > 0, got 0\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:6:32: error: triangle: expected a list of 3 vertices, got a list of 2\n"), std::string::npos) << e;
+}
+
+TEST(SceneYaml, ToneMappingKeys) {
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(
+        parse_scene("film: {tonemap: aces, exposure: -1.5, encoding: raw}\n", "s.yaml", sources),
+        {}, sources);
+    EXPECT_EQ(job.display.curve, ToneCurve::kAces);
+    EXPECT_EQ(job.display.exposure, -1.5f);
+    EXPECT_EQ(job.display.encoding, Encoding::kRaw);
+    const std::string e = errors_of("film: {tonemap: filmic, exposure: 100}\n");
+    EXPECT_NE(e.find("scene.yaml:1:17: error: unknown tonemap 'filmic' (known: clamp, reinhard, aces)\n"),
+              std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:1:35: error: exposure must be in [-64, 64], got 100\n"),
+              std::string::npos) << e;
+}
+
+TEST(SceneYaml, OrthographicCameraWindowAndCrop) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(
+        "camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], projection: orthographic,\n"
+        "         height: 3, window: [-1, 0, -0.5, 1]}\n"
+        "film: {width: 64, height: 32, crop_pixels: [8, 40, 0, 16], scale: 2}\n",
+        "scene.yaml", sources);
+    const auto& c = std::get<LookAtCameraDesc>(d.camera);
+    EXPECT_TRUE(c.orthographic);
+    EXPECT_EQ(c.height, 3);
+    ASSERT_TRUE(c.window);
+    EXPECT_EQ((*c.window)[2], -0.5f);
+    const RenderJob job = build(d, {}, sources);
+    EXPECT_EQ(job.film_width, 32);
+    EXPECT_EQ(job.film_height, 16);
+    EXPECT_EQ(job.options.offset_x, 8);
+    EXPECT_EQ(job.options.scale, 2);
+    EXPECT_NE(errors_of("camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], height: 3}\n")
+                  .find("scene.yaml:1:66: error: look_at camera: 'height' is for projection: orthographic"),
+              std::string::npos);
+    EXPECT_NE(errors_of("camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], window: [1, 0, 0, 1]}\n")
+                  .find("scene.yaml:1:66: error: window: needs x0 < x1 and y0 < y1"),
+              std::string::npos);
+    EXPECT_NE(errors_of("film: {crop: [0, 1.5, 0, 1]}\n").find("scene.yaml:1:14: error: crop: fractions"),
+              std::string::npos);
+    EXPECT_NE(errors_of("film: {width: 10, crop_pixels: [20, 30, 0, 5]}\n")
+                  .find("scene.yaml:1:32: error: the crop holds no pixel of the 10 x 360 frame"),
+              std::string::npos);
+}
+
+TEST(SceneYaml, JsonIsAccepted) {
+    const std::string json = R"({
+  "camera": {"type": "look_at", "from": [0, 1, -5], "to": [0, 0, 0], "fov": 40},
+  "film": {"width": 32, "height": 16},
+  "integrator": {"type": "whitted", "max_depth": 2},
+  "materials": {"red": {"color": [1, 0, 0], "shininess": 0.5}},
+  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "red"}]
+})";
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(json, "scene.json", sources);
+    const RenderJob job = build(d, {}, sources);
+    EXPECT_EQ(job.width, 32);
+    ASSERT_EQ(job.scene.spheres.size(), 1u);
+    EXPECT_EQ(job.scene.spheres[0].radius, 1);
+    const auto& m = std::get<ArticleMaterial>(job.scene.materials[job.scene.spheres[0].material]);
+    EXPECT_EQ(m.shininess, 0.5f);
+}
+
+TEST(SceneYaml, DefaultsAndOverridesApply) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene("sampler: {spp: 4, seed: 9}\n", "s.yaml", sources);
+    Overrides o;
+    o.spp = 2;
+    o.width = 20;
+    const RenderJob job = build(d, o, sources);
+    EXPECT_EQ(job.options.spp, 2);
+    EXPECT_EQ(job.options.seed, 9u);
+    EXPECT_EQ(job.width, 20);
+    EXPECT_EQ(job.height, 360);
+    EXPECT_EQ(job.display.encoding, Encoding::kSrgb);
+    EXPECT_EQ(job.display.curve, ToneCurve::kClamp);
+    EXPECT_EQ(job.display.exposure, 0.0f);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneYaml, PathTracerMaterialsAndLightsParse) {
+    const std::string text =
+        "integrator: {type: path, max_depth: 7, rr_depth: 2, clamp: 10, strategy: light}\n"
+        "lights:\n"
+        "  - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: 40, "
+        "falloff_start: 30}\n"
+        "  - {type: directional, direction: [0, -1, 0], angular_diameter: 0.5}\n"
+        "materials:\n"
+        "  a: {type: diffuse, albedo: 0.5}\n"
+        "  b: {type: conductor, metal: gold, roughness: 0.3}\n"
+        "  c: {type: conductor, eta: [1, 1, 1], k: [3, 3, 3]}\n"
+        "  d: {type: conductor, reflectance: [0.9, 0.8, 0.7]}\n"
+        "  e: {type: dielectric, ior: 1.33, roughness: 0.1, thin: true}\n"
+        "  f: {type: plastic, albedo: [0.1, 0.2, 0.3], roughness: 0.2}\n"
+        "  g: {type: pbr, base_color: [1, 1, 1], metallic: 0.5, transmission: 0.2, "
+        "emission: [1, 2, 3], two_sided: true}\n"
+        "objects:\n"
+        "  - {type: polygon, vertices: [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [-0.5, 0.5, 0]], "
+        "material: g}\n";
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(parse_scene(text, "scene.yaml", sources), {}, sources);
+    EXPECT_EQ(job.scene.triangles.size(), 3u);  // a pentagon: a fan of three
+    EXPECT_EQ(job.scene.materials.size(), 7u);
+    EXPECT_TRUE(std::holds_alternative<PbrMaterial>(job.scene.materials[6]));
+    EXPECT_EQ(job.scene.emission[6].radiance, (Color{1, 2, 3}));
+    EXPECT_TRUE(job.scene.emission[6].two_sided);
+    // Three emitting triangles and two file lights; the sky is the environment.
+    EXPECT_EQ(job.scene.light_sampler().count(), 6u);
+    const auto& spot = std::get<SpotLight>(job.scene.lights[0]);
+    EXPECT_NEAR(spot.cos_outer, std::cos(40 * 3.14159265f / 180), 1e-6f);
+    EXPECT_TRUE(std::get<DirectionalLight>(job.scene.lights[1]).soft());
+}
+
+TEST(SceneYaml, PathTracerMistakesAreReported) {
+    const std::string text =
+        "integrator: {type: path, strategy: both}\n"
+        "lights:\n"
+        "  - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: 20, "
+        "falloff_start: 30}\n"
+        "materials:\n"
+        "  a: {type: conductor, metal: gld}\n"
+        "  b: {type: conductor, metal: gold, reflectance: 1}\n"
+        "  c: {type: glass}\n";
+    EXPECT_EQ(errors_of(text),
+              "scene.yaml:1:36: error: unknown strategy 'both' (known: mis, light, bsdf)\n"
+              "    integrator: {type: path, strategy: both}\n" +
+                  caret(36, 4) +
+                  "scene.yaml:3:93: error: spot light: falloff_start must not exceed cone_angle\n"
+                  "      - {type: spot, position: [0, 3, 0], direction: [0, -1, 0], cone_angle: "
+                  "20, falloff_start: 30}\n" +
+                  caret(93, 2) +
+                  "scene.yaml:5:31: error: unknown metal 'gld'; did you mean 'gold'? (known: "
+                  "aluminium, chromium, copper, gold, iron, platinum, silver)\n"
+                  "      a: {type: conductor, metal: gld}\n" +
+                  caret(31, 3) +
+                  "scene.yaml:6:6: error: material 'b': give one of 'metal', 'eta' and 'k', or "
+                  "'reflectance'\n"
+                  "      b: {type: conductor, metal: gold, reflectance: 1}\n" +
+                  caret(6, 46) +
+                  "scene.yaml:7:13: error: unknown material type 'glass' "
+                  "(known: article, diffuse, conductor, dielectric, plastic, pbr, interface, diffuse_transmission, mix, coated_diffuse, coated_conductor)\n"
+                  "      c: {type: glass}\n" +
+                  caret(13, 5));
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+
+TEST(SceneYamlLimits, FlowCollectionsNestedTooDeeplyAreAnErrorAtTheBracket) {
+    const std::string e = errors_of("objects: " + std::string(300, '[') + std::string(300, ']') + "\n");
+    EXPECT_EQ(e.rfind("scene.yaml:1:266: error: 257 levels of nesting exceed the limit of 256 (raise it with --limit nesting=N)", 0), 0u) << e.substr(0, 200);
+    // Brackets inside quotes and comments are not nesting.
+    EXPECT_EQ(errors_of("# " + std::string(300, '[') + "\nfilm: {width: 8, height: 6}\n"), "");
+}
+
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Found by fuzz_scene in CI: a transform step whose key is a sequence, not a name, made yaml-cpp
+// throw its own conversion error out of the parser. Now a located error.
+TEST(SceneYaml, ATransformStepKeyThatIsNotANameIsALocatedError) {
+    const std::string e = errors_of("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1,\n"
+                                    "     transform: [{[1, 2]: [0, 0, 1]}]}\n");
+    EXPECT_NE(e.find("scene.yaml:3:"), std::string::npos) << e;
+    EXPECT_NE(e.find("transform: expected a one-key map"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace glint

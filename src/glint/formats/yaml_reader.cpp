@@ -1,0 +1,227 @@
+#include "glint/formats/yaml_reader.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace glint {
+
+std::string describe(const YAML::Node& node) {
+    switch (node.Type()) {
+        case YAML::NodeType::Sequence: return "a list";
+        case YAML::NodeType::Map: return "a map";
+        case YAML::NodeType::Scalar: return fmt::format("'{}'", node.Scalar());
+        default: return "nothing";
+    }
+}
+
+SourceLoc YamlReader::loc(const YAML::Node& node) const {
+    const YAML::Mark m = node.Mark();
+    if (m.is_null()) {
+        for (const auto& [made, at] : made_)
+            if (made.is(node)) return at;
+        return {file_, 0, 0};
+    }
+    return {file_, m.line + 1, m.column + 1};
+}
+
+std::optional<double> YamlReader::number(const YAML::Node& node) {
+    double v = 0;
+    if (!node.IsScalar() || !YAML::convert<double>::decode(node, v)) {
+        error(node, fmt::format("expected a number, got {}", describe(node)));
+        return std::nullopt;
+    }
+    if (!std::isfinite(v)) {
+        error(node, fmt::format("expected a finite number, got {}", describe(node)));
+        return std::nullopt;
+    }
+    // glint computes in float: a larger magnitude would silently become infinity.
+    if (std::abs(v) > std::numeric_limits<float>::max()) {
+        error(node, fmt::format("number {} is out of range (largest magnitude: {:.3g})",
+                                describe(node), std::numeric_limits<float>::max()));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<long long> YamlReader::integer(const YAML::Node& node) {
+    long long v = 0;
+    if (!node.IsScalar() || !YAML::convert<long long>::decode(node, v)) {
+        error(node, fmt::format("expected an integer, got {}", describe(node)));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<bool> YamlReader::boolean(const YAML::Node& node) {
+    bool v = false;
+    if (!node.IsScalar() || !YAML::convert<bool>::decode(node, v)) {
+        error(node, fmt::format("expected true or false, got {}", describe(node)));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<std::string> YamlReader::string(const YAML::Node& node) {
+    if (!node.IsScalar()) {
+        error(node, fmt::format("expected a name, got {}", describe(node)));
+        return std::nullopt;
+    }
+    return node.Scalar();
+}
+
+namespace {
+
+// A list of exactly N numbers; `form` shows the expected shape in the message ("[x, y, z]").
+template <std::size_t N>
+std::optional<std::array<double, N>> fixed_list(YamlReader& r, const YAML::Node& node, const std::string& prefix,
+                                                const char* form) {
+    if (!node.IsSequence() || node.size() != N) {
+        r.error(node, fmt::format("{}expected a list of {} numbers {}, got {}", prefix, N, form,
+                                  node.IsSequence() ? fmt::format("a list of {}", node.size()) : describe(node)));
+        return std::nullopt;
+    }
+    std::array<double, N> out{};
+    bool ok = true;
+    for (std::size_t i = 0; i < N; ++i) {
+        const auto v = r.number(node[i]);
+        if (v) out[i] = *v;
+        ok = ok && v.has_value();
+    }
+    if (!ok) return std::nullopt;
+    return out;
+}
+
+}  // namespace
+
+std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) {
+    return fixed_list<3>(*this, node, "", "[x, y, z]");
+}
+
+std::optional<std::array<double, 4>> YamlReader::bounds(const YAML::Node& node, const char* what) {
+    const auto b = fixed_list<4>(*this, node, fmt::format("{}: ", what), "[x0, x1, y0, y1]");
+    if (!b) return std::nullopt;
+    const auto& out = *b;
+    if (!(out[1] > out[0] && out[3] > out[2])) {
+        error(node, fmt::format("{}: needs x0 < x1 and y0 < y1", what));
+        return std::nullopt;
+    }
+    return out;
+}
+
+std::optional<Point3> YamlReader::point(const YAML::Node& node) {
+    const auto t = triple(node);
+    if (!t) return std::nullopt;
+    return Point3{static_cast<Float>((*t)[0]), static_cast<Float>((*t)[1]),
+                  static_cast<Float>((*t)[2])};
+}
+
+std::optional<Vector3> YamlReader::direction(const YAML::Node& node, const char* what) {
+    const auto t = triple(node);
+    if (!t) return std::nullopt;
+    const Vector3 v{static_cast<Float>((*t)[0]), static_cast<Float>((*t)[1]),
+                    static_cast<Float>((*t)[2])};
+    if (!(length(v) > 0) || !std::isfinite(length(v))) {
+        error(node, fmt::format("{} must not be zero-length", what));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<Color> YamlReader::color(const YAML::Node& node) {
+    const auto t = triple(node);
+    if (!t) return std::nullopt;
+    if ((*t)[0] < 0 || (*t)[1] < 0 || (*t)[2] < 0) {
+        error(node, "colour components must be >= 0");
+        return std::nullopt;
+    }
+    return Color{static_cast<float>((*t)[0]), static_cast<float>((*t)[1]),
+                 static_cast<float>((*t)[2])};
+}
+
+std::optional<double> YamlReader::number_in(const YAML::Node& node, const char* what, double lo,
+                                            double hi, bool lo_open, bool hi_open) {
+    const auto v = number(node);
+    if (!v) return std::nullopt;
+    const bool below = lo_open ? !(*v > lo) : *v < lo;
+    const bool above = hi_open ? !(*v < hi) : *v > hi;
+    if (below || above) {
+        std::string range;
+        if (std::isinf(hi)) {
+            range = fmt::format("{} {}", lo_open ? ">" : ">=", lo);
+        } else {
+            range = fmt::format("in {}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+        }
+        error(node, fmt::format("{} must be {}, got {}", what, range, node.Scalar()));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<long long> YamlReader::integer_in(const YAML::Node& node, const char* what,
+                                                long long lo, long long hi) {
+    const auto v = integer(node);
+    if (!v) return std::nullopt;
+    if (*v < lo || *v > hi) {
+        error(node, fmt::format("{} must be in [{}, {}], got {}", what, lo, hi, *v));
+        return std::nullopt;
+    }
+    return v;
+}
+
+MapReader::MapReader(YamlReader& reader, const YAML::Node& node, std::string context,
+                     std::vector<std::string> allowed)
+    : reader_(reader), node_(node), context_(std::move(context)) {
+    if (!node.IsMap()) {
+        reader_.error(node, fmt::format("{}: expected a map of keys, got {}", context_,
+                                        describe(node)));
+        return;
+    }
+    valid_ = true;
+    std::set<std::string> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+        const YAML::Node key = it->first;
+        const std::string name = key.IsScalar() ? key.Scalar() : std::string();
+        if (!key.IsScalar()) {
+            reader_.error(key, fmt::format("{}: keys must be names", context_));
+            continue;
+        }
+        if (!seen.insert(name).second) {
+            reader_.error(key, fmt::format("{}: duplicate key '{}'", context_, name));
+            continue;
+        }
+        if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+            std::string known;
+            for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
+            const std::string guess = closest_match(name, allowed);
+            reader_.error(key, fmt::format("{}: unknown key '{}'{} (known: {})", context_, name,
+                                           guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                           known));
+        }
+    }
+}
+
+bool MapReader::has(const std::string& key) const {
+    if (!valid_) return false;
+    const YAML::Node& map = node_;
+    return map[key].IsDefined();
+}
+
+std::optional<YAML::Node> MapReader::get(const std::string& key) const {
+    if (!has(key)) return std::nullopt;
+    const YAML::Node& map = node_;
+    return map[key];
+}
+
+std::optional<YAML::Node> MapReader::require(const std::string& key) {
+    if (!has(key)) {
+        if (valid_) reader_.error(node_, fmt::format("{}: missing required key '{}'", context_, key));
+        return std::nullopt;
+    }
+    return get(key);
+}
+
+}  // namespace glint

@@ -1,0 +1,92 @@
+#pragma once
+// Reading and writing image files (the formats and their libraries: image_formats.h). Writes are
+// atomic: the image goes to a temporary file in the destination folder, which is renamed over the
+// destination only once it is complete. A failed or killed run never leaves a truncated image and
+// never clobbers an existing one.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "glint/film/film.h"
+#include "glint/film/tonemap.h"
+#include "glint/base/errors.h"
+#include "glint/base/limits.h"
+#include "glint/textures/texture.h"
+
+namespace glint {
+
+enum class ImageFormat { kPng, kExr, kPpm, kJpeg, kHdr, kPfm };
+
+/// EXR, HDR and PFM hold the film's linear values (no exposure, no curve); PNG, JPEG and PPM
+/// hold 8-bit codes through the display transform.
+constexpr bool is_linear_format(ImageFormat f) {
+    return f == ImageFormat::kExr || f == ImageFormat::kHdr || f == ImageFormat::kPfm;
+}
+
+/// How the values in an image file map to linear RGB: kAuto treats integer formats (8/16-bit
+/// PNG, JPEG, ...) as sRGB-encoded and floating-point ones (EXR, HDR) as linear.
+enum class ImageEncoding { kAuto, kSrgb, kLinear };
+
+/// The inverse of the sRGB transfer curve.
+float srgb_decode(float v);
+
+/// Reads an image file as linear RGB (grey is replicated, alpha dropped): PNG, EXR, JPEG, HDR,
+/// PFM and PPM/PGM by glint's own readers, anything else through the OpenImageIO module.
+/// Throws IoError, naming the file, if it cannot be opened or read, or if it has more than
+/// `max_pixels` pixels (default: the texture-pixels limit; checked from the header, before
+/// reading) or more than the memory budget allows.
+Image read_image(const std::filesystem::path& path, ImageEncoding encoding, long long max_pixels = 0);
+
+/// The format for a path's extension (.png, .exr, .ppm, .jpg/.jpeg, .hdr, .pfm;
+/// case-insensitive); throws IoError naming the supported ones otherwise.
+ImageFormat image_format_for(const std::filesystem::path& path);
+
+/// Checks, before any rendering, that `path` can be written: a known extension, an existing,
+/// writable folder, and (when given) a size the format can hold (JPEG: at most 65,500 pixels a
+/// side). Throws IoError with the reason.
+void check_writable(const std::filesystem::path& path, int width = 0, int height = 0);
+
+/// Name and value pairs written into the image's header (EXR attributes, PNG text chunks):
+/// glint writes the spp reached, the render time and the scene.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+/// The temporary file a write to `target` goes through before its rename: in the same folder,
+/// named after the target and the process, so a signal handler can find and remove it.
+std::filesystem::path temporary_path(const std::filesystem::path& target);
+/// `bytes` (an image file made elsewhere, e.g. by another rank) written to `path` atomically, as
+/// write_image writes: a temporary file beside it, renamed over it.
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+
+/// PNG/JPEG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values
+/// as 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as
+/// channels albedo.R/G/B, N.X/Y/Z and Z, and its per-pixel sample counts as channel `spp`;
+/// HDR (RGBE) and PFM: the linear RGB values alone.
+void write_image(const std::filesystem::path& path, const Film& film,
+                 const DisplaySettings& display, const ImageMetadata& metadata = {});
+
+/// A PNG, JPEG or PPM written while it is rendered (render_8bit's output): the renderer fills rgb()
+/// (width x height x 3 bytes, rows top first, codes already through the display transform) and
+/// announces final rows with rows_ready (from any thread), which encodes each PNG strip on that
+/// thread as soon as its rows are in; finish() encodes what is left and writes the file
+/// atomically, as write_image. The bytes are write_image's for the same codes. A linear format's
+/// path (EXR, HDR, PFM) is an error: it takes the linear film. (JPEG is encoded in finish().)
+class Image8Writer {
+public:
+    Image8Writer(std::filesystem::path path, int width, int height, bool srgb);
+    ~Image8Writer();
+    Image8Writer(const Image8Writer&) = delete;
+    Image8Writer& operator=(const Image8Writer&) = delete;
+    std::uint8_t* rgb();
+    void rows_ready(int y0, int y1);
+    void finish(const ImageMetadata& metadata = {});
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace glint
