@@ -1,0 +1,372 @@
+#include <fmt/core.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "glint/base/limits.h"
+#include "glint/formats/scene_yaml_parser.h"
+#include "glint/materials/metals.h"
+
+namespace glint::yaml_detail {
+
+// A texture: a number (grey), a colour [r, g, b], or a map with a type.
+std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
+    TextureDesc t;
+    if (node.IsScalar()) {
+        const auto v = r_.number(node);
+        if (!v) return std::nullopt;
+        if (*v < 0) {
+            r_.error(node, "colour components must be >= 0");
+            return std::nullopt;
+        }
+        t.value = Color{static_cast<float>(*v)};
+        return t;
+    }
+    if (node.IsSequence()) {
+        const auto c = r_.color(node);
+        if (!c) return std::nullopt;
+        t.value = *c;
+        return t;
+    }
+    const auto type =
+        type_of(node, "texture", {"constant", "checker", "image", "scale", "mix", "vertex_color"});
+    if (!type) return std::nullopt;
+    if (*type == "vertex_color") {
+        MapReader m(r_, node, "vertex_color texture", {"type"});
+        t.kind = TextureDesc::Kind::kVertexColor;
+    } else if (*type == "constant") {
+        MapReader m(r_, node, "constant texture", {"type", "color"});
+        assign(m.require("color"), t.value, color());
+    } else if (*type == "checker") {
+        t.kind = TextureDesc::Kind::kChecker;
+        MapReader m(r_, node, "checker texture", {"type", "size", "even", "odd"});
+        assign(m.get("size"), t.checker.size, positive("size"));
+        assign(m.require("even"), t.checker.even, color());
+        assign(m.require("odd"), t.checker.odd, color());
+    } else if (*type == "image") {
+        t.kind = TextureDesc::Kind::kImage;
+        MapReader m(r_, node, "image texture", {"type", "filename", "encoding", "wrap", "size"});
+        if (const auto n = m.require("filename")) {
+            t.filename.loc = r_.loc(*n);
+            assign(n, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
+        }
+        if (const auto n = m.get("encoding")) {
+            if (auto e = choice<ImageEncoding>(*n, "encoding",
+                                               {{"auto", ImageEncoding::kAuto},
+                                                {"srgb", ImageEncoding::kSrgb},
+                                                {"linear", ImageEncoding::kLinear}}))
+                t.encoding = *e;
+        }
+        if (const auto n = m.get("wrap")) {
+            if (auto w = choice<WrapMode>(
+                    *n, "wrap", {{"repeat", WrapMode::kRepeat}, {"clamp", WrapMode::kClamp}, {"mirror", WrapMode::kMirror}}))
+                t.wrap = *w;
+        }
+        assign(m.get("size"), t.size, positive("size"));
+    } else {
+        const bool scale = *type == "scale";
+        t.kind = scale ? TextureDesc::Kind::kScale : TextureDesc::Kind::kMix;
+        const std::vector<std::string> parts =
+            scale ? std::vector<std::string>{"texture", "factor"}
+                  : std::vector<std::string>{"a", "b", "amount"};
+        std::vector<std::string> keys{"type"};
+        keys.insert(keys.end(), parts.begin(), parts.end());
+        MapReader m(r_, node, fmt::format("{} texture", *type), keys);
+        for (const std::string& part : parts) {
+            const auto child_node = m.require(part);
+            const auto child = child_node ? texture(*child_node) : std::nullopt;
+            t.children.push_back(child.value_or(TextureDesc{}));
+        }
+    }
+    return t;
+}
+
+MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& context) {
+    MaterialDesc d;
+    if (!node.IsMap()) {
+        r_.error(node, fmt::format("{}: expected a map of keys, got {}", context, describe(node)));
+        return d;
+    }
+    const auto type = type_of(node, "material",
+                              {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr",
+                               "interface", "diffuse_transmission", "mix", "coated_diffuse", "coated_conductor"},
+                              "article");
+    if (!type) return d;
+    if (*type == "interface") {
+        d.kind = MaterialDesc::Kind::kInterface;
+        MapReader m(r_, node, context, {"type"});
+        return d;
+    }
+    std::vector<std::string> keys{"type", "emission", "two_sided"};
+    const auto add = [&keys](std::initializer_list<const char*> more) {
+        keys.insert(keys.end(), more.begin(), more.end());
+    };
+    using K = MaterialDesc::Kind;
+    if (*type == "article") d.kind = K::kArticle, add({"color", "shininess"});
+    if (*type == "diffuse") d.kind = K::kDiffuse, add({"albedo"});
+    if (*type == "conductor") d.kind = K::kConductor, add({"metal", "eta", "k", "reflectance", "roughness"});
+    if (*type == "dielectric") d.kind = K::kDielectric, add({"ior", "roughness", "thin", "tint"});
+    if (*type == "plastic") d.kind = K::kPlastic, add({"albedo", "ior", "roughness"});
+    if (*type == "diffuse_transmission") d.kind = K::kDiffuseTransmission, add({"reflectance", "transmittance"});
+    if (*type == "mix") d.kind = K::kMix, add({"materials", "amount"});
+    if (*type == "coated_diffuse" || *type == "coated_conductor") {
+        d.kind = K::kCoated;
+        d.coated_conductor = *type == "coated_conductor";
+        d.color.value = Color{0.5f};  // pbrt-v4's coateddiffuse reflectance
+        add({"ior", "thickness", "layer_albedo", "g", "max_depth", "samples"});
+        if (d.coated_conductor) add({"metal", "eta", "k", "reflectance", "roughness", "coat_roughness"});
+        else add({"albedo", "roughness"});
+    }
+    if (*type == "pbr") {
+        d.kind = K::kPbr;
+        d.roughness = 0.5f;
+        add({"base_color", "metallic", "roughness", "transmission", "ior", "clearcoat", "clearcoat_roughness", "sheen",
+             "sheen_roughness", "specular", "specular_color"});
+    }
+    MapReader m(r_, node, context, keys);
+    const auto tex = [&](const char* key) {
+        if (auto n = m.get(key)) {
+            if (auto t = texture(*n)) d.color = *t;
+        }
+    };
+    const auto unit = [this](const char* what) {
+        return [this, what](const YAML::Node& v) { return r_.number_in(v, what, 0, 1); };
+    };
+    tex("color");
+    tex("albedo");
+    tex("base_color");
+    if (d.kind == K::kDiffuseTransmission) {
+        d.color.value = Color{0.25f};
+        d.transmittance = TextureDesc{};
+        d.transmittance->value = Color{0.25f};
+        if (auto n = m.get("reflectance"))
+            if (auto t = texture(*n)) d.color = *t;
+        if (auto n = m.get("transmittance"))
+            if (auto t = texture(*n)) d.transmittance = *t;
+    }
+    if (d.kind == K::kMix) {
+        if (auto n = m.require("materials")) {
+            if (!n->IsSequence() || n->size() != 2) {
+                r_.error(*n, fmt::format("{}: 'materials' is a list of two material names", context));
+            } else {
+                for (std::size_t i = 0; i < 2; ++i)
+                    if (auto name = r_.string((*n)[i])) d.mix.push_back({*name, r_.loc((*n)[i])});
+            }
+        }
+        if (auto n = m.get("amount"))
+            if (auto t = texture(*n)) d.amount = *t;
+    }
+    if (d.kind == K::kPbr) {  // glTF's clear coat, sheen and specular: numbers, colours or textures
+        for (auto [key, slot] : {std::pair{"clearcoat", &d.clearcoat}, {"clearcoat_roughness", &d.clearcoat_roughness},
+                                 {"sheen", &d.sheen}, {"sheen_roughness", &d.sheen_roughness},
+                                 {"specular", &d.specular}, {"specular_color", &d.specular_color}})
+            if (auto n = m.get(key))
+                if (auto t = texture(*n)) *slot = *t;
+    }
+    assign(m.get("shininess"), d.shininess, unit("shininess"));
+    assign(m.get("roughness"), d.roughness, unit("roughness"));
+    if (d.kind == K::kCoated) {
+        // A coated diffuse's roughness is its coat's; a coated conductor's is the metal's.
+        if (!d.coated_conductor) std::swap(d.roughness, d.coat_roughness);
+        assign(m.get("coat_roughness"), d.coat_roughness, unit("coat_roughness"));
+        assign(m.get("thickness"), d.thickness, [this](const YAML::Node& v) {
+            return r_.number_in(v, "thickness", 0, 1e30, true);
+        });
+        assign(m.get("layer_albedo"), d.layer_albedo, color());
+        assign(m.get("g"), d.g, [this](const YAML::Node& v) { return r_.number_in(v, "g", -0.999, 0.999); });
+        assign(m.get("max_depth"), d.layer_depth, [this](const YAML::Node& v) { return r_.integer_in(v, "max_depth", 1, 1000); });
+        assign(m.get("samples"), d.layer_samples, [this](const YAML::Node& v) { return r_.integer_in(v, "samples", 1, 100); });
+    }
+    assign(m.get("metallic"), d.metallic, unit("metallic"));
+    assign(m.get("transmission"), d.transmission, unit("transmission"));
+    assign(m.get("ior"), d.ior, [this](const YAML::Node& v) {
+        return r_.number_in(v, "ior", 0, 10, true);
+    });
+    assign(m.get("thin"), d.thin, [this](const YAML::Node& v) { return r_.boolean(v); });
+    assign(m.get("tint"), d.tint, color());
+    assign(m.get("emission"), d.emission.radiance, color());
+    assign(m.get("two_sided"), d.emission.two_sided,
+           [this](const YAML::Node& v) { return r_.boolean(v); });
+    if (d.kind == K::kConductor || (d.kind == K::kCoated && d.coated_conductor)) {
+        const auto metal = m.get("metal");
+        const auto eta = m.get("eta"), k = m.get("k"), reflectance = m.get("reflectance");
+        const int forms = (metal ? 1 : 0) + (eta || k ? 1 : 0) + (reflectance ? 1 : 0);
+        if (forms > 1) {
+            r_.error(node, fmt::format("{}: give one of 'metal', 'eta' and 'k', or "
+                                       "'reflectance'", context));
+        }
+        if (metal) {
+            if (const auto name = r_.string(*metal)) {
+                const auto it = std::find_if(kMetals.begin(), kMetals.end(),
+                                             [&](const MetalPreset& p) { return p.name == *name; });
+                if (it == kMetals.end()) {
+                    std::vector<std::string> names;
+                    for (const auto& p : kMetals) names.emplace_back(p.name);
+                    const std::string guess = closest_match(*name, names);
+                    r_.error(*metal, fmt::format("unknown metal '{}'{} (known: {})", *name,
+                                                 guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                                 join(names)));
+                } else {
+                    d.eta = it->eta;
+                    d.k = it->k;
+                }
+            }
+        } else if (eta || k) {
+            if (!(eta && k)) r_.error(node, fmt::format("{}: 'eta' and 'k' go together", context));
+            assign(eta, d.eta, color());
+            assign(k, d.k, color());
+        } else if (reflectance) {
+            if (auto t = texture(*reflectance)) d.reflectance = *t;
+        } else {
+            TextureDesc white;  // no form given: a perfect mirror-white metal
+            white.value = Color{1};
+            d.reflectance = white;
+        }
+    }
+    return d;
+}
+
+void SceneParser::materials(const YAML::Node& node, std::vector<NamedMaterial>& out) {
+    if (!node.IsMap()) {
+        r_.error(node, fmt::format("materials: expected a map from names to materials, got {}",
+                                   describe(node)));
+        return;
+    }
+    for (auto it = node.begin(); it != node.end(); ++it) {
+        const auto name = r_.string(it->first);
+        if (!name) continue;
+        const bool duplicate = std::any_of(out.begin(), out.end(), [&](const NamedMaterial& m) {
+            return m.name == *name;
+        });
+        if (duplicate) {
+            r_.error(it->first, fmt::format("materials: duplicate material name '{}'", *name));
+            continue;
+        }
+        if (*name == "interface") {
+            r_.error(it->first, "materials: 'interface' is the built-in material of surfaces that "
+                                "only bound a medium; choose another name");
+            continue;
+        }
+        out.push_back({*name, material(it->second, fmt::format("material '{}'", *name)),
+                       r_.loc(it->first)});
+    }
+}
+
+MaterialRef SceneParser::material_ref(const YAML::Node& node) {
+    if (node.IsScalar() && node.Scalar() == "interface") {
+        MaterialDesc d;
+        d.kind = MaterialDesc::Kind::kInterface;
+        return {d, r_.loc(node)};
+    }
+    if (node.IsScalar()) return {node.Scalar(), r_.loc(node)};
+    return {material(node, "material"), r_.loc(node)};
+}
+
+// The coefficients of a medium: sigma_a and sigma_s, or the artist's albedo, density and
+// scale (sigma_s = albedo density scale, sigma_a = (1 - albedo) density scale).
+void SceneParser::coefficients(MapReader& m, const YAML::Node& node, const std::string& context, MediumDesc& d) {
+    const auto sa = m.get("sigma_a"), ss = m.get("sigma_s");
+    const auto albedo = m.get("albedo"), density = m.get("density"), scale = m.get("scale");
+    const bool physical = sa || ss, artist = albedo || density || scale;
+    if (physical && artist) {
+        r_.error(node, fmt::format("{}: give 'sigma_a' and 'sigma_s', or 'albedo', 'density' and "
+                                   "'scale', not both", context));
+        return;
+    }
+    if (physical) {
+        assign(sa, d.sigma_a, color());
+        assign(ss, d.sigma_s, color());
+        return;
+    }
+    Color a{1};
+    double k = 1, f = 1;
+    if (albedo) {
+        std::optional<Color> c;
+        if (!albedo->IsScalar()) c = r_.color(*albedo);
+        else if (const auto v = r_.number(*albedo)) c = Color{static_cast<float>(*v)};
+        if (c) {
+            if (!(c->max_component() <= 1 && c->r >= 0 && c->g >= 0 && c->b >= 0))
+                r_.error(*albedo, fmt::format("{}: albedo must be in [0, 1]", context));
+            else a = *c;
+        }
+    }
+    assign(density, k, [this](const YAML::Node& v) { return r_.number_in(v, "density", 0, kInf); });
+    assign(scale, f, [this](const YAML::Node& v) { return r_.number_in(v, "scale", 0, kInf); });
+    const float sigma_t = static_cast<float>(k * f);
+    d.sigma_s = a * sigma_t;
+    d.sigma_a = (Color{1} - a) * sigma_t;
+}
+
+MediumDesc SceneParser::medium(const YAML::Node& node, const std::string& context) {
+    MediumDesc d;
+    const auto type = type_of(node, "medium", {"homogeneous", "grid"});
+    if (!type) return d;
+    std::vector<std::string> keys{"type", "sigma_a", "sigma_s", "albedo", "density", "scale", "g"};
+    if (*type == "homogeneous") {
+        keys.push_back("emission");
+    } else {
+        d.kind = MediumDesc::Kind::kGrid;
+        keys.insert(keys.end(), {"file", "grid", "emission_grid", "emission", "temperature_grid",
+                                 "temperature_scale", "emission_scale", "transform"});
+    }
+    MapReader m(r_, node, context, keys);
+    coefficients(m, node, context, d);
+    if (const auto g = m.get("g")) {
+        if (const auto v = r_.number(*g)) {
+            if (!(std::abs(*v) < 1)) r_.error(*g, fmt::format("{}: g must lie in (-1, 1), got {}", context, *v));
+            else d.g = static_cast<float>(*v);
+        }
+    }
+    assign(m.get("emission"), d.emission, color());
+    if (d.kind == MediumDesc::Kind::kGrid) {
+        if (const auto f = m.require("file")) d.file = located_name(*f);
+        if (const auto g = m.get("grid")) d.density_grid = located_name(*g);
+        const auto eg = m.get("emission_grid"), tg = m.get("temperature_grid");
+        if (eg && tg) {
+            r_.error(*tg, fmt::format("{}: give 'emission_grid' or 'temperature_grid', not both", context));
+        } else if (eg) {
+            d.emission_kind = MediumDesc::Emission::kGrid;
+            d.emission_grid = located_name(*eg);
+            if (!m.has("emission")) d.emission = Color{1};
+        } else if (tg) {
+            d.emission_kind = MediumDesc::Emission::kTemperature;
+            d.emission_grid = located_name(*tg);
+        }
+        if (m.has("emission") && !eg) {
+            r_.error(*m.get("emission"), fmt::format("{}: 'emission' is the colour of an 'emission_grid', "
+                                                     "which is not given", context));
+        }
+        assign(m.get("emission_scale"), d.emission_scale, [this](const YAML::Node& v) {
+            return r_.number_in(v, "emission_scale", 0, kInf);
+        });
+        assign(m.get("temperature_scale"), d.temperature_scale, [this](const YAML::Node& v) {
+            return r_.number_in(v, "temperature_scale", 0, kInf);
+        });
+        if (const auto t = m.get("transform")) d.transform = transform(*t);
+    }
+    return d;
+}
+
+void SceneParser::media(const YAML::Node& node, std::vector<NamedMedium>& out) {
+    if (!node.IsMap()) {
+        r_.error(node, fmt::format("media: expected a map from names to media, got {}", describe(node)));
+        return;
+    }
+    for (auto it = node.begin(); it != node.end(); ++it) {
+        const auto name = r_.string(it->first);
+        if (!name) continue;
+        if (*name == "none") {
+            r_.error(it->first, "media: 'none' means vacuum; choose another name");
+            continue;
+        }
+        if (std::any_of(out.begin(), out.end(), [&](const NamedMedium& m) { return m.name == *name; })) {
+            r_.error(it->first, fmt::format("media: duplicate medium name '{}'", *name));
+            continue;
+        }
+        out.push_back({*name, medium(it->second, fmt::format("medium '{}'", *name)), r_.loc(it->first)});
+    }
+}
+
+}  // namespace glint::yaml_detail
