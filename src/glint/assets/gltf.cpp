@@ -41,991 +41,463 @@
 #include "glint/base/limits.h"
 #include "glint/assets/mesh_import.h"
 
+#include "glint/assets/gltf_importer.h"
+
 namespace glint {
 
-namespace {
+namespace gltf_detail {
 
-// 2^28 values (2 GB as doubles) per accessor: 89M vertices.
-constexpr std::size_t kMaxAccessorValues = std::size_t{1} << 28;
-// TEXCOORD_0 to TEXCOORD_7: more than any exporter writes.
-constexpr int kMaxUvSets = 8;
-
-struct Importer {
-    const tinygltf::Model& model;
-    std::string file;
-    bool binary = false;  // .glb: errors name the JSON value in words only
-    ImportedFile out;
-    std::map<std::pair<int, bool>, std::shared_ptr<const Image>> images;  // (image, srgb)
-    std::map<int, std::uint32_t> mesh_first;   // glTF mesh -> first of our meshes
-    std::map<int, std::uint32_t> mesh_count;
-
-    [[noreturn]] void fail(const std::string& what) const { throw IoError(fmt::format("{}: {}", file, what)); }
-    /// An error about the JSON value at `pointer` ("/nodes/3/mesh"): in a .gltf it is reported at
-    /// that value's line and column, or its nearest enclosing value's if the file leaves it out
-    /// (the text is read again, only now).
-    [[noreturn]] void fail_at(std::string pointer, const std::string& what) const {
-        if (!binary) {
-            std::ifstream in(file, std::ios::binary);
-            std::ostringstream text;
-            text << in.rdbuf();
-            for (;;) {
-                if (const auto p = json_locate(text.str(), pointer))
-                    throw IoError(fmt::format("{}:{}:{}: {}", file, p->line, p->column, what));
-                if (pointer.empty()) break;
-                pointer.erase(pointer.rfind('/'));
-            }
-        }
-        fail(what);
-    }
-
-    // --- accessors ---
-    int components(int type) const {
-        switch (type) {
-            case TINYGLTF_TYPE_SCALAR: return 1;
-            case TINYGLTF_TYPE_VEC2: return 2;
-            case TINYGLTF_TYPE_VEC3: return 3;
-            case TINYGLTF_TYPE_VEC4: return 4;
-            default: return 0;
-        }
-    }
-    static int component_size(int ct) {
-        switch (ct) {
-            case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-            case TINYGLTF_COMPONENT_TYPE_SHORT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-            case TINYGLTF_COMPONENT_TYPE_INT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-            case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-            case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
-            default: return 0;
-        }
-    }
-
-    /// `count` elements of `n` components of type `ct` from buffer view `view`, starting `offset`
-    /// bytes into it, into `dst`; `strided`: the view's byteStride applies (vertex attributes),
-    /// else the elements are packed (sparse indices and values). Every range is checked, in 128-bit
-    /// arithmetic so that no offset or stride read from the file can wrap around. `at` is the
-    /// JSON pointer of the object naming the view, for errors.
-    void fetch(int view, std::size_t offset, std::size_t count, int n, int ct, bool normalized, bool strided,
-               double* dst, const std::string& what, const std::string& at) const {
-        if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
-            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
-        const tinygltf::BufferView& bv = model.bufferViews[view];
-        __extension__ typedef unsigned __int128 Wide;
-        const unsigned char* bytes = nullptr;  // the view's first byte
-        std::size_t length = 0;
-        if (const auto it = bv.extensions.find("EXT_meshopt_compression"); it != bv.extensions.end()) {
-            const std::vector<unsigned char>& decoded = meshopt_view(view, it->second, what);
-            bytes = decoded.data();
-            length = decoded.size();
-        } else {
-            if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-                fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
-            const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
-            if (Wide{bv.byteOffset} + bv.byteLength > data.size())
-                fail_at(fmt::format("/bufferViews/{}/byteLength", view),
-                        fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
-            bytes = data.data() + bv.byteOffset;
-            length = bv.byteLength;
-        }
-        const int size = component_size(ct);
-        const std::size_t elem = static_cast<std::size_t>(n * size);
-        const std::size_t stride = strided && bv.byteStride ? bv.byteStride : elem;
-        if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > length)
-            fail_at(at + "/count", fmt::format("{} reaches past the end of its buffer", what));
-        const unsigned char* base = bytes + offset;
-        for (std::size_t i = 0; i < count; ++i) {
-            const unsigned char* p = base + i * stride;
-            for (int c = 0; c < n; ++c) {
-                const unsigned char* q = p + c * size;
-                double x = 0;
-                switch (ct) {
-                    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t t; std::memcpy(&t, q, 1); x = normalized ? std::max(t / 127.0, -1.0) : t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { x = normalized ? *q / 255.0 : *q; break; }
-                    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t t; std::memcpy(&t, q, 2); x = normalized ? std::max(t / 32767.0, -1.0) : t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t t; std::memcpy(&t, q, 2); x = normalized ? t / 65535.0 : t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_INT: { std::int32_t t; std::memcpy(&t, q, 4); x = t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t t; std::memcpy(&t, q, 4); x = t; break; }
-                    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float t; std::memcpy(&t, q, 4); x = t; break; }
-                    default: { double t; std::memcpy(&t, q, 8); x = t; break; }
-                }
-                dst[i * n + c] = x;
-            }
-        }
-    }
-
-    /// Buffer view `view` compressed by EXT_meshopt_compression (`ext`), decoded once: vertex
-    /// streams (mode ATTRIBUTES, with the OCTAHEDRAL, QUATERNION or EXPONENTIAL filter undone),
-    /// index buffers (TRIANGLES) and index sequences (INDICES), by meshoptimizer's decoders.
-    const std::vector<unsigned char>& meshopt_view(int view, const tinygltf::Value& ext, const std::string& what) const {
-        if (const auto it = meshopt_views.find(view); it != meshopt_views.end()) return it->second;
-        const std::string at = fmt::format("/bufferViews/{}/extensions/EXT_meshopt_compression", view);
-        const auto integer = [&](const char* key, double fallback) {
-            const double x = number(ext, key, fallback);
-            if (!(x >= 0 && x <= 9e15) || x != std::floor(x))
-                fail_at(at + "/" + key, fmt::format("{}: EXT_meshopt_compression: {} must be a whole number >= 0", what, key));
-            return static_cast<std::size_t>(x);
-        };
-        const std::size_t buffer = integer("buffer", -1), offset = integer("byteOffset", 0),
-                          length = integer("byteLength", -1), stride = integer("byteStride", -1),
-                          count = integer("count", -1);
-        const std::string mode = ext.Has("mode") && ext.Get("mode").IsString() ? ext.Get("mode").Get<std::string>() : "";
-        const std::string filter =
-            ext.Has("filter") && ext.Get("filter").IsString() ? ext.Get("filter").Get<std::string>() : "NONE";
-        if (buffer >= model.buffers.size())
-            fail_at(at + "/buffer", fmt::format("{}: EXT_meshopt_compression: buffer {} does not exist", what, buffer));
-        const std::vector<unsigned char>& data = model.buffers[buffer].data;
-        if (offset > data.size() || length > data.size() - offset)
-            fail_at(at + "/byteLength", fmt::format("{}: EXT_meshopt_compression: bytes {} to {} are past the end of buffer {} ({} bytes)",
-                                                    what, offset, offset + length, buffer, data.size()));
-        if (stride == 0 || stride > 256 || count > kMaxAccessorValues / stride)
-            fail_at(at + "/count", fmt::format("{}: EXT_meshopt_compression: {} elements of {} bytes is out of range", what,
-                                               count, stride));
-        std::vector<unsigned char> decoded(count * stride);
-        const unsigned char* src = data.data() + offset;
-        int status = -1;
-        if (mode == "ATTRIBUTES") {
-            if (stride % 4 == 0) status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, src, length);
-            if (status == 0 && filter != "NONE") {
-                if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(decoded.data(), count, stride);
-                else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(decoded.data(), count, stride);
-                else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
-                else
-                    fail_at(at + "/filter", fmt::format("{}: EXT_meshopt_compression: filter '{}' with {}-byte elements", what,
-                                                        filter, stride));
-            }
-        } else if (mode == "TRIANGLES" || mode == "INDICES") {
-            if (stride == 2 || stride == 4)
-                status = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, src, length)
-                                             : meshopt_decodeIndexSequence(decoded.data(), count, stride, src, length);
-        } else {
-            fail_at(at + "/mode", fmt::format("{}: EXT_meshopt_compression: mode '{}' (ATTRIBUTES, TRIANGLES or INDICES)", what, mode));
-        }
-        if (status != 0)
-            fail_at(at, fmt::format("{}: EXT_meshopt_compression: the {} data of buffer view {} cannot be decoded", what,
-                                    mode, view));
-        return meshopt_views.emplace(view, std::move(decoded)).first->second;
-    }
-    mutable std::map<int, std::vector<unsigned char>> meshopt_views;
-
-    /// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
-    /// [0, 1] or [-1, 1] when the accessor says so), sparse substitutions applied. `ref` is the
-    /// JSON pointer of the reference to the accessor, for errors.
-    std::vector<double> read(int index, int n, const std::string& what, const std::string& ref) const {
-        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-            fail_at(ref, fmt::format("{}: accessor {} does not exist", what, index));
-        const tinygltf::Accessor& a = model.accessors[index];
-        const std::string at = fmt::format("/accessors/{}", index);
-        const int comps = components(a.type), size = component_size(a.componentType);
-        if (comps != n || size == 0)
-            fail_at(at + (comps != n ? "/type" : "/componentType"),
-                    fmt::format("{}: accessor {} has the wrong type", what, index));
-        // Checked before anything is allocated: without a buffer view the values are zeros (the
-        // spec) and nothing else bounds the count.
-        if (a.count > kMaxAccessorValues / static_cast<std::size_t>(n))
-            fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
-                                               a.count, kMaxAccessorValues));
-        const std::string name = fmt::format("{}: accessor {}", what, index);
-        std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
-        if (a.bufferView >= 0)
-            fetch(a.bufferView, a.byteOffset, a.count, n, a.componentType, a.normalized, true, v.data(), name, at);
-        if (a.sparse.isSparse) {  // sparse.count (index, value) pairs replace elements
-            const auto& sp = a.sparse;
-            const std::string sat = at + "/sparse";
-            if (sp.count < 0 || static_cast<std::size_t>(sp.count) > a.count)
-                fail_at(sat + "/count", fmt::format("{}: {} sparse elements in an accessor of {}", name, sp.count, a.count));
-            const int ict = sp.indices.componentType;
-            if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                fail_at(sat + "/indices/componentType", fmt::format("{}: sparse indices must be unsigned integers", name));
-            std::vector<double> idx(static_cast<std::size_t>(sp.count)), val(idx.size() * n);
-            fetch(sp.indices.bufferView, static_cast<std::size_t>(std::max(sp.indices.byteOffset, 0)), idx.size(), 1, ict,
-                  false, false, idx.data(), name + "'s sparse indices", sat + "/indices");
-            fetch(sp.values.bufferView, static_cast<std::size_t>(std::max(sp.values.byteOffset, 0)), idx.size(), n,
-                  a.componentType, a.normalized, false, val.data(), name + "'s sparse values", sat + "/values");
-            for (std::size_t k = 0; k < idx.size(); ++k) {
-                if (idx[k] >= double(a.count))
-                    fail_at(sat + "/indices", fmt::format("{}: sparse index {} is past its {} elements", name, idx[k], a.count));
-                std::copy_n(val.data() + k * n, n, v.data() + static_cast<std::size_t>(idx[k]) * n);
-            }
-        }
-        return v;
-    }
-
-    // --- textures ---
-    std::shared_ptr<const Image> image(int index, bool srgb, const std::string& ref) {
-        const auto key = std::make_pair(index, srgb);
-        if (auto it = images.find(key); it != images.end()) return it->second;
-        if (index < 0 || index >= static_cast<int>(model.images.size())) fail_at(ref, fmt::format("image {} does not exist", index));
-        const tinygltf::Image& im = model.images[index];
-        const std::string at = fmt::format("/images/{}", index);
-        if (im.width <= 0 || im.height <= 0 || im.image.empty())
-            fail_at(at, fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
-        if (static_cast<long long>(im.width) * im.height > limit(Limit::kTexturePixels))
-            fail_at(at, fmt::format("image {} is {} x {} pixels: {}", index, im.width, im.height,
-                                    over_limit(Limit::kTexturePixels, static_cast<long long>(im.width) * im.height)));
-        if (const std::string e = charge_memory(static_cast<long long>(im.width) * im.height * 16, fmt::format("image {}", index)); !e.empty())
-            fail_at(at, e);
-        const int comps = im.component, bytes = im.bits == 16 ? 2 : 1;
-        if (comps < 1 || comps > 4 || im.image.size() < static_cast<std::size_t>(im.width) * im.height * comps * bytes)
-            fail_at(at, fmt::format("image {} has an unexpected pixel layout", index));
-        auto img = std::make_shared<Image>();
-        img->width = im.width;
-        img->height = im.height;
-        img->texels.resize(static_cast<std::size_t>(im.width) * im.height);
-        const auto decode = [srgb](float x) { return srgb ? srgb_decode(x) : x; };
-        // Alpha (grey + alpha, or RGBA) is linear in every colour space; kept only when some
-        // texel is not opaque.
-        const bool has_alpha = comps == 2 || comps == 4;
-        if (has_alpha) img->alpha.resize(img->texels.size());
-        bool translucent = false;
-        for (std::size_t i = 0; i < img->texels.size(); ++i) {
-            float c[4] = {0, 0, 0, 1};
-            for (int k = 0; k < comps; ++k) {
-                const std::size_t o = (i * comps + k) * bytes;
-                c[k] = bytes == 2 ? (im.image[o] | im.image[o + 1] << 8) / 65535.0f : im.image[o] / 255.0f;
-            }
-            if (comps == 2) c[3] = c[1];
-            if (comps < 3) c[1] = c[2] = c[0];
-            img->texels[i] = Color{decode(c[0]), decode(c[1]), decode(c[2])};
-            if (has_alpha) {
-                img->alpha[i] = c[3];
-                translucent |= c[3] < 1;
-            }
-        }
-        if (!translucent) img->alpha.clear();
-        images.emplace(key, img);
-        return img;
-    }
-
-    static WrapMode wrap(int mode) {
-        if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return WrapMode::kClamp;
-        if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return WrapMode::kMirror;
-        return WrapMode::kRepeat;
-    }
-
-    /// A JSON number that is a whole number in int's range; -1 otherwise (an index nothing has).
-    static int whole(const tinygltf::Value& v) {
-        if (!v.IsNumber()) return -1;
-        const double x = v.GetNumberAsDouble();
-        return x >= -2147483648.0 && x < 2147483648.0 && x == std::floor(x) ? static_cast<int>(x) : -1;
-    }
-
-    static double number(const tinygltf::Value& v, const char* key, double fallback) {
-        if (!v.Has(key)) return fallback;
-        const tinygltf::Value& x = v.Get(key);
-        return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
-    }
-
-    /// A texture reference as an image TextureDesc (its sampler's wraps, KHR_texture_transform).
-    /// `ref`: the JSON pointer of the texture reference (".../baseColorTexture"), for errors.
-    TextureDesc texture(int index, int tex_coord, const tinygltf::ExtensionMap& ext, bool srgb, const char* what,
-                        const std::string& ref) {
-        if (index < 0 || index >= static_cast<int>(model.textures.size()))
-            fail_at(ref + "/index", fmt::format("{}: texture {} does not exist", what, index));
-        const tinygltf::Texture& t = model.textures[index];
-        TextureDesc d;
-        d.kind = TextureDesc::Kind::kImage;
-        d.pixels = image(t.source, srgb, fmt::format("/textures/{}/source", index));
-        d.filename.value = fmt::format("{}#image{}", file, t.source);
-        if (t.sampler >= 0 && t.sampler < static_cast<int>(model.samplers.size())) {
-            d.wrap = wrap(model.samplers[t.sampler].wrapS);
-            d.wrap_v = wrap(model.samplers[t.sampler].wrapT);
-        } else {
-            d.wrap_v = WrapMode::kRepeat;
-        }
-        if (const auto it = ext.find("KHR_texture_transform"); it != ext.end()) {
-            // glTF uv' = T(offset) R(rotation) S(scale) uv, in glTF's (v down) space; in ours,
-            // F T F with F(u, v) = (u, 1 - v).
-            const tinygltf::Value& v = it->second;
-            double off[2] = {0, 0}, sc[2] = {1, 1};
-            if (v.Has("offset") && v.Get("offset").ArrayLen() == 2)
-                for (int k = 0; k < 2; ++k) off[k] = v.Get("offset").Get(k).GetNumberAsDouble();
-            if (v.Has("scale") && v.Get("scale").ArrayLen() == 2)
-                for (int k = 0; k < 2; ++k) sc[k] = v.Get("scale").Get(k).GetNumberAsDouble();
-            const double r = number(v, "rotation", 0), c = std::cos(r), s = std::sin(r);
-            // T = [a b e; c d f] in glTF space.
-            const double a = c * sc[0], b = s * sc[1], e = off[0];
-            const double cc = -s * sc[0], dd = c * sc[1], f = off[1];
-            // F T F: u' = a u + b (1 - v) + e ; v' = 1 - (cc u + dd (1 - v) + f).
-            d.uv_transform = {Float(a), Float(-b), Float(b + e), Float(-cc), Float(dd), Float(1 - dd - f)};
-            if (v.Has("texCoord")) tex_coord = whole(v.Get("texCoord"));  // overrides; -1 if not a set number
-        }
-        if (tex_coord < 0 || tex_coord >= kMaxUvSets)
-            fail_at(ref + "/texCoord", fmt::format("{}: texCoord {} (glint reads TEXCOORD_0 to TEXCOORD_{})", what,
-                                                   tex_coord, kMaxUvSets - 1));
-        d.uv_set = static_cast<std::uint8_t>(tex_coord);
-        return d;
-    }
-
-    static TextureDesc constant(Color c) {
-        TextureDesc d;
-        d.value = c;
-        return d;
-    }
-    static TextureDesc scaled(TextureDesc t, Color factor) {
-        if (factor.r == 1 && factor.g == 1 && factor.b == 1) return t;
-        TextureDesc d;
-        d.kind = TextureDesc::Kind::kScale;
-        d.children = {std::move(t), constant(factor)};
-        return d;
-    }
-
-    static TextureDesc product(TextureDesc a, TextureDesc b) {
-        TextureDesc d;
-        d.kind = TextureDesc::Kind::kScale;
-        d.children = {std::move(a), std::move(b)};
-        return d;
-    }
-    static TextureDesc vertex_color(bool alpha) {
-        TextureDesc d;
-        d.kind = TextureDesc::Kind::kVertexColor;
-        d.alpha_channel = alpha;
-        return d;
-    }
-
-    MaterialDesc material(int index) {
-        const tinygltf::Material& m = model.materials[index];
-        const std::string at = fmt::format("/materials/{}", index);
-        MaterialDesc d;
-        d.kind = MaterialDesc::Kind::kPbr;
-        const auto& pbr = m.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() != 4)
-            fail_at(at + "/pbrMetallicRoughness/baseColorFactor", "baseColorFactor must be 4 numbers");
-        const Color base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
-        d.color = pbr.baseColorTexture.index >= 0
-                      ? scaled(texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                       pbr.baseColorTexture.extensions, true, "baseColorTexture",
-                                       at + "/pbrMetallicRoughness/baseColorTexture"),
-                               base)
-                      : constant(base);
-        if (vertex_colored[static_cast<std::size_t>(index)]) d.color = product(std::move(d.color), vertex_color(false));
-        d.metallic = float(pbr.metallicFactor);
-        d.roughness = float(pbr.roughnessFactor);
-        if (pbr.metallicRoughnessTexture.index >= 0)
-            d.metallic_roughness = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                           pbr.metallicRoughnessTexture.extensions, false, "metallicRoughnessTexture",
-                                           at + "/pbrMetallicRoughness/metallicRoughnessTexture");
-        if (m.normalTexture.index >= 0) {
-            d.normal_map = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
-                                   false, "normalTexture", at + "/normalTexture");
-            d.normal_scale = float(m.normalTexture.scale);
-        }
-        if (m.occlusionTexture.index >= 0)
-            (void)texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions,
-                          false, "occlusionTexture", at + "/occlusionTexture");  // checked, not applied (see the top)
-        if (m.emissiveFactor.size() != 3) fail_at(at + "/emissiveFactor", "emissiveFactor must be 3 numbers");
-        Color emissive{float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2])};
-        const auto& ext = m.extensions;
-        if (const auto it = ext.find("KHR_materials_emissive_strength"); it != ext.end())
-            emissive = emissive * float(number(it->second, "emissiveStrength", 1));
-        if (const auto it = ext.find("KHR_materials_transmission"); it != ext.end())
-            d.transmission = float(number(it->second, "transmissionFactor", 0));
-        if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
-        if (const auto it = ext.find("KHR_materials_volume"); it != ext.end()) volume(it->second, at, d);
-        if (const auto it = ext.find("KHR_materials_clearcoat"); it != ext.end()) clearcoat(it->second, at, d);
-        if (const auto it = ext.find("KHR_materials_sheen"); it != ext.end()) sheen(it->second, at, d);
-        if (const auto it = ext.find("KHR_materials_specular"); it != ext.end()) specular(it->second, at, d);
-        if (emissive.max_component() > 0) {
-            d.emission = Emission{emissive, m.doubleSided, std::nullopt};
-            if (m.emissiveTexture.index >= 0)
-                d.emission_map = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord,
-                                         m.emissiveTexture.extensions, true, "emissiveTexture", at + "/emissiveTexture");
-        }
-        return d;
-    }
-
-    /// alphaMode MASK (cut at alphaCutoff) or BLEND (stochastic): the base colour's alpha, factor
-    /// x texture x vertex colour, as a cut-out; none when OPAQUE or nothing is ever translucent.
-    std::optional<AlphaDesc> alpha(int index) {
-        const tinygltf::Material& m = model.materials[index];
-        const std::string at = fmt::format("/materials/{}", index);
-        if (m.alphaMode.empty() || m.alphaMode == "OPAQUE") return std::nullopt;
-        if (m.alphaMode != "MASK" && m.alphaMode != "BLEND")
-            fail_at(at + "/alphaMode", fmt::format("alphaMode '{}': must be OPAQUE, MASK or BLEND", m.alphaMode));
-        AlphaDesc a;
-        a.stochastic = m.alphaMode == "BLEND";
-        a.cutoff = float(m.alphaCutoff);
-        if (!a.stochastic && !(a.cutoff >= 0 && std::isfinite(a.cutoff)))
-            fail_at(at + "/alphaCutoff", fmt::format("alphaCutoff {}: must be a number >= 0", m.alphaCutoff));
-        const auto& pbr = m.pbrMetallicRoughness;
-        const float factor = float(pbr.baseColorFactor[3]);
-        std::optional<TextureDesc> t;
-        if (pbr.baseColorTexture.index >= 0) {
-            TextureDesc tex = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                      pbr.baseColorTexture.extensions, true, "baseColorTexture",
-                                      at + "/pbrMetallicRoughness/baseColorTexture");
-            if (!tex.pixels->alpha.empty()) {  // an opaque image leaves the factor alone
-                tex.alpha_channel = true;
-                t = std::move(tex);
-            }
-        }
-        if (vertex_colored[static_cast<std::size_t>(index)])
-            t = t ? product(std::move(*t), vertex_color(true)) : vertex_color(true);
-        if (!t) {  // a constant alpha: decided once, here
-            const bool opaque = a.stochastic ? factor >= 1 : factor >= a.cutoff;
-            if (opaque) return std::nullopt;
-            if (!a.stochastic) {
-                out.notes.push_back(fmt::format("{}: material '{}' is cut away whole (alpha {} < alphaCutoff {})",
-                                                file, m.name, factor, a.cutoff));
-            }
-            a.texture = constant(Color{factor});
-        } else {
-            a.texture = factor == 1 ? std::move(*t) : scaled(std::move(*t), Color{factor});
-        }
-        return a;
-    }
-
-    // --- KHR_materials_clearcoat, _sheen, _specular ---
-
-    /// A factor in [0, 1] named `key` of extension object `v`.
-    float factor(const tinygltf::Value& v, const char* key, float fallback, const std::string& at) const {
-        if (!v.Has(key)) return fallback;
-        const tinygltf::Value& x = v.Get(key);
-        const double f = x.IsNumber() ? x.GetNumberAsDouble() : std::numeric_limits<double>::quiet_NaN();
-        if (!(f >= 0 && f <= 1)) fail_at(at + "/" + key, fmt::format("{} must be a number in [0, 1]", key));
-        return float(f);
-    }
-    Color color_factor(const tinygltf::Value& v, const char* key, Color fallback, const std::string& at,
-                       bool unbounded) const {
-        if (!v.Has(key)) return fallback;
-        const tinygltf::Value& x = v.Get(key);
-        if (!x.IsArray() || x.ArrayLen() != 3) fail_at(at + "/" + key, fmt::format("{} must be 3 numbers", key));
-        float c[3];
-        for (int k = 0; k < 3; ++k) {
-            const double f = x.Get(k).IsNumber() ? x.Get(k).GetNumberAsDouble() : -1;
-            if (!(f >= 0 && (unbounded ? std::isfinite(f) : f <= 1)))
-                fail_at(at + "/" + key, fmt::format("{} must be numbers in [0, {}", key, unbounded ? "inf)" : "1]"));
-            c[k] = float(f);
-        }
-        return Color{c[0], c[1], c[2]};
-    }
-    /// The texture `key` of extension object `v` (a textureInfo), times `factor`; the factor
-    /// alone without one. `alpha`: the texture's alpha channel is read (as grey).
-    TextureDesc factor_texture(const tinygltf::Value& v, const char* key, Color factor, bool srgb, bool alpha,
-                               const std::string& at) {
-        if (!v.Has(key)) return constant(factor);
-        const tinygltf::Value& info = v.Get(key);
-        const std::string where = at + "/" + key;
-        if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsNumber())
-            fail_at(where, fmt::format("{} must be an object with an index", key));
-        tinygltf::ExtensionMap ext;
-        if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
-            ext["KHR_texture_transform"] = info.Get("extensions").Get("KHR_texture_transform");
-        const int tex_coord = info.Has("texCoord") ? whole(info.Get("texCoord")) : 0;
-        TextureDesc t = texture(whole(info.Get("index")), tex_coord, ext, srgb, key, where);
-        t.alpha_channel = alpha;
-        return scaled(std::move(t), factor);
-    }
-
-    // Clear coat: weight = clearcoatFactor x clearcoatTexture.r, roughness =
-    // clearcoatRoughnessFactor x clearcoatRoughnessTexture.g. The coat's own normal map is not
-    // applied (it shares the base's shading normal): noted.
-    void clearcoat(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
-        const std::string e = at + "/extensions/KHR_materials_clearcoat";
-        const float w = factor(v, "clearcoatFactor", 0, e);
-        if (w == 0) return;
-        d.clearcoat = factor_texture(v, "clearcoatTexture", Color{w}, false, false, e);
-        d.clearcoat_roughness =
-            factor_texture(v, "clearcoatRoughnessTexture", Color{factor(v, "clearcoatRoughnessFactor", 0, e)}, false, false, e);
-        if (v.Has("clearcoatNormalTexture"))
-            out.notes.push_back(fmt::format("{}: {}: clearcoatNormalTexture is not applied (the coat uses the base's normal)",
-                                            file, e));
-    }
-
-    // Sheen: colour = sheenColorFactor x sheenColorTexture (sRGB), roughness =
-    // sheenRoughnessFactor x sheenRoughnessTexture.a.
-    void sheen(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
-        const std::string e = at + "/extensions/KHR_materials_sheen";
-        const Color c = color_factor(v, "sheenColorFactor", Color{0}, e, false);
-        if (c.max_component() == 0) return;
-        d.sheen = factor_texture(v, "sheenColorTexture", c, true, false, e);
-        d.sheen_roughness =
-            factor_texture(v, "sheenRoughnessTexture", Color{factor(v, "sheenRoughnessFactor", 0, e)}, false, true, e);
-    }
-
-    // Specular: weight = specularFactor x specularTexture.a, colour = specularColorFactor x
-    // specularColorTexture (sRGB); both shape the dielectric's reflection (PlasticLobe).
-    void specular(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
-        const std::string e = at + "/extensions/KHR_materials_specular";
-        d.specular = factor_texture(v, "specularTexture", Color{factor(v, "specularFactor", 1, e)}, false, true, e);
-        d.specular_color =
-            factor_texture(v, "specularColorTexture", color_factor(v, "specularColorFactor", Color{1}, e, true), true, false, e);
-    }
-
-    // KHR_materials_volume: a thick (thicknessFactor > 0) transmissive material whose inside
-    // absorbs, attenuationColor being what is left after attenuationDistance (world units):
-    // sigma_a = -ln(colour) / distance, an interior medium of every surface of the material.
-    // A thickness of 0 is thin-walled (no medium); thicknessTexture only shapes the thin-walled
-    // approximation of rasterisers, so a path tracer, which has the real geometry, skips it.
-    void volume(const tinygltf::Value& v, const std::string& at, MaterialDesc& d) {
-        const std::string ext = at + "/extensions/KHR_materials_volume";
-        const double thickness = number(v, "thicknessFactor", 0);
-        if (!(thickness >= 0)) fail_at(ext + "/thicknessFactor", "KHR_materials_volume: thicknessFactor must be >= 0");
-        const double distance = v.Has("attenuationDistance") ? number(v, "attenuationDistance", 0)
-                                                              : std::numeric_limits<double>::infinity();
-        if (!(distance > 0))
-            fail_at(ext + "/attenuationDistance", "KHR_materials_volume: attenuationDistance must be positive");
-        double c[3] = {1, 1, 1};
-        if (v.Has("attenuationColor")) {
-            const tinygltf::Value& a = v.Get("attenuationColor");
-            if (!a.IsArray() || a.ArrayLen() != 3)
-                fail_at(ext + "/attenuationColor", "KHR_materials_volume: attenuationColor must be 3 numbers");
-            for (int k = 0; k < 3; ++k) {
-                c[k] = a.Get(k).GetNumberAsDouble();
-                if (!(c[k] >= 0 && c[k] <= 1))
-                    fail_at(ext + "/attenuationColor", "KHR_materials_volume: attenuationColor must lie in [0, 1]");
-            }
-        }
-        if (thickness == 0 || std::isinf(distance) || (c[0] == 1 && c[1] == 1 && c[2] == 1)) return;
-        MediumDesc m;
-        const auto sigma = [&](double x) { return float(-std::log(std::max(x, 1e-6)) / distance); };
-        m.sigma_a = Color{sigma(c[0]), sigma(c[1]), sigma(c[2])};
-        d.interior = m;
-    }
-
-    // --- meshes ---
-
-    /// A primitive compressed by KHR_draco_mesh_compression, decoded: its attributes by name
-    /// (the extension's map from glTF names to Draco's attribute ids) and its triangles.
-    struct DracoPrimitive {
-        DracoMesh mesh;
-        std::map<std::string, int> ids;
-    };
-    DracoPrimitive decode_draco(const tinygltf::Value& ext, const std::string& at, const std::string& what) const {
-        if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber())
-            fail_at(at, what + ": KHR_draco_mesh_compression needs a bufferView");
-        const int view = whole(ext.Get("bufferView"));
-        if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
-            fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
-        const tinygltf::BufferView& bv = model.bufferViews[view];
+/// `count` elements of `n` components of type `ct` from buffer view `view`, starting `offset`
+/// bytes into it, into `dst`; `strided`: the view's byteStride applies (vertex attributes),
+/// else the elements are packed (sparse indices and values). Every range is checked, in 128-bit
+/// arithmetic so that no offset or stride read from the file can wrap around. `at` is the
+/// JSON pointer of the object naming the view, for errors.
+void Importer::fetch(int view, std::size_t offset, std::size_t count, int n, int ct, bool normalized, bool strided,
+           double* dst, const std::string& what, const std::string& at) const {
+    if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
+        fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
+    const tinygltf::BufferView& bv = model.bufferViews[view];
+    __extension__ typedef unsigned __int128 Wide;
+    const unsigned char* bytes = nullptr;  // the view's first byte
+    std::size_t length = 0;
+    if (const auto it = bv.extensions.find("EXT_meshopt_compression"); it != bv.extensions.end()) {
+        const std::vector<unsigned char>& decoded = meshopt_view(view, it->second, what);
+        bytes = decoded.data();
+        length = decoded.size();
+    } else {
         if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
             fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
         const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
-        if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+        if (Wide{bv.byteOffset} + bv.byteLength > data.size())
             fail_at(fmt::format("/bufferViews/{}/byteLength", view),
                     fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
-        DracoPrimitive d;
-        try {
-            d.mesh = decode_draco_mesh(data.data() + bv.byteOffset, bv.byteLength, kMaxAccessorValues);
-        } catch (const std::exception& e) {
-            fail_at(at, fmt::format("{}: the Draco data cannot be decoded: {}", what, e.what()));
-        }
-        if (ext.Has("attributes") && ext.Get("attributes").IsObject()) {
-            const tinygltf::Value& a = ext.Get("attributes");
-            for (const std::string& key : a.Keys())
-                if (a.Get(key).IsNumber()) d.ids[key] = whole(a.Get(key));
-        }
-        return d;
+        bytes = data.data() + bv.byteOffset;
+        length = bv.byteLength;
     }
-    /// Attribute `name` of a Draco primitive as doubles, `n` components per point; nothing if the
-    /// primitive's extension does not list it.
-    std::optional<std::vector<double>> draco_attribute(const DracoPrimitive& d, const std::string& name, int n,
-                                                       const std::string& at, const std::string& what) const {
-        const auto it = d.ids.find(name);
-        if (it == d.ids.end()) return std::nullopt;
-        const auto a = std::find_if(d.mesh.attributes.begin(), d.mesh.attributes.end(),
-                                    [&](const DracoAttribute& x) { return x.unique_id == it->second; });
-        if (a == d.mesh.attributes.end())
-            fail_at(at + "/attributes/" + name, fmt::format("{}: {} names Draco attribute {}, which the data lacks", what, name, it->second));
-        if (a->components != n)
-            fail_at(at + "/attributes/" + name, fmt::format("{}: Draco attribute {} has {} components; {} needs {}", what,
-                                                            it->second, a->components, name, n));
-        return std::vector<double>(a->values.begin(), a->values.end());
+    const int size = component_size(ct);
+    const std::size_t elem = static_cast<std::size_t>(n * size);
+    const std::size_t stride = strided && bv.byteStride ? bv.byteStride : elem;
+    if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > length)
+        fail_at(at + "/count", fmt::format("{} reaches past the end of its buffer", what));
+    const unsigned char* base = bytes + offset;
+    for (std::size_t i = 0; i < count; ++i) {
+        const unsigned char* p = base + i * stride;
+        for (int c = 0; c < n; ++c) {
+            const unsigned char* q = p + c * size;
+            double x = 0;
+            switch (ct) {
+                case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t t; std::memcpy(&t, q, 1); x = normalized ? std::max(t / 127.0, -1.0) : t; break; }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { x = normalized ? *q / 255.0 : *q; break; }
+                case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t t; std::memcpy(&t, q, 2); x = normalized ? std::max(t / 32767.0, -1.0) : t; break; }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t t; std::memcpy(&t, q, 2); x = normalized ? t / 65535.0 : t; break; }
+                case TINYGLTF_COMPONENT_TYPE_INT: { std::int32_t t; std::memcpy(&t, q, 4); x = t; break; }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t t; std::memcpy(&t, q, 4); x = t; break; }
+                case TINYGLTF_COMPONENT_TYPE_FLOAT: { float t; std::memcpy(&t, q, 4); x = t; break; }
+                default: { double t; std::memcpy(&t, q, 8); x = t; break; }
+            }
+            dst[i * n + c] = x;
+        }
     }
+}
 
-    void mesh(int index) {
-        const tinygltf::Mesh& gm = model.meshes[index];
-        mesh_first[index] = static_cast<std::uint32_t>(out.meshes.size());
-        std::uint32_t count = 0;
-        for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
-            const tinygltf::Primitive& prim = gm.primitives[p];
-            const std::string what = fmt::format("mesh '{}' primitive {}", gm.name, p);
-            const std::string at = fmt::format("/meshes/{}/primitives/{}", index, p);
-            const auto attribute = [&](const std::string& name) { return at + "/attributes/" + name; };
-            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-                prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
-                out.notes.push_back(fmt::format("{}: {}: points and lines are skipped", file, what));
-                continue;
-            }
-            std::optional<DracoPrimitive> draco;
-            if (const auto it = prim.extensions.find("KHR_draco_mesh_compression"); it != prim.extensions.end())
-                draco = decode_draco(it->second, at + "/extensions/KHR_draco_mesh_compression", what);
-            // An attribute from the Draco data when the primitive is compressed and lists it, else
-            // from its accessor.
-            const auto values = [&](const std::string& name, int accessor, int n) {
-                if (draco)
-                    if (auto v = draco_attribute(*draco, name, n, at + "/extensions/KHR_draco_mesh_compression", what))
-                        return std::move(*v);
-                return read(accessor, n, what, attribute(name));
-            };
-            const auto pos_it = prim.attributes.find("POSITION");
-            if (pos_it == prim.attributes.end()) fail_at(at, what + ": no POSITION attribute");
-            TriangleMesh m;
-            m.name = gm.name;
-            const std::vector<double> pos = values("POSITION", pos_it->second, 3);
-            const std::size_t nv = pos.size() / 3;
-            for (std::size_t i = 0; i < nv; ++i)
-                m.positions.push_back({float(pos[3 * i]), float(pos[3 * i + 1]), float(-pos[3 * i + 2])});
-            if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-                const auto n = values("NORMAL", it->second, 3);
-                if (n.size() == pos.size())
-                    for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
-            }
-            for (int set = 0; set < kMaxUvSets; ++set) {
-                const std::string name = fmt::format("TEXCOORD_{}", set);
-                const auto it = prim.attributes.find(name);
-                if (it == prim.attributes.end()) continue;
-                const auto t = values(name, it->second, 2);
-                if (t.size() != 2 * nv) continue;
-                std::vector<Point2>* dst = &m.uvs;
-                if (set > 0) {  // sets come in increasing order; missing ones stay empty
-                    m.more_uvs.resize(static_cast<std::size_t>(set));
-                    dst = &m.more_uvs.back();
-                }
-                for (std::size_t i = 0; i < nv; ++i) dst->push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
-            }
-            if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
-                const auto t = values("TANGENT", it->second, 4);
-                // z negated like positions; the mirror also flips the bitangent's handedness,
-                // and so does the v flip: the two cancel, w stays.
-                if (t.size() == 4 * nv)
-                    for (std::size_t i = 0; i < nv; ++i)
-                        m.tangents.push_back({float(t[4 * i]), float(t[4 * i + 1]), float(-t[4 * i + 2]), float(t[4 * i + 3])});
-            }
-            if (const auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
-                // RGB or RGBA; read() reports a missing accessor.
-                const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
-                const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
-                const auto c = values("COLOR_0", it->second, n);
-                for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i) {
-                    m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
-                    if (n == 4) m.alphas.push_back(float(c[n * i + 3]));
-                }
-                if (std::all_of(m.alphas.begin(), m.alphas.end(), [](Float a) { return a >= 1; })) m.alphas.clear();
-            }
-            std::vector<std::uint32_t> idx;
-            if (draco) {  // Draco's faces are triangles of point indices
-                for (std::size_t k = 0; k < draco->mesh.indices.size(); ++k) {
-                    const std::uint32_t v = draco->mesh.indices[k];
-                    if (v >= nv) fail_at(at + "/extensions/KHR_draco_mesh_compression",
-                                         fmt::format("{}: Draco face {} uses point {} of {}", what, k / 3, v, nv));
-                    idx.push_back(v);
-                }
-            } else if (prim.indices >= 0) {
-                for (double x : read(prim.indices, 1, what, at + "/indices")) {
-                    if (!(x >= 0 && x < double(nv)))
-                        fail_at(fmt::format("/accessors/{}", prim.indices),
-                                fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
-                    idx.push_back(static_cast<std::uint32_t>(x));
-                }
-            } else {
-                for (std::uint32_t i = 0; i < nv; ++i) idx.push_back(i);
-            }
-            const int mode = draco ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // Draco decodes to triangles
-            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-                for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
-                    if (i % 2 == 0) m.indices.insert(m.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
-                    else m.indices.insert(m.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
-                }
-            } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-                for (std::size_t i = 1; i + 1 < idx.size(); ++i) m.indices.insert(m.indices.end(), {idx[0], idx[i], idx[i + 1]});
-            } else {
-                if (idx.size() % 3 != 0)
-                    fail_at(prim.indices >= 0 ? at + "/indices" : attribute("POSITION"),
-                            fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
-                m.indices = std::move(idx);
-            }
-            m.material = prim.material >= 0 && prim.material < static_cast<int>(out.materials.size())
-                             ? static_cast<MaterialId>(prim.material)
-                             : kNoImportedMaterial;
-            try {
-                out.dropped_triangles += validate_and_drop_degenerate(m);
-            } catch (const std::invalid_argument& e) {
-                fail_at(attribute("POSITION"), what + ": " + e.what());
-            }
-            out.meshes.push_back(std::move(m));
-            ++count;
-        }
-        mesh_count[index] = count;
-    }
-
-    // --- animation ---
-    /// A node's translation, rotation (quaternion x, y, z, w) and scale set by an animation.
-    struct Pose {
-        std::optional<std::array<double, 3>> t, s;
-        std::optional<std::array<double, 4>> r;
+/// Buffer view `view` compressed by EXT_meshopt_compression (`ext`), decoded once: vertex
+/// streams (mode ATTRIBUTES, with the OCTAHEDRAL, QUATERNION or EXPONENTIAL filter undone),
+/// index buffers (TRIANGLES) and index sequences (INDICES), by meshoptimizer's decoders.
+const std::vector<unsigned char>& Importer::meshopt_view(int view, const tinygltf::Value& ext, const std::string& what) const {
+    if (const auto it = meshopt_views.find(view); it != meshopt_views.end()) return it->second;
+    const std::string at = fmt::format("/bufferViews/{}/extensions/EXT_meshopt_compression", view);
+    const auto integer = [&](const char* key, double fallback) {
+        const double x = number(ext, key, fallback);
+        if (!(x >= 0 && x <= 9e15) || x != std::floor(x))
+            fail_at(at + "/" + key, fmt::format("{}: EXT_meshopt_compression: {} must be a whole number >= 0", what, key));
+        return static_cast<std::size_t>(x);
     };
-    std::map<int, Pose> posed;  // node -> what the animation sets at the time rendered
-
-    /// The file's first animation at `time` seconds (held before its first key and after its
-    /// last): the translation, rotation and scale channels, sampled LINEAR (rotations by slerp),
-    /// STEP or CUBICSPLINE as the spec defines. Morph target weights are left out with a note.
-    void animate(double time) {
-        if (model.animations.empty()) return;
-        if (model.animations.size() > 1)
-            out.notes.push_back(fmt::format("{}: has {} animations; glint plays the first ('{}')", file,
-                                            model.animations.size(), model.animations[0].name));
-        const tinygltf::Animation& a = model.animations[0];
-        bool weights = false;
-        for (std::size_t c = 0; c < a.channels.size(); ++c) {
-            const tinygltf::AnimationChannel& ch = a.channels[c];
-            const std::string at = fmt::format("/animations/0/channels/{}", c);
-            const std::string& path = ch.target_path;
-            if (path == "weights") {
-                weights = true;
-                continue;
-            }
-            const int n = path == "translation" || path == "scale" ? 3 : path == "rotation" ? 4 : 0;
-            if (n == 0) fail_at(at + "/target/path", fmt::format("animation target path '{}' (translation, rotation, scale or weights)", path));
-            if (ch.target_node < 0 || ch.target_node >= static_cast<int>(model.nodes.size()))
-                fail_at(at + "/target/node", fmt::format("animation channel {}: node {} does not exist", c, ch.target_node));
-            if (ch.sampler < 0 || ch.sampler >= static_cast<int>(a.samplers.size()))
-                fail_at(at + "/sampler", fmt::format("animation channel {}: sampler {} does not exist", c, ch.sampler));
-            const tinygltf::AnimationSampler& sm = a.samplers[static_cast<std::size_t>(ch.sampler)];
-            const std::string sat = fmt::format("/animations/0/samplers/{}", ch.sampler);
-            const std::string what = fmt::format("animation sampler {}", ch.sampler);
-            const std::vector<double> t = read(sm.input, 1, what + " input", sat + "/input");
-            const std::vector<double> v = read(sm.output, n, what + " output", sat + "/output");
-            const bool cubic = sm.interpolation == "CUBICSPLINE";
-            if (!cubic && sm.interpolation != "LINEAR" && sm.interpolation != "STEP")
-                fail_at(sat + "/interpolation", fmt::format("{}: interpolation '{}' (LINEAR, STEP or CUBICSPLINE)", what, sm.interpolation));
-            if (t.empty()) fail_at(sat + "/input", what + ": no keyframe times");
-            for (std::size_t k = 0; k < t.size(); ++k)
-                if (!std::isfinite(t[k]) || (k > 0 && !(t[k] > t[k - 1])))
-                    fail_at(sat + "/input", fmt::format("{}: keyframe times must be finite and increase (time {} is {})", what, k, t[k]));
-            if (v.size() != t.size() * static_cast<std::size_t>(n) * (cubic ? 3 : 1))
-                fail_at(sat + "/output", fmt::format("{}: {} values for {} keyframes{}", what, v.size() / static_cast<std::size_t>(n),
-                                                     t.size(), cubic ? " (CUBICSPLINE needs three per keyframe)" : ""));
-            for (double x : v)
-                if (!std::isfinite(x)) fail_at(sat + "/output", what + ": a value is not a finite number");
-            const std::vector<double> x = sample(t, v, n, time, cubic ? 2 : sm.interpolation == "STEP" ? 1 : 0, n == 4);
-            Pose& pose = posed[ch.target_node];
-            if (n == 4) pose.r = std::array<double, 4>{x[0], x[1], x[2], x[3]};
-            else if (path == "translation") pose.t = std::array<double, 3>{x[0], x[1], x[2]};
-            else pose.s = std::array<double, 3>{x[0], x[1], x[2]};
+    const std::size_t buffer = integer("buffer", -1), offset = integer("byteOffset", 0),
+                      length = integer("byteLength", -1), stride = integer("byteStride", -1),
+                      count = integer("count", -1);
+    const std::string mode = ext.Has("mode") && ext.Get("mode").IsString() ? ext.Get("mode").Get<std::string>() : "";
+    const std::string filter =
+        ext.Has("filter") && ext.Get("filter").IsString() ? ext.Get("filter").Get<std::string>() : "NONE";
+    if (buffer >= model.buffers.size())
+        fail_at(at + "/buffer", fmt::format("{}: EXT_meshopt_compression: buffer {} does not exist", what, buffer));
+    const std::vector<unsigned char>& data = model.buffers[buffer].data;
+    if (offset > data.size() || length > data.size() - offset)
+        fail_at(at + "/byteLength", fmt::format("{}: EXT_meshopt_compression: bytes {} to {} are past the end of buffer {} ({} bytes)",
+                                                what, offset, offset + length, buffer, data.size()));
+    if (stride == 0 || stride > 256 || count > kMaxAccessorValues / stride)
+        fail_at(at + "/count", fmt::format("{}: EXT_meshopt_compression: {} elements of {} bytes is out of range", what,
+                                           count, stride));
+    std::vector<unsigned char> decoded(count * stride);
+    const unsigned char* src = data.data() + offset;
+    int status = -1;
+    if (mode == "ATTRIBUTES") {
+        if (stride % 4 == 0) status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, src, length);
+        if (status == 0 && filter != "NONE") {
+            if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(decoded.data(), count, stride);
+            else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(decoded.data(), count, stride);
+            else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
+            else
+                fail_at(at + "/filter", fmt::format("{}: EXT_meshopt_compression: filter '{}' with {}-byte elements", what,
+                                                    filter, stride));
         }
-        if (weights) out.notes.push_back(fmt::format("{}: animates morph target weights, which glint leaves out", file));
+    } else if (mode == "TRIANGLES" || mode == "INDICES") {
+        if (stride == 2 || stride == 4)
+            status = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, src, length)
+                                         : meshopt_decodeIndexSequence(decoded.data(), count, stride, src, length);
+    } else {
+        fail_at(at + "/mode", fmt::format("{}: EXT_meshopt_compression: mode '{}' (ATTRIBUTES, TRIANGLES or INDICES)", what, mode));
     }
+    if (status != 0)
+        fail_at(at, fmt::format("{}: EXT_meshopt_compression: the {} data of buffer view {} cannot be decoded", what,
+                                mode, view));
+    return meshopt_views.emplace(view, std::move(decoded)).first->second;
+}
 
-    /// One channel's value at `time`: keys `t`, values `v` of `n` numbers (for CUBICSPLINE,
-    /// in-tangent, value, out-tangent per key); curve 0 LINEAR, 1 STEP, 2 CUBICSPLINE. Rotations
-    /// (`quaternion`) interpolate by slerp along the shorter arc, and come out unit length.
-    static std::vector<double> sample(const std::vector<double>& t, const std::vector<double>& v, int n, double time,
-                                      int curve, bool quaternion) {
-        const std::size_t keys = t.size(), stride = static_cast<std::size_t>(n) * (curve == 2 ? 3 : 1);
-        const std::size_t value = curve == 2 ? static_cast<std::size_t>(n) : 0;  // offset of the value in a key
-        const auto key = [&](std::size_t k) { return std::vector<double>(v.begin() + k * stride + value,
-                                                                         v.begin() + k * stride + value + n); };
-        std::vector<double> x;
-        if (time <= t[0]) x = key(0);
-        else if (time >= t[keys - 1]) x = key(keys - 1);
-        else {
-            std::size_t i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), time) - t.begin()) - 1;
-            const double dt = t[i + 1] - t[i], u = (time - t[i]) / dt;
-            const std::vector<double> a = key(i), b = key(i + 1);
-            x.resize(static_cast<std::size_t>(n));
-            if (curve == 1) {
-                x = a;
-            } else if (curve == 2) {  // Hermite: a's out-tangent, b's in-tangent, scaled by the interval
-                const double u2 = u * u, u3 = u2 * u;
-                for (int c = 0; c < n; ++c) {
-                    const double out_a = v[i * stride + 2 * static_cast<std::size_t>(n) + static_cast<std::size_t>(c)];
-                    const double in_b = v[(i + 1) * stride + static_cast<std::size_t>(c)];
-                    x[static_cast<std::size_t>(c)] = (2 * u3 - 3 * u2 + 1) * a[static_cast<std::size_t>(c)] + (u3 - 2 * u2 + u) * dt * out_a +
-                                                     (-2 * u3 + 3 * u2) * b[static_cast<std::size_t>(c)] + (u3 - u2) * dt * in_b;
-                }
-            } else if (quaternion) {
-                double d = 0;
-                for (int c = 0; c < 4; ++c) d += a[static_cast<std::size_t>(c)] * b[static_cast<std::size_t>(c)];
-                const double sign = d < 0 ? -1 : 1;
-                d = std::min(1.0, std::abs(d));
-                const double theta = std::acos(d);
-                double wa = 1 - u, wb = u;
-                if (theta > 1e-6) wa = std::sin((1 - u) * theta) / std::sin(theta), wb = std::sin(u * theta) / std::sin(theta);
-                for (int c = 0; c < 4; ++c)
-                    x[static_cast<std::size_t>(c)] = wa * a[static_cast<std::size_t>(c)] + sign * wb * b[static_cast<std::size_t>(c)];
-            } else {
-                for (int c = 0; c < n; ++c)
-                    x[static_cast<std::size_t>(c)] = a[static_cast<std::size_t>(c)] + u * (b[static_cast<std::size_t>(c)] - a[static_cast<std::size_t>(c)]);
-            }
+/// Accessor `index` as doubles, `n` components per element (normalised integers mapped to
+/// [0, 1] or [-1, 1] when the accessor says so), sparse substitutions applied. `ref` is the
+/// JSON pointer of the reference to the accessor, for errors.
+std::vector<double> Importer::read(int index, int n, const std::string& what, const std::string& ref) const {
+    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+        fail_at(ref, fmt::format("{}: accessor {} does not exist", what, index));
+    const tinygltf::Accessor& a = model.accessors[index];
+    const std::string at = fmt::format("/accessors/{}", index);
+    const int comps = components(a.type), size = component_size(a.componentType);
+    if (comps != n || size == 0)
+        fail_at(at + (comps != n ? "/type" : "/componentType"),
+                fmt::format("{}: accessor {} has the wrong type", what, index));
+    // Checked before anything is allocated: without a buffer view the values are zeros (the
+    // spec) and nothing else bounds the count.
+    if (a.count > kMaxAccessorValues / static_cast<std::size_t>(n))
+        fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
+                                           a.count, kMaxAccessorValues));
+    const std::string name = fmt::format("{}: accessor {}", what, index);
+    std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
+    if (a.bufferView >= 0)
+        fetch(a.bufferView, a.byteOffset, a.count, n, a.componentType, a.normalized, true, v.data(), name, at);
+    if (a.sparse.isSparse) {  // sparse.count (index, value) pairs replace elements
+        const auto& sp = a.sparse;
+        const std::string sat = at + "/sparse";
+        if (sp.count < 0 || static_cast<std::size_t>(sp.count) > a.count)
+            fail_at(sat + "/count", fmt::format("{}: {} sparse elements in an accessor of {}", name, sp.count, a.count));
+        const int ict = sp.indices.componentType;
+        if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail_at(sat + "/indices/componentType", fmt::format("{}: sparse indices must be unsigned integers", name));
+        std::vector<double> idx(static_cast<std::size_t>(sp.count)), val(idx.size() * n);
+        fetch(sp.indices.bufferView, static_cast<std::size_t>(std::max(sp.indices.byteOffset, 0)), idx.size(), 1, ict,
+              false, false, idx.data(), name + "'s sparse indices", sat + "/indices");
+        fetch(sp.values.bufferView, static_cast<std::size_t>(std::max(sp.values.byteOffset, 0)), idx.size(), n,
+              a.componentType, a.normalized, false, val.data(), name + "'s sparse values", sat + "/values");
+        for (std::size_t k = 0; k < idx.size(); ++k) {
+            if (idx[k] >= double(a.count))
+                fail_at(sat + "/indices", fmt::format("{}: sparse index {} is past its {} elements", name, idx[k], a.count));
+            std::copy_n(val.data() + k * n, n, v.data() + static_cast<std::size_t>(idx[k]) * n);
         }
-        if (quaternion) {
-            const double len = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3]);
-            if (len > 0) for (double& c : x) c /= len;
-            else x = {0, 0, 0, 1};
-        }
-        return x;
     }
+    return v;
+}
 
-    Matrix34 node_matrix(int index) const {
-        const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(index)];
-        const auto pose = posed.find(index);
-        Matrix34 m;
-        if (n.matrix.size() == 16 && pose == posed.end()) {  // column-major
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 4; ++c) m.m[r][c] = float(n.matrix[c * 4 + r]);
-            return m;
-        }
-        double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
-        if (n.translation.size() == 3) for (int k = 0; k < 3; ++k) t[k] = n.translation[k];
-        if (n.rotation.size() == 4) for (int k = 0; k < 4; ++k) q[k] = n.rotation[k];
-        if (n.scale.size() == 3) for (int k = 0; k < 3; ++k) s[k] = n.scale[k];
-        if (pose != posed.end()) {
-            if (pose->second.t) std::copy_n(pose->second.t->data(), 3, t);
-            if (pose->second.r) std::copy_n(pose->second.r->data(), 4, q);
-            if (pose->second.s) std::copy_n(pose->second.s->data(), 3, s);
-        }
-        const double x = q[0], y = q[1], z = q[2], w = q[3];
-        const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                                {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                                {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-        for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) m.m[i][j] = float(r[i][j] * s[j]);
-            m.m[i][3] = float(t[i]);
-        }
-        return m;
+Importer::DracoPrimitive Importer::decode_draco(const tinygltf::Value& ext, const std::string& at, const std::string& what) const {
+    if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber())
+        fail_at(at, what + ": KHR_draco_mesh_compression needs a bufferView");
+    const int view = whole(ext.Get("bufferView"));
+    if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
+        fail_at(at + "/bufferView", fmt::format("{}: buffer view {} does not exist", what, view));
+    const tinygltf::BufferView& bv = model.bufferViews[view];
+    if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
+        fail_at(fmt::format("/bufferViews/{}/buffer", view), fmt::format("{}: buffer {} does not exist", what, bv.buffer));
+    const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+        fail_at(fmt::format("/bufferViews/{}/byteLength", view),
+                fmt::format("{}: buffer view {} reaches past the end of buffer {}", what, view, bv.buffer));
+    DracoPrimitive d;
+    try {
+        d.mesh = decode_draco_mesh(data.data() + bv.byteOffset, bv.byteLength, kMaxAccessorValues);
+    } catch (const std::exception& e) {
+        fail_at(at, fmt::format("{}: the Draco data cannot be decoded: {}", what, e.what()));
     }
-
-    std::optional<GltfCamera> camera;
-    std::string camera_name;
-    /// Per material: whether some primitive drawn with it has COLOR_0 (which multiplies its
-    /// base colour, and its alpha the base alpha).
-    std::vector<bool> vertex_colored;
-
-    /// A file that requires an extension glint lacks cannot be shown as its author meant: an
-    /// error. One that only uses such an extension renders without it, with a note naming it.
-    void check_extensions() {
-        static const std::set<std::string> supported = {
-            "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
-            "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
-            "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
-            "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
-            "KHR_texture_transform"};
-        for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i) {
-            const std::string& e = model.extensionsRequired[i];
-            if (!supported.count(e))
-                fail_at(fmt::format("/extensionsRequired/{}", i),
-                        fmt::format("the file requires the extension {}, which glint does not support", e));
-        }
-        for (const std::string& e : model.extensionsUsed)
-            if (!supported.count(e)) out.notes.push_back(fmt::format("{}: uses the extension {}, which glint ignores", file, e));
+    if (ext.Has("attributes") && ext.Get("attributes").IsObject()) {
+        const tinygltf::Value& a = ext.Get("attributes");
+        for (const std::string& key : a.Keys())
+            if (a.Get(key).IsNumber()) d.ids[key] = whole(a.Get(key));
     }
+    return d;
+}
 
-    /// The nodes must form trees (the spec): a node listed as the child of two parents, or twice,
-    /// would be visited once per path, exponentially many times in a chain of such nodes.
-    void check_trees() const {
-        std::vector<int> parent(model.nodes.size(), -1);
-        // Each entry of `list` (at JSON pointer `at`) must name a node; `check` then sees it.
-        const auto each = [&](const std::vector<int>& list, const std::string& at, auto&& check) {
-            for (std::size_t k = 0; k < list.size(); ++k) {
-                const std::string where = fmt::format("{}/{}", at, k);
-                if (list[k] < 0 || list[k] >= static_cast<int>(model.nodes.size()))
-                    fail_at(where, fmt::format("node {} does not exist", list[k]));
-                check(list[k], where);
-            }
+/// Attribute `name` of a Draco primitive as doubles, `n` components per point; nothing if the
+/// primitive's extension does not list it.
+std::optional<std::vector<double>> Importer::draco_attribute(const DracoPrimitive& d, const std::string& name, int n,
+                                                   const std::string& at, const std::string& what) const {
+    const auto it = d.ids.find(name);
+    if (it == d.ids.end()) return std::nullopt;
+    const auto a = std::find_if(d.mesh.attributes.begin(), d.mesh.attributes.end(),
+                                [&](const DracoAttribute& x) { return x.unique_id == it->second; });
+    if (a == d.mesh.attributes.end())
+        fail_at(at + "/attributes/" + name, fmt::format("{}: {} names Draco attribute {}, which the data lacks", what, name, it->second));
+    if (a->components != n)
+        fail_at(at + "/attributes/" + name, fmt::format("{}: Draco attribute {} has {} components; {} needs {}", what,
+                                                        it->second, a->components, name, n));
+    return std::vector<double>(a->values.begin(), a->values.end());
+}
+
+void Importer::mesh(int index) {
+    const tinygltf::Mesh& gm = model.meshes[index];
+    mesh_first[index] = static_cast<std::uint32_t>(out.meshes.size());
+    std::uint32_t count = 0;
+    for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+        const tinygltf::Primitive& prim = gm.primitives[p];
+        const std::string what = fmt::format("mesh '{}' primitive {}", gm.name, p);
+        const std::string at = fmt::format("/meshes/{}/primitives/{}", index, p);
+        const auto attribute = [&](const std::string& name) { return at + "/attributes/" + name; };
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
+            out.notes.push_back(fmt::format("{}: {}: points and lines are skipped", file, what));
+            continue;
+        }
+        std::optional<DracoPrimitive> draco;
+        if (const auto it = prim.extensions.find("KHR_draco_mesh_compression"); it != prim.extensions.end())
+            draco = decode_draco(it->second, at + "/extensions/KHR_draco_mesh_compression", what);
+        // An attribute from the Draco data when the primitive is compressed and lists it, else
+        // from its accessor.
+        const auto values = [&](const std::string& name, int accessor, int n) {
+            if (draco)
+                if (auto v = draco_attribute(*draco, name, n, at + "/extensions/KHR_draco_mesh_compression", what))
+                    return std::move(*v);
+            return read(accessor, n, what, attribute(name));
         };
-        for (std::size_t i = 0; i < model.nodes.size(); ++i)
-            each(model.nodes[i].children, fmt::format("/nodes/{}/children", i), [&](int c, const std::string& where) {
-                if (parent[c] >= 0)
-                    fail_at(where, fmt::format("node {} is a child of node {} and of node {}; nodes must form trees", c,
-                                               parent[c], i));
-                parent[c] = static_cast<int>(i);
-            });
-        for (std::size_t s = 0; s < model.scenes.size(); ++s)
-            each(model.scenes[s].nodes, fmt::format("/scenes/{}/nodes", s), [&](int r, const std::string& where) {
-                if (parent[r] >= 0)
-                    fail_at(where, fmt::format("node {} is a scene root and a child of node {}; nodes must form trees", r,
-                                               parent[r]));
-            });
+        const auto pos_it = prim.attributes.find("POSITION");
+        if (pos_it == prim.attributes.end()) fail_at(at, what + ": no POSITION attribute");
+        TriangleMesh m;
+        m.name = gm.name;
+        const std::vector<double> pos = values("POSITION", pos_it->second, 3);
+        const std::size_t nv = pos.size() / 3;
+        for (std::size_t i = 0; i < nv; ++i)
+            m.positions.push_back({float(pos[3 * i]), float(pos[3 * i + 1]), float(-pos[3 * i + 2])});
+        if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+            const auto n = values("NORMAL", it->second, 3);
+            if (n.size() == pos.size())
+                for (std::size_t i = 0; i < nv; ++i) m.normals.push_back(Normal3{float(n[3 * i]), float(n[3 * i + 1]), float(-n[3 * i + 2])});
+        }
+        for (int set = 0; set < kMaxUvSets; ++set) {
+            const std::string name = fmt::format("TEXCOORD_{}", set);
+            const auto it = prim.attributes.find(name);
+            if (it == prim.attributes.end()) continue;
+            const auto t = values(name, it->second, 2);
+            if (t.size() != 2 * nv) continue;
+            std::vector<Point2>* dst = &m.uvs;
+            if (set > 0) {  // sets come in increasing order; missing ones stay empty
+                m.more_uvs.resize(static_cast<std::size_t>(set));
+                dst = &m.more_uvs.back();
+            }
+            for (std::size_t i = 0; i < nv; ++i) dst->push_back({float(t[2 * i]), float(1 - t[2 * i + 1])});
+        }
+        if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+            const auto t = values("TANGENT", it->second, 4);
+            // z negated like positions; the mirror also flips the bitangent's handedness,
+            // and so does the v flip: the two cancel, w stays.
+            if (t.size() == 4 * nv)
+                for (std::size_t i = 0; i < nv; ++i)
+                    m.tangents.push_back({float(t[4 * i]), float(t[4 * i + 1]), float(-t[4 * i + 2]), float(t[4 * i + 3])});
+        }
+        if (const auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+            // RGB or RGBA; read() reports a missing accessor.
+            const bool exists = it->second >= 0 && it->second < static_cast<int>(model.accessors.size());
+            const int n = exists && components(model.accessors[it->second].type) == 4 ? 4 : 3;
+            const auto c = values("COLOR_0", it->second, n);
+            for (std::size_t i = 0; i < nv && c.size() == n * nv; ++i) {
+                m.colors.push_back(Color{float(c[n * i]), float(c[n * i + 1]), float(c[n * i + 2])});
+                if (n == 4) m.alphas.push_back(float(c[n * i + 3]));
+            }
+            if (std::all_of(m.alphas.begin(), m.alphas.end(), [](Float a) { return a >= 1; })) m.alphas.clear();
+        }
+        std::vector<std::uint32_t> idx;
+        if (draco) {  // Draco's faces are triangles of point indices
+            for (std::size_t k = 0; k < draco->mesh.indices.size(); ++k) {
+                const std::uint32_t v = draco->mesh.indices[k];
+                if (v >= nv) fail_at(at + "/extensions/KHR_draco_mesh_compression",
+                                     fmt::format("{}: Draco face {} uses point {} of {}", what, k / 3, v, nv));
+                idx.push_back(v);
+            }
+        } else if (prim.indices >= 0) {
+            for (double x : read(prim.indices, 1, what, at + "/indices")) {
+                if (!(x >= 0 && x < double(nv)))
+                    fail_at(fmt::format("/accessors/{}", prim.indices),
+                            fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
+                idx.push_back(static_cast<std::uint32_t>(x));
+            }
+        } else {
+            for (std::uint32_t i = 0; i < nv; ++i) idx.push_back(i);
+        }
+        const int mode = draco ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // Draco decodes to triangles
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
+                if (i % 2 == 0) m.indices.insert(m.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
+                else m.indices.insert(m.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            for (std::size_t i = 1; i + 1 < idx.size(); ++i) m.indices.insert(m.indices.end(), {idx[0], idx[i], idx[i + 1]});
+        } else {
+            if (idx.size() % 3 != 0)
+                fail_at(prim.indices >= 0 ? at + "/indices" : attribute("POSITION"),
+                        fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
+            m.indices = std::move(idx);
+        }
+        m.material = prim.material >= 0 && prim.material < static_cast<int>(out.materials.size())
+                         ? static_cast<MaterialId>(prim.material)
+                         : kNoImportedMaterial;
+        try {
+            out.dropped_triangles += validate_and_drop_degenerate(m);
+        } catch (const std::invalid_argument& e) {
+            fail_at(attribute("POSITION"), what + ": " + e.what());
+        }
+        out.meshes.push_back(std::move(m));
+        ++count;
     }
-    /// The nodes no node lists as a child.
-    std::vector<int> roots() const {
-        std::vector<bool> child(model.nodes.size(), false);
-        for (const tinygltf::Node& n : model.nodes)
-            for (int c : n.children) child[c] = true;  // in range: check_trees() ran
-        std::vector<int> result;
-        for (std::size_t i = 0; i < model.nodes.size(); ++i)
-            if (!child[i]) result.push_back(static_cast<int>(i));
-        return result;
-    }
+    mesh_count[index] = count;
+}
 
-    // Indices are valid and the nodes form trees (check_trees()), so a cycle of children cannot be
-    // reached: each of its nodes has its parent in the cycle, so none is a root. The depth limit
-    // only keeps the recursion's stack small.
-    void visit(int index, const Matrix34& parent, int depth) {
-        if (depth >= limit(Limit::kNesting))
-            fail_at(fmt::format("/nodes/{}", index), "the node hierarchy: " + over_limit(Limit::kNesting, depth + 1));
-        const tinygltf::Node& n = model.nodes[index];
-        const Matrix34 world = parent * node_matrix(index);  // glTF space
-        // To glint: M' = F M F with F = diag(1, 1, -1).
-        Matrix34 g = world;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 4; ++j)
-                if ((i == 2) != (j == 2) && j != 3) g.m[i][j] = -g.m[i][j];
-        g.m[2][3] = -g.m[2][3];
-        if (n.mesh >= 0) {
-            if (n.mesh >= static_cast<int>(model.meshes.size()))
-                fail_at(fmt::format("/nodes/{}/mesh", index), fmt::format("node {} uses mesh {} that does not exist", index, n.mesh));
-            if (!mesh_first.count(n.mesh)) mesh(n.mesh);
-            const auto t = Transform::from(g);
-            if (!t) {
-                out.notes.push_back(fmt::format("{}: node {} has a singular transform; skipped", file, index));
-            } else {
-                for (std::uint32_t k = 0; k < mesh_count[n.mesh]; ++k) out.nodes.push_back({mesh_first[n.mesh] + k, *t});
-            }
-        }
-        const auto place = [&](Vector3 local) { return g.apply(local); };
-        if (n.camera >= 0 && n.camera < static_cast<int>(model.cameras.size())) {
-            const tinygltf::Camera& c = model.cameras[n.camera];
-            // Wanted: the first camera; or the one named; or, for "#N" when no camera has that
-            // name, the N-th met (from 0; unnamed cameras have no other handle).
-            const bool wanted = camera_name.empty()    ? !camera.has_value()
-                                : c.name == camera_name ? !camera.has_value() || camera->name != camera_name
-                                : !camera.has_value() && camera_name == fmt::format("#{}", out.cameras.size());
-            if (c.type == "perspective" || c.type == "orthographic") {
-                GltfCamera cam;
-                cam.name = c.name;
-                cam.position = g.apply(Point3{0, 0, 0});
-                cam.direction = normalize(place({0, 0, 1}));  // glTF's -z, mirrored
-                cam.up = normalize(place({0, 1, 0}));
-                if (c.type == "perspective") {
-                    const double yfov = c.perspective.yfov;  // the specification: > 0
-                    if (!(yfov > 0 && yfov < std::numbers::pi))
-                        fail_at(fmt::format("/cameras/{}/perspective/yfov", n.camera),
-                                fmt::format("yfov must be in (0, pi) radians, got {}", yfov));
-                    cam.yfov_degrees = float(yfov * 180 / std::numbers::pi);
-                } else {
-                    cam.orthographic = true;
-                    cam.ymag = float(c.orthographic.ymag);
-                    if (!(cam.ymag > 0) || !std::isfinite(cam.ymag))
-                        fail_at(fmt::format("/cameras/{}/orthographic/ymag", n.camera), "ymag must be positive");
-                }
-                out.cameras.push_back(cam);
-                if (wanted) camera = cam;
-            }
-        }
-        if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end() && it->second.Has("light")) {
-            const int li = whole(it->second.Get("light"));
-            if (li >= 0 && li < static_cast<int>(model.lights.size())) {
-                const tinygltf::Light& l = model.lights[li];
-                Color c{1};
-                if (l.color.size() == 3) c = Color{float(l.color[0]), float(l.color[1]), float(l.color[2])};
-                c = c * float(l.intensity);
-                const Point3 p = g.apply(Point3{0, 0, 0});
-                const Vector3 d = normalize(place({0, 0, 1}));  // lights shine along glTF's -z
-                if (l.type == "point") {
-                    out.lights.push_back(PointLight{p, c});
-                } else if (l.type == "spot") {
-                    const float outer = float(std::cos(l.spot.outerConeAngle));
-                    const float inner = std::max(float(std::cos(l.spot.innerConeAngle)), outer + 1e-4f);
-                    out.lights.push_back(SpotLight{p, d, c, inner, outer});
-                } else if (l.type == "directional") {
-                    out.lights.push_back(DirectionalLight{d, c});
-                }
-            }
-        }
-        for (int child : n.children) visit(child, world, depth + 1);
+/// A file that requires an extension glint lacks cannot be shown as its author meant: an
+/// error. One that only uses such an extension renders without it, with a note naming it.
+void Importer::check_extensions() {
+    static const std::set<std::string> supported = {
+        "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
+        "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+        "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
+        "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
+        "KHR_texture_transform"};
+    for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i) {
+        const std::string& e = model.extensionsRequired[i];
+        if (!supported.count(e))
+            fail_at(fmt::format("/extensionsRequired/{}", i),
+                    fmt::format("the file requires the extension {}, which glint does not support", e));
     }
-};
+    for (const std::string& e : model.extensionsUsed)
+        if (!supported.count(e)) out.notes.push_back(fmt::format("{}: uses the extension {}, which glint ignores", file, e));
+}
+
+/// The nodes must form trees (the spec): a node listed as the child of two parents, or twice,
+/// would be visited once per path, exponentially many times in a chain of such nodes.
+void Importer::check_trees() const {
+    std::vector<int> parent(model.nodes.size(), -1);
+    // Each entry of `list` (at JSON pointer `at`) must name a node; `check` then sees it.
+    const auto each = [&](const std::vector<int>& list, const std::string& at, auto&& check) {
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            const std::string where = fmt::format("{}/{}", at, k);
+            if (list[k] < 0 || list[k] >= static_cast<int>(model.nodes.size()))
+                fail_at(where, fmt::format("node {} does not exist", list[k]));
+            check(list[k], where);
+        }
+    };
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+        each(model.nodes[i].children, fmt::format("/nodes/{}/children", i), [&](int c, const std::string& where) {
+            if (parent[c] >= 0)
+                fail_at(where, fmt::format("node {} is a child of node {} and of node {}; nodes must form trees", c,
+                                           parent[c], i));
+            parent[c] = static_cast<int>(i);
+        });
+    for (std::size_t s = 0; s < model.scenes.size(); ++s)
+        each(model.scenes[s].nodes, fmt::format("/scenes/{}/nodes", s), [&](int r, const std::string& where) {
+            if (parent[r] >= 0)
+                fail_at(where, fmt::format("node {} is a scene root and a child of node {}; nodes must form trees", r,
+                                           parent[r]));
+        });
+}
+
+/// The nodes no node lists as a child.
+std::vector<int> Importer::roots() const {
+    std::vector<bool> child(model.nodes.size(), false);
+    for (const tinygltf::Node& n : model.nodes)
+        for (int c : n.children) child[c] = true;  // in range: check_trees() ran
+    std::vector<int> result;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+        if (!child[i]) result.push_back(static_cast<int>(i));
+    return result;
+}
+
+// Indices are valid and the nodes form trees (check_trees()), so a cycle of children cannot be
+// reached: each of its nodes has its parent in the cycle, so none is a root. The depth limit
+// only keeps the recursion's stack small.
+void Importer::visit(int index, const Matrix34& parent, int depth) {
+    if (depth >= limit(Limit::kNesting))
+        fail_at(fmt::format("/nodes/{}", index), "the node hierarchy: " + over_limit(Limit::kNesting, depth + 1));
+    const tinygltf::Node& n = model.nodes[index];
+    const Matrix34 world = parent * node_matrix(index);  // glTF space
+    // To glint: M' = F M F with F = diag(1, 1, -1).
+    Matrix34 g = world;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j)
+            if ((i == 2) != (j == 2) && j != 3) g.m[i][j] = -g.m[i][j];
+    g.m[2][3] = -g.m[2][3];
+    if (n.mesh >= 0) {
+        if (n.mesh >= static_cast<int>(model.meshes.size()))
+            fail_at(fmt::format("/nodes/{}/mesh", index), fmt::format("node {} uses mesh {} that does not exist", index, n.mesh));
+        if (!mesh_first.count(n.mesh)) mesh(n.mesh);
+        const auto t = Transform::from(g);
+        if (!t) {
+            out.notes.push_back(fmt::format("{}: node {} has a singular transform; skipped", file, index));
+        } else {
+            for (std::uint32_t k = 0; k < mesh_count[n.mesh]; ++k) out.nodes.push_back({mesh_first[n.mesh] + k, *t});
+        }
+    }
+    const auto place = [&](Vector3 local) { return g.apply(local); };
+    if (n.camera >= 0 && n.camera < static_cast<int>(model.cameras.size())) {
+        const tinygltf::Camera& c = model.cameras[n.camera];
+        // Wanted: the first camera; or the one named; or, for "#N" when no camera has that
+        // name, the N-th met (from 0; unnamed cameras have no other handle).
+        const bool wanted = camera_name.empty()    ? !camera.has_value()
+                            : c.name == camera_name ? !camera.has_value() || camera->name != camera_name
+                            : !camera.has_value() && camera_name == fmt::format("#{}", out.cameras.size());
+        if (c.type == "perspective" || c.type == "orthographic") {
+            GltfCamera cam;
+            cam.name = c.name;
+            cam.position = g.apply(Point3{0, 0, 0});
+            cam.direction = normalize(place({0, 0, 1}));  // glTF's -z, mirrored
+            cam.up = normalize(place({0, 1, 0}));
+            if (c.type == "perspective") {
+                const double yfov = c.perspective.yfov;  // the specification: > 0
+                if (!(yfov > 0 && yfov < std::numbers::pi))
+                    fail_at(fmt::format("/cameras/{}/perspective/yfov", n.camera),
+                            fmt::format("yfov must be in (0, pi) radians, got {}", yfov));
+                cam.yfov_degrees = float(yfov * 180 / std::numbers::pi);
+            } else {
+                cam.orthographic = true;
+                cam.ymag = float(c.orthographic.ymag);
+                if (!(cam.ymag > 0) || !std::isfinite(cam.ymag))
+                    fail_at(fmt::format("/cameras/{}/orthographic/ymag", n.camera), "ymag must be positive");
+            }
+            out.cameras.push_back(cam);
+            if (wanted) camera = cam;
+        }
+    }
+    if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end() && it->second.Has("light")) {
+        const int li = whole(it->second.Get("light"));
+        if (li >= 0 && li < static_cast<int>(model.lights.size())) {
+            const tinygltf::Light& l = model.lights[li];
+            Color c{1};
+            if (l.color.size() == 3) c = Color{float(l.color[0]), float(l.color[1]), float(l.color[2])};
+            c = c * float(l.intensity);
+            const Point3 p = g.apply(Point3{0, 0, 0});
+            const Vector3 d = normalize(place({0, 0, 1}));  // lights shine along glTF's -z
+            if (l.type == "point") {
+                out.lights.push_back(PointLight{p, c});
+            } else if (l.type == "spot") {
+                const float outer = float(std::cos(l.spot.outerConeAngle));
+                const float inner = std::max(float(std::cos(l.spot.innerConeAngle)), outer + 1e-4f);
+                out.lights.push_back(SpotLight{p, d, c, inner, outer});
+            } else if (l.type == "directional") {
+                out.lights.push_back(DirectionalLight{d, c});
+            }
+        }
+    }
+    for (int child : n.children) visit(child, world, depth + 1);
+}
+
+}  // namespace gltf_detail
+
+namespace {
+
+using gltf_detail::Importer;
+using gltf_detail::kMaxAccessorValues;
 
 /// The container of a .glb checked by glint, so that a broken one is reported at its byte offset
 /// in glint's words (tinygltf says "Invalid glTF binary."): the 12-byte header (magic "glTF",
