@@ -1,8 +1,11 @@
 #include "glint/assets/mesh_import.h"
 
+#include "glint/base/diagnostics.h"
 #include "glint/base/limits.h"
 
 #include <cctype>
+#include <fstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -20,6 +23,15 @@ std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
     if (ext == ".obj") return MeshFormat::kObj;
     if (ext == ".gltf") return MeshFormat::kGltf;
     if (ext == ".glb") return MeshFormat::kGlb;
+    // No mesh extension: a binary glTF or a PLY is known by its first bytes (a file the read
+    // gate refuses is not opened here; reading it says why).
+    if (!why_not_readable(path).empty()) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    char head[5] = {};
+    if (!in.read(head, 5)) return std::nullopt;
+    const std::string_view h(head, 5);
+    if (h.substr(0, 4) == "glTF") return MeshFormat::kGlb;
+    if (h.substr(0, 4) == "ply\n" || h == "ply\r\n") return MeshFormat::kPly;
     return std::nullopt;
 }
 

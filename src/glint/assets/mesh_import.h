@@ -53,7 +53,8 @@ struct ImportedFile {
 inline constexpr MaterialId kNoImportedMaterial = 0xffffffffu;
 
 enum class MeshFormat { kPly, kObj, kGltf, kGlb };
-/// The format a file's extension names (any case), if it is a mesh format.
+/// The format a file's extension names (any case), if it is a mesh format; for a file without
+/// one of these extensions, the format its first bytes show (binary glTF, PLY), if any.
 std::optional<MeshFormat> mesh_format(const std::filesystem::path& path);
 
 /// By extension: .ply, .obj, .gltf, .glb. `time`: seconds into a glTF file's animation.

@@ -1,0 +1,136 @@
+#pragma once
+// A render session: everything `glint render` does between reading its flags and choosing its
+// exit status, as a library call, so that every front end (the command line, the Python module)
+// runs the same code: load the scene (formats.h), build it, render it in progressive passes
+// (a time budget, checkpoints and resume, adaptive sampling, a tev display), write the image,
+// render an animation's frames, and share the work with the other ranks of an MPI job.
+//
+// The session prints nothing itself: what a user should read (notes, "wrote ...", the ranks'
+// reports) goes to SessionHooks::print as finished text, the progress bar to `progress_stream`.
+// It stops when `cancel` becomes true (the CLI sets it from SIGINT/SIGTERM), between tiles.
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "glint/builder/build.h"
+#include "glint/render/distributed.h"
+#include "glint/render/progress.h"
+
+namespace glint {
+
+/// What to render and how: `glint render`'s options, one field per flag.
+struct SessionOptions {
+    std::string scene;   ///< a scene or mesh file; empty: the built-in demo
+    std::string output;  ///< the image; empty: the scene's film.filename, else <scene stem>.png
+    std::optional<long long> width, height, spp, threads, max_depth;
+    std::optional<std::uint64_t> seed;
+    bool quiet = false;   ///< nothing printed but errors (no notes, no progress)
+    bool aovs = false;
+    bool strict = false;  ///< pbrt: what glint cannot render is an error
+    std::string accel;    ///< bvh, sbvh, embree; empty: the scene's or the default
+    std::string camera;   ///< a glTF file rendered directly: its camera by name
+    // Long renders.
+    std::string time, checkpoint, checkpoint_every = "5m", resume, display;
+    std::optional<double> noise_threshold;
+    std::optional<long long> min_spp;
+    // Distributed rendering (mpirun).
+    double rank_timeout = 60;
+    // Animation: `frames` A:B (or N) and fps; `frame` is the one being rendered, `animation` says
+    // it is a frame of `frames` (an interrupted frame is then not written: it is rendered again).
+    std::string frames;
+    std::optional<double> fps;
+    double frame = 0;
+    bool animation = false;
+    // Under mpirun, a frame this process renders whole, alone (an animation's frames handed out whole).
+    bool local = false;
+    std::string scene_label;  ///< the scene as the image's metadata names it, if not `scene` (a copy's)
+    bool restrict_paths = false;  ///< reads were restricted (a rank loading rank 0's copy restricts to it)
+    ProgressMode progress = ProgressMode::kSummary;  ///< when not quiet
+};
+
+/// How a session reaches its front end.
+struct SessionHooks {
+    /// Text for the user, whole lines (the CLI writes it to stderr). Null: dropped.
+    std::function<void(const std::string&)> print;
+    /// Polled between tiles and passes: the render stops, keeping its completed passes.
+    const std::atomic<bool>* cancel = nullptr;
+    /// What stopped it, for messages ("SIGINT"); null: "a cancellation".
+    std::function<std::string()> cancel_reason;
+    /// Called before each render starts (the CLI installs its signal handlers there).
+    std::function<void()> arm;
+    /// A file about to be written through a temporary (slot 0: the image, 1: the checkpoint),
+    /// so that a front end killed hard can remove the temporary (image/image_io.h).
+    std::function<void(int slot, const std::filesystem::path& target)> writing;
+    /// The stream of the progress bar or summary (the CLI: stderr).
+    std::FILE* progress_stream = stderr;
+};
+
+/// How a render ended, when it did not throw.
+enum class SessionResult {
+    kComplete = 0,     ///< every image asked for written
+    kInterrupted = 3,  ///< cancelled: the completed passes were written where that is possible
+};
+
+/// The scene loaded and built with every option that changes the image (no MPI thread share).
+/// Notes for the user are in RenderJob::notes. Throws SceneError or IoError.
+RenderJob load_job(const SessionOptions& options);
+
+/// The AccelKind for a --accel name; nullopt for "". Throws IoError naming the known ones.
+std::optional<AccelKind> parse_accel(const std::string& name);
+
+class RenderSession {
+public:
+    /// `cluster`: the MPI job this process is a rank of (null: alone).
+    RenderSession(SessionOptions options, SessionHooks hooks, Transport* cluster = nullptr);
+    /// Rank 0: stops the other ranks if a render has not (an error ended it).
+    ~RenderSession();
+    RenderSession(const RenderSession&) = delete;
+    RenderSession& operator=(const RenderSession&) = delete;
+
+    /// Renders the image, or the animation's frames if `frames` is set. On ranks other than 0
+    /// of an MPI job: serves rank 0 until it is done. Throws SceneError or IoError.
+    SessionResult run();
+
+    /// The file of frame `frame` for an output pattern: printf's %d, %0Nd or %Nd (N up to 9)
+    /// once, %% for a percent sign. Throws IoError naming what is wrong with the pattern.
+    static std::string frame_path(const std::string& pattern, long long frame, bool need_number);
+
+private:
+    struct TempFolder;
+    SessionResult render(const SessionOptions& args, std::optional<RenderJob> preloaded = std::nullopt);
+    SessionResult frames(SessionOptions args);
+    RenderJob prepare_job(const SessionOptions& args);
+    SessionResult interrupted(const SessionOptions& args, const std::string& what);
+    void say(const std::string& text) const;
+    void note(const SessionOptions& args, const std::string& text) const;
+    bool cancelled() const { return hooks_.cancel && hooks_.cancel->load(); }
+    // Ranks other than 0 (ranks.cpp).
+    int run_rank(const SessionOptions& args);
+    int run_rank_frame(const SessionOptions& args, std::optional<TempFolder>& copy,
+                       std::optional<SessionOptions>& from_copy);
+    void run_rank_whole_frame(const SessionOptions& args, std::uint64_t expected, std::optional<TempFolder>& copy,
+                              std::optional<SessionOptions>& from_copy);
+    template <class Load>
+    bool load_from_rank0_copy(const SessionOptions& args, std::optional<TempFolder>& copy,
+                              std::optional<SessionOptions>& from_copy, std::deque<Message>& pending,
+                              std::string& error, const Load& load);
+    std::optional<std::vector<std::uint8_t>> render_frame_file(SessionOptions args, std::optional<RenderJob> job);
+    std::uint64_t files_fingerprint(const SessionOptions& args, const RenderJob& job);
+
+    SessionOptions options_;
+    SessionHooks hooks_;
+    Transport* cluster_ = nullptr;
+    bool ranks_stopped_ = false;    ///< rank 0 has told the other ranks to stop
+    bool animation_ranks_ = false;  ///< rank 0 of a distributed animation: the ranks wait for a frame
+};
+
+/// The options that change the image, as text: part of a checkpoint's fingerprint.
+std::string image_settings(const SessionOptions& args, const RenderJob& job);
+
+}  // namespace glint
