@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "glint/math/transform.h"
 #include "glint/math/vector.h"
 
 namespace glint {
@@ -16,6 +17,12 @@ struct Ray {
 
     constexpr Point3 at(Float t) const { return origin + direction * t; }
 };
+
+/// A world ray in the object space of `t`, its direction not renormalised, so that t means the
+/// same point in both spaces.
+inline Ray object_ray(const Transform& t, const Ray& r) {
+    return {t.to_object.apply(r.origin), t.to_object.apply(r.direction), r.t_max};
+}
 
 /// Hits closer than this are ignored, the "small epsilon" of every intersection test. Secondary
 /// rays are also spawned off the surface (spawn_ray), so this only has to catch round-off.

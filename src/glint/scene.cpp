@@ -237,9 +237,9 @@ std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) 
     if (inst.alpha >= 0) {
         const AlphaContext context{this, i, &ray};
         const HitFilter filter{alpha_filter, &context};
-        return mesh_bvhs_[inst.mesh].closest(inst.transform.object_ray(ray), &filter);
+        return mesh_bvhs_[inst.mesh].closest(object_ray(inst.transform, ray), &filter);
     }
-    return mesh_bvhs_[inst.mesh].closest(inst.transform.object_ray(ray));
+    return mesh_bvhs_[inst.mesh].closest(object_ray(inst.transform, ray));
 }
 
 bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
@@ -247,9 +247,9 @@ bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
     if (inst.alpha >= 0) {
         const AlphaContext context{this, i, &ray};
         const HitFilter filter{alpha_filter, &context};
-        return mesh_bvhs_[inst.mesh].any(inst.transform.object_ray(ray), &filter);
+        return mesh_bvhs_[inst.mesh].any(object_ray(inst.transform, ray), &filter);
     }
-    return mesh_bvhs_[inst.mesh].any(inst.transform.object_ray(ray));
+    return mesh_bvhs_[inst.mesh].any(object_ray(inst.transform, ray));
 }
 
 void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
@@ -346,7 +346,7 @@ std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
-        WatertightRay wr(inst.transform.object_ray(ray));
+        WatertightRay wr(object_ray(inst.transform, ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray_in)) {
@@ -365,7 +365,7 @@ bool Scene::occluded_brute_force(const Ray& ray) const {
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
-        const WatertightRay wr(inst.transform.object_ray(ray));
+        const WatertightRay wr(object_ray(inst.transform, ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray))

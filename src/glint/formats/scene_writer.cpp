@@ -1,4 +1,5 @@
 #include "glint/formats/scene_writer.h"
+#include "glint/description/vocabulary.h"
 
 #include "glint/assets/vdb.h"
 
@@ -247,8 +248,7 @@ WrittenScene Writer::run() {
         y += "}\n";
     }
     const FilterDesc& f = d_.film.filter;
-    const char* filters[] = {"box", "tent", "gaussian", "blackman_harris"};
-    std::string filter = fmt::format("{{type: {}, radius: {}", filters[static_cast<int>(f.type)], num(f.radius));
+    std::string filter = fmt::format("{{type: {}, radius: {}", vocabulary_name(f.type), num(f.radius));
     if (f.type == FilterType::kGaussian) filter += ", sigma: " + num(f.sigma);
     y += fmt::format("film: {{width: {}, height: {}, filter: {}}}", d_.film.width.value, d_.film.height.value, filter + "}");
     if (!d_.film.filename.value.empty()) y.insert(y.size() - 1, ", filename: " + yaml_quoted(d_.film.filename.value));
@@ -260,8 +260,7 @@ WrittenScene Writer::run() {
                                            p->value[2], p->value[3]));
     if (d_.film.scale != 1) y.insert(y.size() - 1, ", scale: " + num(d_.film.scale));
     y += "\n";
-    const char* samplers[] = {"sobol", "stratified", "independent"};
-    y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}", samplers[static_cast<int>(d_.sampler.type)],
+    y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}", vocabulary_name(d_.sampler.type),
                      d_.sampler.spp.value, d_.sampler.seed);
     if (d_.sampler.noise_threshold > 0)
         y += fmt::format(", noise_threshold: {}, min_spp: {}", d_.sampler.noise_threshold, d_.sampler.min_spp);

@@ -17,6 +17,7 @@
 
 #include "glint/base/limits.h"
 #include "glint/formats/yaml_reader.h"
+#include "glint/description/vocabulary.h"
 #include "glint/formats/scene_yaml_parser.h"
 #include "glint/materials/metals.h"
 
@@ -29,12 +30,10 @@ void SceneParser::parse_root(const YAML::Node& root, SceneDescription& scene) {
         r_.diagnostics().error({scene.path, 0, 0}, "the scene file is empty");
         return;
     }
-    MapReader m(r_, root, "scene",
-                {"camera", "film", "sampler", "integrator", "background", "lights",
-                 "materials", "media", "medium", "objects", "animation"});
+    MapReader m(r_, root, "scene", vocabulary_keys("scene"));
     if (!m.valid()) return;
     if (auto n = m.get("animation")) {
-        MapReader a(r_, *n, "animation", {"fps"});
+        MapReader a(r_, *n, "animation", vocabulary_keys("animation"));
         if (a.valid())
             if (auto f = a.get("fps")) assign(f, scene.fps, [this](const YAML::Node& v) { return r_.number_in(v, "fps", 0, 1e6, true); });
     }
@@ -81,7 +80,7 @@ void SceneParser::animate(YAML::Node& node, SceneDescription& scene) {
 // A keyframed value at `frame`: a number, or a list of numbers, as a node made here (errors
 // about it are located at the keyframes map).
 std::optional<YAML::Node> SceneParser::keyframed(const YAML::Node& node, double frame) {
-    MapReader m(r_, node, "keyframed value", {"keyframes", "interpolation"});
+    MapReader m(r_, node, "keyframed value", vocabulary_keys("keyframes"));
     if (!m.valid()) return std::nullopt;
     enum class Curve { kLinear, kStep, kSmooth } curve = Curve::kLinear;
     if (auto n = m.get("interpolation")) {
@@ -210,12 +209,10 @@ std::optional<std::string> SceneParser::type_of(const YAML::Node& node, const st
 }
 
 CameraDesc SceneParser::camera(const YAML::Node& node) {
-    const auto type = type_of(node, "camera", {"article", "look_at"}, "article");
+    const auto type = type_of(node, "camera", vocabulary_types("camera"), "article");
     if (type == "look_at") {
         LookAtCameraDesc c;
-        MapReader m(r_, node, "look_at camera",
-                    {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance",
-                     "handedness", "projection", "height", "window"});
+        MapReader m(r_, node, "look_at camera", vocabulary_keys("camera", "look_at"));
         lens(m, c.aperture_radius, c.focus_distance);
         handedness(m, c.right_handed);
         if (auto n = m.get("projection")) {
@@ -244,9 +241,7 @@ CameraDesc SceneParser::camera(const YAML::Node& node) {
     }
     ArticleCameraDesc c;
     if (!type) return c;
-    MapReader m(r_, node, "camera",
-                {"type", "position", "direction", "up", "viewport_width", "viewport_height",
-                 "near", "aperture_radius", "focus_distance", "handedness"});
+    MapReader m(r_, node, "camera", vocabulary_keys("camera", "article"));
     lens(m, c.aperture_radius, c.focus_distance);
     handedness(m, c.right_handed);
     assign(m.get("position"), c.position, point());
@@ -261,9 +256,7 @@ CameraDesc SceneParser::camera(const YAML::Node& node) {
 }
 
 void SceneParser::film(const YAML::Node& node, FilmDesc& f) {
-    MapReader m(r_, node, "film",
-                {"width", "height", "encoding", "tonemap", "exposure", "filter", "aovs",
-                 "filename", "crop", "crop_pixels", "scale"});
+    MapReader m(r_, node, "film", vocabulary_keys("film"));
     assign(m.get("aovs"), f.aovs, [this](const YAML::Node& v) { return r_.boolean(v); });
     if (auto n = m.get("filter")) f.filter = filter(*n);
     auto size = [this, &m](const char* key, Located<int>& out) {
@@ -323,16 +316,14 @@ void SceneParser::film(const YAML::Node& node, FilmDesc& f) {
 }
 
 FilterDesc SceneParser::filter(const YAML::Node& node) {
-    const auto type = type_of(node, "filter", {"box", "tent", "gaussian", "blackman_harris"});
+    const auto type = type_of(node, "filter", vocabulary_types("filter"));
     FilterDesc f;
     if (!type) return f;
     if (*type == "box") f = {FilterType::kBox, 0.5f, 0.5f};
     if (*type == "tent") f = {FilterType::kTent, 1.0f, 0.5f};
     if (*type == "gaussian") f = {FilterType::kGaussian, 1.5f, 0.5f};
     if (*type == "blackman_harris") f = {FilterType::kBlackmanHarris, 1.5f, 0.5f};
-    std::vector<std::string> keys{"type", "radius"};
-    if (f.type == FilterType::kGaussian) keys.push_back("sigma");
-    MapReader m(r_, node, fmt::format("{} filter", *type), keys);
+    MapReader m(r_, node, fmt::format("{} filter", *type), vocabulary_keys("filter", *type));
     assign(m.get("radius"), f.radius, [this](const YAML::Node& v) {
         return r_.number_in(v, "radius", 0, 16, true);
     });
@@ -341,9 +332,9 @@ FilterDesc SceneParser::filter(const YAML::Node& node) {
 }
 
 void SceneParser::sampler(const YAML::Node& node, SamplerDesc& s) {
-    MapReader m(r_, node, "sampler", {"type", "spp", "seed", "noise_threshold", "min_spp"});
+    MapReader m(r_, node, "sampler", vocabulary_keys("sampler"));
     if (m.has("type")) {
-        const auto type = type_of(node, "sampler", {"sobol", "stratified", "independent"});
+        const auto type = type_of(node, "sampler", vocabulary_types("sampler_type"));
         if (type == "sobol") s.type = SamplerType::kSobol;
         if (type == "stratified") s.type = SamplerType::kStratified;
         if (type == "independent") s.type = SamplerType::kIndependent;
@@ -365,19 +356,16 @@ void SceneParser::sampler(const YAML::Node& node, SamplerDesc& s) {
 }
 
 void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
-    const auto type = type_of(node, "integrator", {"flat", "normals", "whitted", "path"});
+    const auto type = type_of(node, "integrator", vocabulary_types("integrator"));
     if (!type) return;
     if (*type == "flat" || *type == "normals") {
         d.kind = *type == "flat" ? IntegratorKind::kFlat : IntegratorKind::kNormals;
-        MapReader m(r_, node, fmt::format("{} integrator", *type), {"type"});
+        MapReader m(r_, node, fmt::format("{} integrator", *type), vocabulary_keys("integrator", *type));
         return;
     }
     const bool path = *type == "path";
     d.kind = path ? IntegratorKind::kPath : IntegratorKind::kWhitted;
-    MapReader m(r_, node, fmt::format("{} integrator", *type),
-                path ? std::vector<std::string>{"type", "max_depth", "rr_depth", "clamp",
-                                                "strategy"}
-                     : std::vector<std::string>{"type", "max_depth", "ambient", "shadows"});
+    MapReader m(r_, node, fmt::format("{} integrator", *type), vocabulary_keys("integrator", *type));
     if (path) d.max_depth.value = d.path.max_depth;
     if (auto n = m.get("max_depth")) {
         d.max_depth.loc = r_.loc(*n);
@@ -406,18 +394,18 @@ void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
 
 std::optional<Background> SceneParser::background(const YAML::Node& node,
                                      std::optional<EnvironmentDesc>& environment) {
-    const auto type = type_of(node, "background", {"sky", "constant", "environment"});
+    const auto type = type_of(node, "background", vocabulary_types("background"));
     if (!type) return std::nullopt;
     if (*type == "sky") {
         SkyBackground sky;
-        MapReader m(r_, node, "sky background", {"type", "horizon", "zenith"});
+        MapReader m(r_, node, "sky background", vocabulary_keys("background", "sky"));
         assign(m.get("horizon"), sky.horizon, color());
         assign(m.get("zenith"), sky.zenith, color());
         return sky;
     }
     if (*type == "environment") {
         EnvironmentDesc e;
-        MapReader m(r_, node, "environment background", {"type", "filename", "scale"});
+        MapReader m(r_, node, "environment background", vocabulary_keys("background", "environment"));
         if (const auto n = m.require("filename")) {
             e.filename.loc = r_.loc(*n);
             assign(n, e.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
@@ -428,7 +416,7 @@ std::optional<Background> SceneParser::background(const YAML::Node& node,
         return std::nullopt;
     }
     ConstantBackground c;
-    MapReader m(r_, node, "constant background", {"type", "color"});
+    MapReader m(r_, node, "constant background", vocabulary_keys("background", "constant"));
     assign(m.require("color"), c.color, color());
     return c;
 }
@@ -442,12 +430,11 @@ void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out) {
         return [this, what, hi](const YAML::Node& n) { return r_.number_in(n, what, 0, hi); };
     };
     for (const YAML::Node& item : node) {
-        const auto type = type_of(item, "light", {"directional", "point", "spot"});
+        const auto type = type_of(item, "light", vocabulary_types("light"));
         if (!type) continue;
         if (*type == "directional") {
             DirectionalLight l{{0, -1, 0}, Color{1}};
-            MapReader m(r_, item, "directional light",
-                        {"type", "direction", "intensity", "angular_diameter"});
+            MapReader m(r_, item, "directional light", vocabulary_keys("light", "directional"));
             assign(m.require("direction"), l.direction, direction("direction"));
             l.direction = normalize(l.direction);
             assign(m.get("intensity"), l.intensity, color());
@@ -458,15 +445,13 @@ void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out) {
             out.emplace_back(l);
         } else if (*type == "point") {
             PointLight l{{0, 0, 0}, Color{1}};
-            MapReader m(r_, item, "point light", {"type", "position", "intensity"});
+            MapReader m(r_, item, "point light", vocabulary_keys("light", "point"));
             assign(m.require("position"), l.position, point());
             assign(m.get("intensity"), l.intensity, color());
             out.emplace_back(l);
         } else {
             SpotLight l{{0, 0, 0}, {0, -1, 0}, Color{1}, 1, 0};
-            MapReader m(r_, item, "spot light",
-                        {"type", "position", "direction", "intensity", "cone_angle",
-                         "falloff_start"});
+            MapReader m(r_, item, "spot light", vocabulary_keys("light", "spot"));
             assign(m.require("position"), l.position, point());
             assign(m.require("direction"), l.direction, direction("direction"));
             l.direction = normalize(l.direction);

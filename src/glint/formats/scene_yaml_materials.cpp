@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "glint/base/limits.h"
+#include "glint/description/vocabulary.h"
 #include "glint/formats/scene_yaml_parser.h"
 #include "glint/materials/metals.h"
 
@@ -31,23 +32,23 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
         return t;
     }
     const auto type =
-        type_of(node, "texture", {"constant", "checker", "image", "scale", "mix", "vertex_color"});
+        type_of(node, "texture", vocabulary_types("texture"));
     if (!type) return std::nullopt;
     if (*type == "vertex_color") {
-        MapReader m(r_, node, "vertex_color texture", {"type"});
+        MapReader m(r_, node, "vertex_color texture", vocabulary_keys("texture", "vertex_color"));
         t.kind = TextureDesc::Kind::kVertexColor;
     } else if (*type == "constant") {
-        MapReader m(r_, node, "constant texture", {"type", "color"});
+        MapReader m(r_, node, "constant texture", vocabulary_keys("texture", "constant"));
         assign(m.require("color"), t.value, color());
     } else if (*type == "checker") {
         t.kind = TextureDesc::Kind::kChecker;
-        MapReader m(r_, node, "checker texture", {"type", "size", "even", "odd"});
+        MapReader m(r_, node, "checker texture", vocabulary_keys("texture", "checker"));
         assign(m.get("size"), t.checker.size, positive("size"));
         assign(m.require("even"), t.checker.even, color());
         assign(m.require("odd"), t.checker.odd, color());
     } else if (*type == "image") {
         t.kind = TextureDesc::Kind::kImage;
-        MapReader m(r_, node, "image texture", {"type", "filename", "encoding", "wrap", "size"});
+        MapReader m(r_, node, "image texture", vocabulary_keys("texture", "image"));
         if (const auto n = m.require("filename")) {
             t.filename.loc = r_.loc(*n);
             assign(n, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
@@ -71,9 +72,7 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
         const std::vector<std::string> parts =
             scale ? std::vector<std::string>{"texture", "factor"}
                   : std::vector<std::string>{"a", "b", "amount"};
-        std::vector<std::string> keys{"type"};
-        keys.insert(keys.end(), parts.begin(), parts.end());
-        MapReader m(r_, node, fmt::format("{} texture", *type), keys);
+        MapReader m(r_, node, fmt::format("{} texture", *type), vocabulary_keys("texture", *type));
         for (const std::string& part : parts) {
             const auto child_node = m.require(part);
             const auto child = child_node ? texture(*child_node) : std::nullopt;
@@ -89,43 +88,31 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
         r_.error(node, fmt::format("{}: expected a map of keys, got {}", context, describe(node)));
         return d;
     }
-    const auto type = type_of(node, "material",
-                              {"article", "diffuse", "conductor", "dielectric", "plastic", "pbr",
-                               "interface", "diffuse_transmission", "mix", "coated_diffuse", "coated_conductor"},
-                              "article");
+    const auto type = type_of(node, "material", vocabulary_types("material"), "article");
     if (!type) return d;
     if (*type == "interface") {
         d.kind = MaterialDesc::Kind::kInterface;
-        MapReader m(r_, node, context, {"type"});
+        MapReader m(r_, node, context, vocabulary_keys("material", "interface"));
         return d;
     }
-    std::vector<std::string> keys{"type", "emission", "two_sided"};
-    const auto add = [&keys](std::initializer_list<const char*> more) {
-        keys.insert(keys.end(), more.begin(), more.end());
-    };
     using K = MaterialDesc::Kind;
-    if (*type == "article") d.kind = K::kArticle, add({"color", "shininess"});
-    if (*type == "diffuse") d.kind = K::kDiffuse, add({"albedo"});
-    if (*type == "conductor") d.kind = K::kConductor, add({"metal", "eta", "k", "reflectance", "roughness"});
-    if (*type == "dielectric") d.kind = K::kDielectric, add({"ior", "roughness", "thin", "tint"});
-    if (*type == "plastic") d.kind = K::kPlastic, add({"albedo", "ior", "roughness"});
-    if (*type == "diffuse_transmission") d.kind = K::kDiffuseTransmission, add({"reflectance", "transmittance"});
-    if (*type == "mix") d.kind = K::kMix, add({"materials", "amount"});
+    if (*type == "article") d.kind = K::kArticle;
+    if (*type == "diffuse") d.kind = K::kDiffuse;
+    if (*type == "conductor") d.kind = K::kConductor;
+    if (*type == "dielectric") d.kind = K::kDielectric;
+    if (*type == "plastic") d.kind = K::kPlastic;
+    if (*type == "diffuse_transmission") d.kind = K::kDiffuseTransmission;
+    if (*type == "mix") d.kind = K::kMix;
     if (*type == "coated_diffuse" || *type == "coated_conductor") {
         d.kind = K::kCoated;
         d.coated_conductor = *type == "coated_conductor";
         d.color.value = Color{0.5f};  // pbrt-v4's coateddiffuse reflectance
-        add({"ior", "thickness", "layer_albedo", "g", "max_depth", "samples"});
-        if (d.coated_conductor) add({"metal", "eta", "k", "reflectance", "roughness", "coat_roughness"});
-        else add({"albedo", "roughness"});
     }
     if (*type == "pbr") {
         d.kind = K::kPbr;
         d.roughness = 0.5f;
-        add({"base_color", "metallic", "roughness", "transmission", "ior", "clearcoat", "clearcoat_roughness", "sheen",
-             "sheen_roughness", "specular", "specular_color"});
     }
-    MapReader m(r_, node, context, keys);
+    MapReader m(r_, node, context, vocabulary_keys("material", *type));
     const auto tex = [&](const char* key) {
         if (auto n = m.get(key)) {
             if (auto t = texture(*n)) d.color = *t;
@@ -301,17 +288,10 @@ void SceneParser::coefficients(MapReader& m, const YAML::Node& node, const std::
 
 MediumDesc SceneParser::medium(const YAML::Node& node, const std::string& context) {
     MediumDesc d;
-    const auto type = type_of(node, "medium", {"homogeneous", "grid"});
+    const auto type = type_of(node, "medium", vocabulary_types("medium"));
     if (!type) return d;
-    std::vector<std::string> keys{"type", "sigma_a", "sigma_s", "albedo", "density", "scale", "g"};
-    if (*type == "homogeneous") {
-        keys.push_back("emission");
-    } else {
-        d.kind = MediumDesc::Kind::kGrid;
-        keys.insert(keys.end(), {"file", "grid", "emission_grid", "emission", "temperature_grid",
-                                 "temperature_scale", "emission_scale", "transform"});
-    }
-    MapReader m(r_, node, context, keys);
+    if (*type == "grid") d.kind = MediumDesc::Kind::kGrid;
+    MapReader m(r_, node, context, vocabulary_keys("medium", *type));
     coefficients(m, node, context, d);
     if (const auto g = m.get("g")) {
         if (const auto v = r_.number(*g)) {

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "glint/base/limits.h"
+#include "glint/description/vocabulary.h"
 #include "glint/formats/scene_yaml_parser.h"
 
 namespace glint::yaml_detail {
@@ -17,21 +18,20 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
     }
     for (const YAML::Node& item : node) {
         const auto type =
-            type_of(item, "object",
-                    {"sphere", "plane", "quad", "disk", "triangle", "polygon", "box", "mesh"});
+            type_of(item, "object", vocabulary_types("object"));
         if (!type) continue;
         const std::size_t first = out.size();
         std::optional<YAML::Node> mat;
         if (*type == "sphere") {
             Sphere s{{0, 0, 0}, 1};
-            MapReader m(r_, item, "sphere", {"type", "center", "radius", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, "sphere", vocabulary_keys("object", "sphere"));
             assign(m.require("center"), s.center, point());
             assign(m.require("radius"), s.radius, positive("radius"));
             out.push_back(object_of(s));
             mat = m.get("material");
         } else if (*type == "plane") {
             Plane p{{0, 0, 0}, {0, 1, 0}};
-            MapReader m(r_, item, "plane", {"type", "point", "normal", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, "plane", vocabulary_keys("object", "plane"));
             assign(m.require("point"), p.point, point());
             Vector3 n{0, 1, 0};
             assign(m.require("normal"), n, direction("normal"));
@@ -41,7 +41,7 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
         } else if (*type == "quad") {
             Point3 corner{0, 0, 0};
             Vector3 e1{1, 0, 0}, e2{0, 1, 0};
-            MapReader m(r_, item, "quad", {"type", "corner", "edge1", "edge2", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, "quad", vocabulary_keys("object", "quad"));
             assign(m.require("corner"), corner, point());
             assign(m.require("edge1"), e1, direction("edge1"));
             const auto edge2 = m.require("edge2");
@@ -53,7 +53,7 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
             mat = m.get("material");
         } else if (*type == "disk") {
             Disk d{{0, 0, 0}, {0, 1, 0}, 1};
-            MapReader m(r_, item, "disk", {"type", "center", "normal", "radius", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, "disk", vocabulary_keys("object", "disk"));
             assign(m.require("center"), d.center, point());
             Vector3 n{0, 1, 0};
             assign(m.require("normal"), n, direction("normal"));
@@ -64,7 +64,7 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
         } else if (*type == "triangle" || *type == "polygon") {
             // A triangle, or a convex polygon split into a fan of triangles around vertex 0.
             const bool polygon = *type == "polygon";
-            MapReader m(r_, item, *type, {"type", "vertices", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, *type, vocabulary_keys("object", *type));
             if (const auto v = m.require("vertices")) {
                 const bool count_ok =
                     v->IsSequence() && (polygon ? v->size() >= 3 : v->size() == 3);
@@ -91,8 +91,7 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
             }
             mat = m.get("material");
         } else if (*type == "mesh") {
-            MapReader m(r_, item, "mesh", {"type", "file", "material", "transform", "interior", "exterior",
-                                           "alpha", "alpha_mode", "alpha_cutoff"});
+            MapReader m(r_, item, "mesh", vocabulary_keys("object", "mesh"));
             MeshFileDesc f;
             if (const auto n = m.require("file")) {
                 f.file.loc = r_.loc(*n);
@@ -115,7 +114,7 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
             mat = m.get("material");
         } else {
             Point3 lo{0, 0, 0}, hi{1, 1, 1};
-            MapReader m(r_, item, "box", {"type", "min", "max", "material", "transform", "interior", "exterior"});
+            MapReader m(r_, item, "box", vocabulary_keys("object", "box"));
             assign(m.require("min"), lo, point());
             const auto max_node = m.require("max");
             assign(max_node, hi, point());
@@ -180,7 +179,7 @@ std::optional<Transform> SceneParser::transform(const YAML::Node& node) {
                     t = Transform::scale({float((*f)[0]), float((*f)[1]), float((*f)[2])});
             }
         } else if (key == "rotate") {
-            MapReader m(r_, v, "rotate", {"angle", "axis"});
+            MapReader m(r_, v, "rotate", vocabulary_keys("transform", "rotate"));
             double angle = 0;
             Vector3 axis{0, 1, 0};
             bool got = true;
@@ -225,7 +224,7 @@ std::optional<Transform> SceneParser::transform(const YAML::Node& node) {
                 }
             }
         } else if (key == "look_at") {
-            MapReader m(r_, v, "look_at", {"from", "to", "up"});
+            MapReader m(r_, v, "look_at", vocabulary_keys("transform", "look_at"));
             Point3 from{0, 0, 0}, to{0, 0, 1};
             Vector3 up{0, 1, 0};
             assign(m.require("from"), from, point());

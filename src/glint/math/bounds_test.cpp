@@ -12,7 +12,7 @@ const Bounds3 kUnit{{-1, -1, -1}, {1, 1, 1}};
 
 bool hits(Point3 o, Vector3 d, Float t_max = std::numeric_limits<Float>::infinity()) {
     const Ray r{o, normalize(d), t_max};
-    return kUnit.hit(r, reciprocal(r.direction));
+    return kUnit.hit(r.origin, reciprocal(r.direction), r.t_max);
 }
 
 TEST(Bounds, SlabTestHandValues) {
@@ -45,7 +45,7 @@ TEST(Bounds, NeverRejectsARayThatHitsAnEnclosedSphere) {
         const Ray r{o, normalize(s.center - o + Vector3{u() - 0.5f, u() - 0.5f, u() - 0.5f} * 4)};
         if (s.intersect(r)) {
             ++hit_count;
-            ASSERT_TRUE(b.hit(r, reciprocal(r.direction))) << i;
+            ASSERT_TRUE(b.hit(r.origin, reciprocal(r.direction), r.t_max)) << i;
         }
     }
     EXPECT_GT(hit_count, 10000);

@@ -152,9 +152,6 @@ struct Transform {
         return {to_world * b.to_world, b.to_object * to_object};
     }
     Point3 point(Point3 p) const { return to_world.apply(p); }
-    /// A world ray in object space, its direction not renormalised, so that t means the same
-    /// point in both spaces.
-    Ray object_ray(const Ray& r) const { return {to_object.apply(r.origin), to_object.apply(r.direction), r.t_max}; }
     Vector3 vector(Vector3 v) const { return to_world.apply(v); }
     /// Normals by the inverse transpose; not normalised.
     Normal3 normal(Normal3 n) const { return Normal3(to_object.apply_transposed(to_vector(n))); }

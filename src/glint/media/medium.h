@@ -156,7 +156,7 @@ Color sample_t_maj(const Medium& medium, const Ray ray, float t_max, float u, Ha
         return T_maj;
     }
     const auto& g = std::get<GridMedium>(medium);
-    const Ray local = g.transform.object_ray(ray);
+    const Ray local = object_ray(g.transform, ray);
     const Color sigma_t = g.sigma_a + g.sigma_s;
     MajorantWalk walk(g.majorant, local.origin, local.direction, 0, t_max);
     MajorantSegment seg;
