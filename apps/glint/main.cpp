@@ -82,6 +82,26 @@ std::string bytes(std::uint64_t b) {
     return fmt::format("{} B", b);
 }
 
+// glint render --list-formats: the format tables (session/formats.h, image/image_io.h).
+void print_formats() {
+    fmt::print("Scene and mesh files (glint render, glint info; glint convert reads the scene files):\n");
+    for (const glint::SceneFileFormat& f : glint::scene_file_formats()) {
+        std::string exts;
+        for (std::string_view e : f.extensions) exts += (exts.empty() ? "" : " ") + std::string(e);
+        fmt::print("  {:<6} {:<16} {:<6} {}\n", f.name, exts, f.mesh ? "mesh" : "scene", f.description);
+    }
+    fmt::print("  (another extension: a binary glTF or a PLY is known by its first bytes; anything else is read "
+               "as YAML)\n");
+    fmt::print("Images written (-o, chosen by the extension):\n");
+    for (const glint::ImageFormatInfo& f : glint::image_formats()) {
+        std::string exts;
+        for (std::string_view e : f.extensions) exts += (exts.empty() ? "" : " ") + std::string(e);
+        fmt::print("  {:<16} {}\n", exts, f.description);
+    }
+    fmt::print("Images read (textures, environment maps): the formats above by glint's own readers, and any other "
+               "that OpenImageIO reads\n");
+}
+
 // glint convert: the scene description written back as YAML, atomically, after the scene has
 // been checked by building it.
 int run_convert(const glint::SessionOptions& args, const std::string& out) {
@@ -194,7 +214,9 @@ int main(int argc, char** argv) {
     CLI::App* render = app.add_subcommand(
         "render", "Render a scene file (YAML, JSON or pbrt-v4); with no SCENE, the built-in demo "
                   "(the article's Figure 14) to glint.png");
-    render->add_option("SCENE", args.scene, "Scene file (.yaml, .yml, .json or .pbrt)");
+    render->add_option("SCENE", args.scene, "Scene file (.yaml, .yml, .json or .pbrt) or mesh file (--list-formats)");
+    bool list_formats = false;
+    render->add_flag("--list-formats", list_formats, "Print the scene, mesh and image formats glint reads and writes");
     const char* strict_help = "pbrt files: what glint cannot render is an error, not a warning";
     render->add_flag("--strict", args.strict, strict_help);
     render->add_option("-o,--output", args.output,
@@ -295,6 +317,11 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    }
+
+    if (render->parsed() && list_formats) {
+        print_formats();
+        return 0;
     }
 
     // Under mpirun every rank ends MPI before it exits (the cluster outlives the session, whose

@@ -37,16 +37,29 @@ std::string lower_extension(const fs::path& path) {
 
 }  // namespace
 
+std::span<const ImageFormatInfo> image_formats() {
+    // The order of the "supported" list in image_format_for's message.
+    static const ImageFormatInfo formats[] = {
+        {ImageFormat::kPng, {".png"}, "PNG, 8-bit sRGB (libspng); rows encoded as they render"},
+        {ImageFormat::kExr, {".exr"}, "OpenEXR, 32-bit float linear RGB, with AOVs and sample counts as channels"},
+        {ImageFormat::kJpeg, {".jpg", ".jpeg"}, "JPEG, 8-bit sRGB (libjpeg-turbo)"},
+        {ImageFormat::kHdr, {".hdr"}, "Radiance RGBE, linear"},
+        {ImageFormat::kPfm, {".pfm"}, "Portable float map, linear"},
+        {ImageFormat::kPpm, {".ppm"}, "Portable pixmap, 8-bit"},
+    };
+    return formats;
+}
+
 ImageFormat image_format_for(const fs::path& path) {
     const std::string ext = lower_extension(path);
-    if (ext == ".png") return ImageFormat::kPng;
-    if (ext == ".exr") return ImageFormat::kExr;
-    if (ext == ".ppm") return ImageFormat::kPpm;
-    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::kJpeg;
-    if (ext == ".hdr") return ImageFormat::kHdr;
-    if (ext == ".pfm") return ImageFormat::kPfm;
-    throw IoError(fmt::format("{}: unsupported output format '{}' (supported: .png, .exr, .jpg, .hdr, .pfm, .ppm)",
-                              path.string(), ext.empty() ? std::string("no extension") : ext));
+    std::string known;
+    for (const ImageFormatInfo& f : image_formats()) {
+        for (std::string_view e : f.extensions)
+            if (ext == e) return f.format;
+        known += (known.empty() ? "" : ", ") + std::string(f.extensions.front());
+    }
+    throw IoError(fmt::format("{}: unsupported output format '{}' (supported: {})", path.string(),
+                              ext.empty() ? std::string("no extension") : ext, known));
 }
 
 float srgb_decode(float v) {

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
+#include <string_view>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -40,6 +42,15 @@ float srgb_decode(float v);
 /// `max_pixels` pixels (default: the texture-pixels limit; checked from the header, before
 /// reading) or more than the memory budget allows.
 Image read_image(const std::filesystem::path& path, ImageEncoding encoding, long long max_pixels = 0);
+
+/// An image format glint writes (and reads with its own readers): one table, which
+/// image_format_for and `glint render --list-formats` read.
+struct ImageFormatInfo {
+    ImageFormat format;
+    std::vector<std::string_view> extensions;  ///< lower case, with the dot
+    std::string_view description;
+};
+std::span<const ImageFormatInfo> image_formats();
 
 /// The format for a path's extension (.png, .exr, .ppm, .jpg/.jpeg, .hdr, .pfm;
 /// case-insensitive); throws IoError naming the supported ones otherwise.
