@@ -116,7 +116,8 @@ int run_convert(const glint::SessionOptions& args, const std::string& out) {
     if (!args.quiet)
         for (const auto& w : d.warnings) fmt::print(stderr, "glint: note: {}", glint::format_warning(w, *sources));
     const glint::WrittenScene w = glint::write_scene_yaml(d, out);
-    glint::write_file_atomically(out, std::vector<std::uint8_t>(w.yaml.begin(), w.yaml.end()));
+    glint::write_file_atomically(out, std::span(reinterpret_cast<const std::uint8_t*>(w.yaml.data()), w.yaml.size()),
+                                 "the scene");
     fmt::print("wrote {}{}\n", out, w.meshes.empty() ? "" : fmt::format(" and {} mesh or grid file{}", w.meshes.size(), w.meshes.size() == 1 ? "" : "s"));
     return 0;
 }

@@ -1,4 +1,5 @@
 #include "glint/image/image_io.h"
+#include "glint/base/atomic_file.h"
 
 #include "glint/base/diagnostics.h"
 #include "glint/image/image_formats.h"
@@ -223,26 +224,7 @@ void check_writable(const fs::path& path, int width, int height) {
     }
 }
 
-fs::path temporary_path(const fs::path& target) {
-    const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    return dir / fmt::format(".{}.glint-{}.tmp", target.filename().string(), ::getpid());
-}
-
 namespace {
-
-// Writes `bytes` to the temporary file beside `path`, then renames it over `path`.
-void write_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
-    const fs::path tmp = temporary_path(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), std::strerror(errno)));
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    const int write_errno = errno;
-    if (std::fclose(f) != 0 || !ok) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), std::strerror(ok ? errno : write_errno)));
-    }
-}
 
 std::vector<std::uint8_t> ppm_header(int width, int height) {
     const std::string header = fmt::format("P6\n{} {}\n255\n", width, height);
@@ -254,26 +236,11 @@ std::vector<std::uint8_t> jpeg_bytes(const fs::path& path, const std::uint8_t* r
     try {
         return encode_jpeg(rgb, w, h, metadata);
     } catch (const IoError& e) {
-        throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), e.what()));
-    }
-}
-
-void move_into_place(const fs::path& tmp, const fs::path& path) {
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw IoError(fmt::format("{}: cannot move the finished image into place: {}", path.string(), ec.message()));
+        throw IoError(fmt::format("{}: cannot write the image: {}", path.string(), e.what()));
     }
 }
 
 }  // namespace
-
-void write_file_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
-    write_atomically(path, bytes);
-    move_into_place(temporary_path(path), path);
-}
 
 void write_image(const fs::path& path, const Film& film, const DisplaySettings& display,
                  const ImageMetadata& metadata) {
@@ -308,16 +275,16 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
         } catch (const IoError& e) {
             std::error_code ec;
             fs::remove(tmp, ec);
-            throw IoError(fmt::format("{}: writing the image failed: {}", path.string(), e.what()));
+            throw IoError(fmt::format("{}: cannot write the image: {}", path.string(), e.what()));
         }
-        move_into_place(tmp, path);
+        move_into_place(path, "the image");
         return;
     }
     if (format == ImageFormat::kHdr || format == ImageFormat::kPfm) {
         static_assert(sizeof(Color) == 3 * sizeof(float));
         const float* rgb = n == 0 ? nullptr : &film.pixels()[0].r;
-        write_atomically(path, format == ImageFormat::kHdr ? encode_hdr(rgb, w, h, metadata) : encode_pfm(rgb, w, h));
-        move_into_place(tmp, path);
+        write_temporary(path, format == ImageFormat::kHdr ? encode_hdr(rgb, w, h, metadata) : encode_pfm(rgb, w, h), "the image");
+        move_into_place(path, "the image");
         return;
     }
     const auto row_bytes = [&](int y, std::uint8_t* out) {
@@ -326,19 +293,19 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
         encode_8bit(&px->r, static_cast<std::size_t>(w) * 3, out, display);
     };
     if (format == ImageFormat::kPng) {
-        write_atomically(path, encode_png(row_bytes, w, h, display.encoding == Encoding::kSrgb, metadata));
+        write_temporary(path, encode_png(row_bytes, w, h, display.encoding == Encoding::kSrgb, metadata), "the image");
     } else if (format == ImageFormat::kJpeg) {
         std::vector<std::uint8_t> rgb(n * 3);
         tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &rgb[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
-        write_atomically(path, jpeg_bytes(path, rgb.data(), w, h, metadata));
+        write_temporary(path, jpeg_bytes(path, rgb.data(), w, h, metadata), "the image");
     } else {  // binary PPM: no place for metadata
         std::vector<std::uint8_t> bytes = ppm_header(w, h);
         const std::size_t header = bytes.size();
         bytes.resize(header + n * 3);
         tbb::parallel_for(0, h, [&](int y) { row_bytes(y, &bytes[header + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]); });
-        write_atomically(path, bytes);
+        write_temporary(path, bytes, "the image");
     }
-    move_into_place(tmp, path);
+    move_into_place(path, "the image");
 }
 
 struct Image8Writer::Impl {
@@ -378,15 +345,15 @@ void Image8Writer::rows_ready(int y0, int y1) {
 void Image8Writer::finish(const ImageMetadata& metadata) {
     const Impl& m = *impl_;
     if (impl_->png) {
-        write_atomically(m.path, impl_->png->finish(m.srgb, metadata));
+        write_temporary(m.path, impl_->png->finish(m.srgb, metadata), "the image");
     } else if (m.format == ImageFormat::kJpeg) {
-        write_atomically(m.path, jpeg_bytes(m.path, m.rgb.data(), m.width, m.height, metadata));
+        write_temporary(m.path, jpeg_bytes(m.path, m.rgb.data(), m.width, m.height, metadata), "the image");
     } else {  // binary PPM: no place for metadata
         std::vector<std::uint8_t> bytes = ppm_header(m.width, m.height);
         bytes.insert(bytes.end(), m.rgb.data(), m.rgb.data() + m.rgb.size());
-        write_atomically(m.path, bytes);
+        write_temporary(m.path, bytes, "the image");
     }
-    move_into_place(temporary_path(m.path), m.path);
+    move_into_place(m.path, "the image");
 }
 
 }  // namespace glint

@@ -1,8 +1,7 @@
 #pragma once
 // Reading and writing image files (the formats and their libraries: image_formats.h). Writes are
-// atomic: the image goes to a temporary file in the destination folder, which is renamed over the
-// destination only once it is complete. A failed or killed run never leaves a truncated image and
-// never clobbers an existing one.
+// atomic (base/atomic_file.h): a failed or killed run never leaves a truncated image and never
+// clobbers an existing one.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -15,6 +14,7 @@
 
 #include "glint/film/film.h"
 #include "glint/film/tonemap.h"
+#include "glint/base/atomic_file.h"
 #include "glint/base/errors.h"
 #include "glint/base/limits.h"
 #include "glint/textures/texture.h"
@@ -64,13 +64,6 @@ void check_writable(const std::filesystem::path& path, int width = 0, int height
 /// Name and value pairs written into the image's header (EXR attributes, PNG text chunks):
 /// glint writes the spp reached, the render time and the scene.
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
-
-/// The temporary file a write to `target` goes through before its rename: in the same folder,
-/// named after the target and the process, so a signal handler can find and remove it.
-std::filesystem::path temporary_path(const std::filesystem::path& target);
-/// `bytes` (an image file made elsewhere, e.g. by another rank) written to `path` atomically, as
-/// write_image writes: a temporary file beside it, renamed over it.
-void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
 
 /// PNG/JPEG/PPM: 8-bit RGB through `display` (exposure, curve, encoding); EXR: the linear values
 /// as 32-bit float RGB, unclamped (no exposure, no curve), plus the film's AOVs if it has them as

@@ -1,4 +1,5 @@
 #include "glint/session/checkpoint.h"
+#include "glint/base/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -166,39 +167,10 @@ void write_checkpoint(const fs::path& path, std::uint64_t fingerprint, const Pro
     }
     w.put(hash_bytes(w.bytes.data(), w.bytes.size()));
 
-    // A temporary file beside the target, flushed to the disk, then renamed over it: a reader
-    // (or a resumed run after a crash or a power cut) sees the old checkpoint or the new one.
-    const fs::path tmp = temporary_path(path);
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw IoError(fmt::format("{}: cannot write the checkpoint: {}", path.string(), std::strerror(errno)));
-    std::size_t done = 0;
-    while (done < w.bytes.size()) {
-        const ssize_t n = ::write(fd, w.bytes.data() + done, w.bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            const int e = errno;
-            ::close(fd);
-            ::unlink(tmp.c_str());
-            throw IoError(fmt::format("{}: cannot write the checkpoint: {}", path.string(), std::strerror(e)));
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    if (::fsync(fd) != 0 || ::close(fd) != 0) {
-        const int e = errno;
-        ::unlink(tmp.c_str());
-        throw IoError(fmt::format("{}: cannot write the checkpoint: {}", path.string(), std::strerror(e)));
-    }
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int e = errno;
-        ::unlink(tmp.c_str());
-        throw IoError(fmt::format("{}: cannot move the checkpoint into place: {}", path.string(), std::strerror(e)));
-    }
-    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {  // the rename itself on disk
-        ::fsync(dfd);
-        ::close(dfd);
-    }
+    // Flushed to the disk before and after the rename: a reader (or a resumed run after a crash
+    // or a power cut) sees the old checkpoint or the new one.
+    write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(w.bytes.data()), w.bytes.size()),
+                          "the checkpoint", true);
 }
 
 Checkpoint read_checkpoint(const fs::path& path) {

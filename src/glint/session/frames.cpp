@@ -123,7 +123,7 @@ SessionResult RenderSession::frames(SessionOptions args) {
                 return render_frame_file(one, std::nullopt);
             },
             [&](double f, int rank, const std::vector<std::uint8_t>& bytes) {
-                write_file_atomically(frame_path(pattern, static_cast<long long>(f), last > first), bytes);
+                write_file_atomically(frame_path(pattern, static_cast<long long>(f), last > first), bytes, "the image");
                 said(f, rank);
             },
             hooks_.cancel);
