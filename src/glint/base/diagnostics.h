@@ -27,15 +27,15 @@ struct Diagnostic {
     std::string message;
 };
 
+/// The folders of a search-path list ("a:b:c"; empty entries skipped), e.g. from an environment
+/// variable.
+std::vector<std::filesystem::path> split_search_path(const std::string& list);
+
 /// Why glint must not read `path`, as the end of a sentence starting "it ": it lies outside the
 /// folders given to restrict_reads_to ("is outside the folders --restrict-paths allows (...)"),
 /// or it names a folder, a device, a FIFO or a socket (reading those blocks or never ends): "is
 /// a folder", "is not a regular file (a device, FIFO or socket)". Empty for a regular file, or
 /// for a path that does not exist (opening it says so). Every file glint reads is asked first.
-/// The folders of a search-path list ("a:b:c"; empty entries skipped), e.g. from an environment
-/// variable.
-std::vector<std::filesystem::path> split_search_path(const std::string& list);
-
 std::string why_not_readable(const std::filesystem::path& path);
 
 /// Every regular file why_not_readable has let through in this process, as absolute, lexically

@@ -230,7 +230,7 @@ struct InlineMeshDesc {
     std::shared_ptr<const TriangleMesh> mesh;
 };
 
-/// A cut-out on a mesh (scene/alpha.h's AlphaMask before its texture is added).
+/// A cut-out on a mesh (scene.h's AlphaMask before its texture is added).
 struct AlphaDesc {
     TextureDesc texture;
     float cutoff = 0.5f;
