@@ -5,23 +5,22 @@
 // text can do.
 #include "fuzz_common.h"
 #include "glint/builder/build.h"
-#include "glint/formats/pbrt.h"
-#include "glint/formats/scene_yaml.h"
+#include "glint/session/formats.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace glint;
 #ifdef GLINT_FUZZ_PBRT
     const std::string path = (fuzz::scratch() / "scene.pbrt").string();
-    constexpr auto parse = [](const std::string& text, const std::string& p, std::shared_ptr<SourceFiles> s) {
-        return parse_pbrt(text, p, std::move(s));
-    };
+    const ReadOptions options;
 #else
     const std::string path = (fuzz::scratch() / "scene.yaml").string();
     // A frame between whole numbers, so keyframed values are interpolated, not just looked up.
-    constexpr auto parse = [](const std::string& text, const std::string& p, std::shared_ptr<SourceFiles> s) {
-        return parse_scene(text, p, std::move(s), 1.5);
-    };
+    const ReadOptions options{false, 1.5, ""};
 #endif
+    // The reader the format table picks for the file's name, as glint render would.
+    const auto parse = [&](const std::string& text, const std::string& p, std::shared_ptr<SourceFiles> s) {
+        return scene_file_format(p).parse(text, p, std::move(s), options);
+    };
     fuzz::expect_located_errors([&] {
         auto sources = std::make_shared<SourceFiles>();
         const SceneDescription d = parse(std::string(fuzz::as_text(data, size)), path, sources);
