@@ -474,20 +474,9 @@ Medium make_medium(const MediumDesc& d, Diagnostics& diagnostics, const std::fil
     return g;
 }
 
-}  // namespace
-
-RenderJob build(const SceneDescription& d, const Overrides& overrides,
-                std::shared_ptr<SourceFiles> sources) {
-    RenderJob job;
-    job.sources = sources;
-    Diagnostics diagnostics(std::move(sources));
-    for (const Diagnostic& w : d.warnings) {
-        std::string text = format_warning(w, diagnostics.sources());
-        while (!text.empty() && text.back() == '\n') text.pop_back();
-        job.notes.push_back(std::move(text));
-    }
-
-    // Film and sampling limits come first: nothing below allocates per pixel, but the render does.
+// The film's size and crop, the sampler, threads and display: limits first, since the render
+// allocates per pixel.
+void build_film(const SceneDescription& d, const Overrides& overrides, RenderJob& job, Diagnostics& diagnostics) {
     job.width = pick(d.film.width, overrides.width, "width", 1, kMaxFilmSide, diagnostics);
     job.height = pick(d.film.height, overrides.height, "height", 1, kMaxFilmSide, diagnostics);
     const long long pixels = static_cast<long long>(job.width) * job.height;
@@ -548,7 +537,9 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     job.aovs = d.film.aovs || overrides.aovs;
     job.filename = d.film.filename.value;
 
-    // Camera.
+}
+
+void build_camera(const SceneDescription& d, RenderJob& job) {
     if (const auto* a = std::get_if<ArticleCameraDesc>(&d.camera)) {
         const Float vw = a->viewport_width.value_or(a->viewport_height *
                                                     static_cast<Float>(job.width) /
@@ -572,7 +563,10 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         if (l.right_handed) job.camera.make_right_handed(job.width);
     }
 
-    // Integrator.
+}
+
+void build_integrator(const SceneDescription& d, const Overrides& overrides, RenderJob& job,
+                      Diagnostics& diagnostics) {
     switch (d.integrator.kind) {
         case IntegratorKind::kFlat: job.integrator = std::make_unique<FlatIntegrator>(); break;
         case IntegratorKind::kNormals: job.integrator = std::make_unique<NormalsIntegrator>(); break;
@@ -595,41 +589,53 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         }
     }
 
-    // Scene contents: named materials first (ids in file order), then objects.
-    Scene& scene = job.scene;
-    scene.background = d.background;
-    scene.lights = d.lights;
-    const std::filesystem::path scene_dir = std::filesystem::path(d.path).parent_path();
-    // Media first: materials (glTF volumes) and objects refer to them.
-    std::vector<std::string> medium_names;
-    for (const NamedMedium& m : d.media) {
-        medium_names.push_back(m.name);
-        scene.media.push_back(make_medium(m.medium, diagnostics, scene_dir));
+}
+
+// The scene's contents: media, then named materials (ids in file order), then objects; each mesh
+// file imported once however many objects include it (their instances then share its meshes and
+// its BVH).
+class ContentsBuilder {
+public:
+    ContentsBuilder(const SceneDescription& d, RenderJob& job, Diagnostics& diagnostics)
+        : d_(d), job_(job), scene_(job.scene), diagnostics_(diagnostics),
+          scene_dir_(std::filesystem::path(d.path).parent_path()), materials_(job.scene, diagnostics, scene_dir_),
+          time_(d.frame / d.fps) {}
+
+    void add_media_and_materials() {
+        scene_.background = d_.background;
+        scene_.lights = d_.lights;
+        // Media first: materials (glTF volumes) and objects refer to them.
+        for (const NamedMedium& m : d_.media) {
+            medium_names_.push_back(m.name);
+            scene_.media.push_back(make_medium(m.medium, diagnostics_, scene_dir_));
+        }
+        if (d_.medium) scene_.camera_medium = medium_id(*d_.medium).value_or(kNoMedium);
+        if (d_.environment) materials_.set_environment(*d_.environment, job_.notes);
+        for (const NamedMaterial& m : d_.materials) {
+            names_.push_back(m.name);
+            materials_.add_material(m.material);
+        }
+        materials_.resolve_mixes(names_);
     }
-    const auto medium_id = [&](const Located<std::string>& name) -> std::optional<MediumId> {
+
+    void add_object(const ObjectDesc& o);
+    void add_mesh_file(const ObjectDesc& o, const MeshFileDesc& file, MaterialId id);
+
+private:
+    std::optional<MediumId> medium_id(const Located<std::string>& name) {
         if (name.value == "none") return kNoMedium;
-        const auto it = std::find(medium_names.begin(), medium_names.end(), name.value);
-        if (it != medium_names.end()) return static_cast<MediumId>(it - medium_names.begin());
+        const auto it = std::find(medium_names_.begin(), medium_names_.end(), name.value);
+        if (it != medium_names_.end()) return static_cast<MediumId>(it - medium_names_.begin());
         std::string known;
-        for (const auto& n : medium_names) known += (known.empty() ? "" : ", ") + n;
-        const std::string guess = closest_match(name.value, medium_names);
-        diagnostics.error(name.loc, fmt::format("unknown medium '{}'{} ({})", name.value,
-                                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
-                                                known.empty() ? "no media are defined; 'none' is vacuum"
-                                                              : fmt::format("known: {}, or none", known)));
+        for (const auto& n : medium_names_) known += (known.empty() ? "" : ", ") + n;
+        const std::string guess = closest_match(name.value, medium_names_);
+        diagnostics_.error(name.loc, fmt::format("unknown medium '{}'{} ({})", name.value,
+                                                 guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                                                 known.empty() ? "no media are defined; 'none' is vacuum"
+                                                               : fmt::format("known: {}, or none", known)));
         return std::nullopt;
-    };
-    if (d.medium) scene.camera_medium = medium_id(*d.medium).value_or(kNoMedium);
-    MaterialBuilder materials(scene, diagnostics, std::filesystem::path(d.path).parent_path());
-    if (d.environment) materials.set_environment(*d.environment, job.notes);
-    std::vector<std::string> names;
-    for (const NamedMaterial& m : d.materials) {
-        names.push_back(m.name);
-        materials.add_material(m.material);
     }
-    materials.resolve_mixes(names);
-    // Mesh files, each imported once however many objects include it (their instances then share
-    // its meshes and its BVH).
+
     struct LoadedFile {
         std::uint32_t first_mesh = 0;
         std::vector<ImportedNode> nodes;
@@ -638,154 +644,190 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         std::vector<GltfCamera> cameras;
         std::vector<std::int32_t> mesh_alpha;  ///< per mesh: its material's cut-out, or -1
     };
-    std::map<std::string, LoadedFile> loaded;
-    std::map<const TriangleMesh*, std::uint32_t> inline_meshes;
-    const double time = d.frame / d.fps;  // seconds into glTF animations
-    for (const ObjectDesc& o : d.objects) {
-        MaterialId id = 0;
-        const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
-        if (mesh_file && !o.material_given) {
-            id = kNoImportedMaterial;
-        } else if (const auto* name = std::get_if<std::string>(&o.material.value)) {
-            const auto it = std::find(names.begin(), names.end(), *name);
-            if (it == names.end()) {
-                std::string known;
-                for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-                const std::string guess = closest_match(*name, names);
-                diagnostics.error(
-                    o.material.loc,
-                    fmt::format("unknown material '{}'{} ({})", *name,
-                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
-                                known.empty() ? "no materials are defined"
-                                              : fmt::format("known: {}", known)));
-                continue;
-            }
-            id = static_cast<MaterialId>(it - names.begin());
-        } else {
-            id = materials.add_material(std::get<MaterialDesc>(o.material.value));
-            materials.resolve_mixes(names);
-        }
-        if (o.interior || o.exterior) {
-            const auto in = o.interior ? medium_id(*o.interior) : std::optional<MediumId>(kNoMedium);
-            const auto out = o.exterior ? medium_id(*o.exterior) : std::optional<MediumId>(scene.camera_medium);
-            if (!in || !out) continue;
-            if (id == kNoImportedMaterial) {
-                diagnostics.error((o.interior ? *o.interior : *o.exterior).loc,
-                                  "a mesh that bounds a medium needs a 'material' of its own (the file's "
-                                  "materials are shared by every object that loads it)");
-                continue;
-            }
-            id = materials.add_slot(id, MediumInterface{*in, *out});
-        }
-        if (mesh_file) {
-            const auto found = find_model(mesh_file->file.value, scene_dir);
-            if (!found.path) {
-                diagnostics.error(mesh_file->file.loc, fmt::format("mesh file '{}' not found (looked in: {})",
-                                                                   mesh_file->file.value, found.looked));
-                continue;
-            }
-            const std::filesystem::path path = *found.path;
-            const std::string key = path.lexically_normal().string();
-            auto it = loaded.find(key);
-            if (it == loaded.end()) {
-                ImportedFile f;
-                try {
-                    f = mesh_file->camera.empty() ? import_mesh_file(path, time) : import_gltf(path, mesh_file->camera, time);
-                } catch (const IoError& e) {
-                    diagnostics.error(mesh_file->file.loc, e.what());
-                    continue;
-                }
-                // The file's materials become scene materials; faces without one get the
-                // object's default material.
-                std::vector<MaterialId> ids;
-                std::vector<std::int32_t> alphas;  // per file material: its cut-out (glTF alphaMode)
-                for (const ImportedMaterial& m : f.materials) {
-                    ids.push_back(materials.add_material(m.desc));
-                    alphas.push_back(m.alpha ? materials.add_alpha(*m.alpha) : -1);
-                }
-                std::optional<MaterialId> fallback;  // added only if some face needs it
-                const auto map_id = [&](MaterialId local) {
-                    if (local != kNoImportedMaterial) return ids.at(local);
-                    if (!fallback) fallback = materials.add_material(MaterialDesc{});
-                    return *fallback;
-                };
-                LoadedFile lf{static_cast<std::uint32_t>(scene.meshes.size()), f.nodes, f.lights, f.camera, f.cameras, {}};
-                for (TriangleMesh& m : f.meshes) {
-                    lf.mesh_alpha.push_back(m.material != kNoImportedMaterial ? alphas.at(m.material) : -1);
-                    m.material = map_id(m.material);
-                    for (MaterialId& fm : m.face_materials) fm = map_id(fm);
-                    scene.meshes.push_back(std::move(m));
-                }
-                if (f.dropped_triangles > 0)
-                    job.notes.push_back(fmt::format("{}: dropped {} degenerate triangle{}", mesh_file->file.value,
-                                                    f.dropped_triangles, f.dropped_triangles == 1 ? "" : "s"));
-                for (std::string& n : f.notes) job.notes.push_back(std::move(n));
-                it = loaded.emplace(key, std::move(lf)).first;
-            }
-            const Transform place = o.transform.value_or(Transform{});
-            for (Light l : it->second.lights) {
-                std::visit(
-                    [&](auto& x) {
-                        using L = std::decay_t<decltype(x)>;
-                        if constexpr (std::is_same_v<L, PointLight> || std::is_same_v<L, SpotLight>) x.position = place.point(x.position);
-                        if constexpr (std::is_same_v<L, SpotLight> || std::is_same_v<L, DirectionalLight>) x.direction = normalize(place.vector(x.direction));
-                    },
-                    l);
-                scene.lights.push_back(l);
-            }
-            const auto placed = [&](GltfCamera c) {
-                c.position = place.point(c.position);
-                c.direction = normalize(place.vector(c.direction));
-                c.up = normalize(place.vector(c.up));
-                return c;
-            };
-            if (it->second.camera && !job.file_camera) job.file_camera = placed(*it->second.camera);
-            for (const GltfCamera& c : it->second.cameras) job.file_cameras.push_back(placed(c));
-            // The object's cut-out, else (unless the object replaces the file's materials, and
-            // with them their alpha) the file material's.
-            const std::int32_t alpha = o.alpha ? materials.add_alpha(*o.alpha) : -1;
-            for (const ImportedNode& n : it->second.nodes) {
-                const std::int32_t a = o.alpha || id != kNoImportedMaterial ? alpha : it->second.mesh_alpha.at(n.mesh);
-                Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, a};
-                if (id != kNoImportedMaterial) inst.material = id;
-                scene.instances.push_back(inst);
-            }
-            continue;
-        }
-        if (const auto* inline_mesh = std::get_if<InlineMeshDesc>(&o.shape)) {
-            // Each mesh once, however many objects place it (pbrt's object instances).
-            auto it = inline_meshes.find(inline_mesh->mesh.get());
-            if (it == inline_meshes.end()) {
-                TriangleMesh m = *inline_mesh->mesh;
-                m.material = id;
-                it = inline_meshes.emplace(inline_mesh->mesh.get(), static_cast<std::uint32_t>(scene.meshes.size())).first;
-                scene.meshes.push_back(std::move(m));
-            }
-            scene.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id,
-                                               o.alpha ? materials.add_alpha(*o.alpha) : -1});
-            continue;
-        }
-        if (o.alpha) diagnostics.error(o.alpha->loc, "alpha (a cut-out) applies to meshes only");
-        std::visit(
-            [&](auto shape) {
-                using S = decltype(shape);
-                if constexpr (!std::is_same_v<S, MeshFileDesc> && !std::is_same_v<S, InlineMeshDesc>) {
-                    shape.material = id;
-                    if (o.transform) {
-                        if (const auto why = transform_shape(shape, *o.transform)) {
-                            diagnostics.error(o.transform_loc, *why);
-                            return;
-                        }
-                    }
-                    shapes_of(scene, shape).push_back(shape);
-                }
-            },
-            o.shape);
+
+    const SceneDescription& d_;
+    RenderJob& job_;
+    Scene& scene_;
+    Diagnostics& diagnostics_;
+    std::filesystem::path scene_dir_;
+    MaterialBuilder materials_;
+    double time_;  ///< seconds into glTF animations
+    std::vector<std::string> medium_names_, names_;
+    std::map<std::string, LoadedFile> loaded_;
+    std::map<const TriangleMesh*, std::uint32_t> inline_meshes_;
+};
+
+// A mesh file's instances (its meshes and materials added on first use), its lights and cameras,
+// placed by the object's transform.
+void ContentsBuilder::add_mesh_file(const ObjectDesc& o, const MeshFileDesc& file, MaterialId id) {
+    const MeshFileDesc* mesh_file = &file;
+    const auto found = find_model(mesh_file->file.value, scene_dir_);
+    if (!found.path) {
+        diagnostics_.error(mesh_file->file.loc, fmt::format("mesh file '{}' not found (looked in: {})",
+                                                           mesh_file->file.value, found.looked));
+        return;
     }
-    if (overrides.accel) scene.accel = *overrides.accel;
+    const std::filesystem::path path = *found.path;
+    const std::string key = path.lexically_normal().string();
+    auto it = loaded_.find(key);
+    if (it == loaded_.end()) {
+        ImportedFile f;
+        try {
+            f = mesh_file->camera.empty() ? import_mesh_file(path, time_) : import_gltf(path, mesh_file->camera, time_);
+        } catch (const IoError& e) {
+            diagnostics_.error(mesh_file->file.loc, e.what());
+            return;
+        }
+        // The file's materials become scene materials; faces without one get the
+        // object's default material.
+        std::vector<MaterialId> ids;
+        std::vector<std::int32_t> alphas;  // per file material: its cut-out (glTF alphaMode)
+        for (const ImportedMaterial& m : f.materials) {
+            ids.push_back(materials_.add_material(m.desc));
+            alphas.push_back(m.alpha ? materials_.add_alpha(*m.alpha) : -1);
+        }
+        std::optional<MaterialId> fallback;  // added only if some face needs it
+        const auto map_id = [&](MaterialId local) {
+            if (local != kNoImportedMaterial) return ids.at(local);
+            if (!fallback) fallback = materials_.add_material(MaterialDesc{});
+            return *fallback;
+        };
+        LoadedFile lf{static_cast<std::uint32_t>(scene_.meshes.size()), f.nodes, f.lights, f.camera, f.cameras, {}};
+        for (TriangleMesh& m : f.meshes) {
+            lf.mesh_alpha.push_back(m.material != kNoImportedMaterial ? alphas.at(m.material) : -1);
+            m.material = map_id(m.material);
+            for (MaterialId& fm : m.face_materials) fm = map_id(fm);
+            scene_.meshes.push_back(std::move(m));
+        }
+        if (f.dropped_triangles > 0)
+            job_.notes.push_back(fmt::format("{}: dropped {} degenerate triangle{}", mesh_file->file.value,
+                                            f.dropped_triangles, f.dropped_triangles == 1 ? "" : "s"));
+        for (std::string& n : f.notes) job_.notes.push_back(std::move(n));
+        it = loaded_.emplace(key, std::move(lf)).first;
+    }
+    const Transform place = o.transform.value_or(Transform{});
+    for (Light l : it->second.lights) {
+        std::visit(
+            [&](auto& x) {
+                using L = std::decay_t<decltype(x)>;
+                if constexpr (std::is_same_v<L, PointLight> || std::is_same_v<L, SpotLight>) x.position = place.point(x.position);
+                if constexpr (std::is_same_v<L, SpotLight> || std::is_same_v<L, DirectionalLight>) x.direction = normalize(place.vector(x.direction));
+            },
+            l);
+        scene_.lights.push_back(l);
+    }
+    const auto placed = [&](GltfCamera c) {
+        c.position = place.point(c.position);
+        c.direction = normalize(place.vector(c.direction));
+        c.up = normalize(place.vector(c.up));
+        return c;
+    };
+    if (it->second.camera && !job_.file_camera) job_.file_camera = placed(*it->second.camera);
+    for (const GltfCamera& c : it->second.cameras) job_.file_cameras.push_back(placed(c));
+    // The object's cut-out, else (unless the object replaces the file's materials, and
+    // with them their alpha) the file material's.
+    const std::int32_t alpha = o.alpha ? materials_.add_alpha(*o.alpha) : -1;
+    for (const ImportedNode& n : it->second.nodes) {
+        const std::int32_t a = o.alpha || id != kNoImportedMaterial ? alpha : it->second.mesh_alpha.at(n.mesh);
+        Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, a};
+        if (id != kNoImportedMaterial) inst.material = id;
+        scene_.instances.push_back(inst);
+    }
+}
+
+void ContentsBuilder::add_object(const ObjectDesc& o) {
+    MaterialId id = 0;
+    const auto* mesh_file = std::get_if<MeshFileDesc>(&o.shape);
+    if (mesh_file && !o.material_given) {
+        id = kNoImportedMaterial;
+    } else if (const auto* name = std::get_if<std::string>(&o.material.value)) {
+        const auto it = std::find(names_.begin(), names_.end(), *name);
+        if (it == names_.end()) {
+            std::string known;
+            for (const auto& n : names_) known += (known.empty() ? "" : ", ") + n;
+            const std::string guess = closest_match(*name, names_);
+            diagnostics_.error(
+                o.material.loc,
+                fmt::format("unknown material '{}'{} ({})", *name,
+                            guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess),
+                            known.empty() ? "no materials are defined"
+                                          : fmt::format("known: {}", known)));
+            return;
+        }
+        id = static_cast<MaterialId>(it - names_.begin());
+    } else {
+        id = materials_.add_material(std::get<MaterialDesc>(o.material.value));
+        materials_.resolve_mixes(names_);
+    }
+    if (o.interior || o.exterior) {
+        const auto in = o.interior ? medium_id(*o.interior) : std::optional<MediumId>(kNoMedium);
+        const auto out = o.exterior ? medium_id(*o.exterior) : std::optional<MediumId>(scene_.camera_medium);
+        if (!in || !out) return;
+        if (id == kNoImportedMaterial) {
+            diagnostics_.error((o.interior ? *o.interior : *o.exterior).loc,
+                              "a mesh that bounds a medium needs a 'material' of its own (the file's "
+                              "materials are shared by every object that loads it)");
+            return;
+        }
+        id = materials_.add_slot(id, MediumInterface{*in, *out});
+    }
+    if (mesh_file) {
+        add_mesh_file(o, *mesh_file, id);
+        return;
+    }
+    if (const auto* inline_mesh = std::get_if<InlineMeshDesc>(&o.shape)) {
+        // Each mesh once, however many objects place it (pbrt's object instances).
+        auto it = inline_meshes_.find(inline_mesh->mesh.get());
+        if (it == inline_meshes_.end()) {
+            TriangleMesh m = *inline_mesh->mesh;
+            m.material = id;
+            it = inline_meshes_.emplace(inline_mesh->mesh.get(), static_cast<std::uint32_t>(scene_.meshes.size())).first;
+            scene_.meshes.push_back(std::move(m));
+        }
+        scene_.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id,
+                                           o.alpha ? materials_.add_alpha(*o.alpha) : -1});
+        return;
+    }
+    if (o.alpha) diagnostics_.error(o.alpha->loc, "alpha (a cut-out) applies to meshes only");
+    std::visit(
+        [&](auto shape) {
+            using S = decltype(shape);
+            if constexpr (!std::is_same_v<S, MeshFileDesc> && !std::is_same_v<S, InlineMeshDesc>) {
+                shape.material = id;
+                if (o.transform) {
+                    if (const auto why = transform_shape(shape, *o.transform)) {
+                        diagnostics_.error(o.transform_loc, *why);
+                        return;
+                    }
+                }
+                shapes_of(scene_, shape).push_back(shape);
+            }
+        },
+        o.shape);
+}
+
+}  // namespace
+
+RenderJob build(const SceneDescription& d, const Overrides& overrides,
+                std::shared_ptr<SourceFiles> sources) {
+    RenderJob job;
+    job.sources = sources;
+    Diagnostics diagnostics(std::move(sources));
+    for (const Diagnostic& w : d.warnings) {
+        std::string text = format_warning(w, diagnostics.sources());
+        while (!text.empty() && text.back() == '\n') text.pop_back();
+        job.notes.push_back(std::move(text));
+    }
+    build_film(d, overrides, job, diagnostics);
+    build_camera(d, job);
+    build_integrator(d, overrides, job, diagnostics);
+    ContentsBuilder contents(d, job, diagnostics);
+    contents.add_media_and_materials();
+    for (const ObjectDesc& o : d.objects) contents.add_object(o);
+    if (overrides.accel) job.scene.accel = *overrides.accel;
 
     diagnostics.throw_if_errors();
-    scene.commit();
+    job.scene.commit();
     return job;
 }
 

@@ -166,7 +166,9 @@ TEST(Vocabulary, EveryTypeValueAndKeyIsDocumentedInItsSection) {
             return text.find("`" + n + "`") != std::string::npos || text.find("`" + n + ":") != std::string::npos ||
                    text.find("`type: " + n + "`") != std::string::npos;
         };
-        if (!e.type.empty()) EXPECT_TRUE(named(e.type)) << e.kind << " '" << e.type << "' is not in " << w->second;
+        if (!e.type.empty()) {
+            EXPECT_TRUE(named(e.type)) << e.kind << " '" << e.type << "' is not in " << w->second;
+        }
         for (std::string_view key : e.keys)
             EXPECT_TRUE(named(key)) << e.kind << " " << e.type << ": key '" << key << "' is not in " << w->second;
     }
