@@ -102,22 +102,11 @@ void print_formats() {
                "that OpenImageIO reads\n");
 }
 
-// glint convert: the scene description written back as YAML, atomically, after the scene has
-// been checked by building it.
+// glint convert: the scene written back as YAML (session.h's convert_scene).
 int run_convert(const glint::SessionOptions& args, const std::string& out) {
-    const glint::SceneFileFormat& format = glint::scene_file_format(args.scene);
-    if (!format.convert)
-        throw glint::IoError(fmt::format("{}: a {} file is a mesh; convert reads scene files (render the mesh "
-                                         "directly, or name it in a scene's mesh object)",
-                                         args.scene, format.name));
-    auto sources = std::make_shared<glint::SourceFiles>();
-    const glint::SceneDescription d = glint::read_scene_file(args.scene, sources, {args.strict, 0, ""});
-    (void)glint::build(d, {}, sources);  // every error of the source, before anything is written
-    if (!args.quiet)
-        for (const auto& w : d.warnings) fmt::print(stderr, "glint: note: {}", glint::format_warning(w, *sources));
-    const glint::WrittenScene w = glint::write_scene_yaml(d, out);
-    glint::write_file_atomically(out, std::span(reinterpret_cast<const std::uint8_t*>(w.yaml.data()), w.yaml.size()),
-                                 "the scene");
+    const glint::WrittenScene w = glint::convert_scene(args.scene, out, args.strict, [&](const std::string& n) {
+        if (!args.quiet) fmt::print(stderr, "glint: note: {}", n);
+    });
     fmt::print("wrote {}{}\n", out, w.meshes.empty() ? "" : fmt::format(" and {} mesh or grid file{}", w.meshes.size(), w.meshes.size() == 1 ? "" : "s"));
     return 0;
 }

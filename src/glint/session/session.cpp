@@ -110,6 +110,24 @@ RenderJob load_job(const SessionOptions& args) {
     return job;
 }
 
+WrittenScene convert_scene(const std::string& scene, const std::filesystem::path& out, bool strict,
+                           const std::function<void(const std::string&)>& note) {
+    const SceneFileFormat& format = scene_file_format(scene);
+    if (!format.convert)
+        throw IoError(fmt::format("{}: a {} file is a mesh; convert reads scene files (render the mesh directly, or "
+                                  "name it in a scene's mesh object)",
+                                  scene, format.name));
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = read_scene_file(scene, sources, {strict, 0, ""});
+    (void)build(d, {}, sources);  // every error of the source, before anything is written
+    if (note)
+        for (const auto& w : d.warnings) note(format_warning(w, *sources));
+    WrittenScene w = write_scene_yaml(d, out);
+    write_file_atomically(out, std::span(reinterpret_cast<const std::uint8_t*>(w.yaml.data()), w.yaml.size()),
+                          "the scene");
+    return w;
+}
+
 std::string image_settings(const SessionOptions& args, const RenderJob& job) {
     const RenderOptions& o = job.options;
     return fmt::format(
@@ -315,6 +333,7 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
             interrupted = true;
             break;
         }
+        if (hooks_.pass_done) hooks_.pass_done(render, std::chrono::duration<double>(clock::now() - start).count());
         if (display && display->connected()) {
             render.resolve(film);
             if (!display->send(view_name, film)) note(args, display->note());

@@ -19,8 +19,10 @@
 #include <string>
 
 #include "glint/builder/build.h"
+#include "glint/formats/scene_writer.h"
 #include "glint/render/distributed.h"
 #include "glint/render/progress.h"
+#include "glint/render/progressive.h"
 
 namespace glint {
 
@@ -69,6 +71,10 @@ struct SessionHooks {
     std::function<void(int slot, const std::filesystem::path& target)> writing;
     /// The stream of the progress bar or summary (the CLI: stderr).
     std::FILE* progress_stream = stderr;
+    /// After each completed pass of a progressive render: how far it is, and the render itself,
+    /// whose resolve(film) gives the image so far (a notebook's live view). Not called by the
+    /// one-sample sweep (a single pass) nor on the ranks other than 0.
+    std::function<void(const ProgressiveRender& render, double seconds)> pass_done;
 };
 
 /// How a render ended, when it did not throw.
@@ -80,6 +86,13 @@ enum class SessionResult {
 /// The scene loaded and built with every option that changes the image (no MPI thread share).
 /// Notes for the user are in RenderJob::notes. Throws SceneError or IoError.
 RenderJob load_job(const SessionOptions& options);
+
+/// `glint convert`: reads `scene` (a scene file, not a mesh), builds it to report every error
+/// before anything is written, then writes it as YAML to `out` (atomically), with its inline
+/// meshes and grids beside it. `note` receives the source's warnings, formatted, before the
+/// writing starts.
+WrittenScene convert_scene(const std::string& scene, const std::filesystem::path& out, bool strict,
+                           const std::function<void(const std::string&)>& note);
 
 /// The AccelKind for a --accel name; nullopt for "". Throws IoError naming the known ones.
 std::optional<AccelKind> parse_accel(const std::string& name);
