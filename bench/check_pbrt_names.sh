@@ -10,6 +10,6 @@ cd "$(dirname "$0")/.."
 src=${1:?usage: bench/check_pbrt_names.sh PBRT_V4_SOURCE_DIR}
 ours=$(mktemp) theirs=$(mktemp)
 trap 'rm -f "$ours" "$theirs"' EXIT
-grep -oE '"[A-Za-z][A-Za-z0-9_.]*"' src/glint/formats/pbrt.cpp | tr -d '"' | sort -u > "$ours"
+grep -ohE '"[A-Za-z][A-Za-z0-9_.]*"' src/glint/formats/pbrt*.cpp src/glint/formats/pbrt_parser.h | tr -d '"' | sort -u > "$ours"
 grep -rhoE '"[A-Za-z][A-Za-z0-9_.]*"' "$src/src/pbrt" --include='*.cpp' --include='*.h' | tr -d '"' | sort -u > "$theirs"
 comm -23 "$ours" "$theirs"
