@@ -148,5 +148,6 @@ std::string_view vocabulary_name(SamplerType t) { return nth("sampler_type", sta
 std::string_view vocabulary_name(FilterType t) { return nth("filter", static_cast<int>(t)); }
 std::string_view vocabulary_name(ToneCurve t) { return nth("tone_curve", static_cast<int>(t)); }
 std::string_view vocabulary_name(Encoding e) { return nth("encoding", static_cast<int>(e)); }
+std::string_view vocabulary_name(LightStrategy s) { return nth("strategy", static_cast<int>(s)); }
 
 }  // namespace glint

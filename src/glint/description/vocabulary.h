@@ -14,6 +14,7 @@
 
 #include "glint/film/filter.h"
 #include "glint/film/tonemap.h"
+#include "glint/integrators/integrator.h"
 #include "glint/samplers/sampler.h"
 
 namespace glint {
@@ -39,5 +40,6 @@ std::string_view vocabulary_name(SamplerType t);
 std::string_view vocabulary_name(FilterType t);
 std::string_view vocabulary_name(ToneCurve t);
 std::string_view vocabulary_name(Encoding e);
+std::string_view vocabulary_name(LightStrategy s);
 
 }  // namespace glint

@@ -11,6 +11,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "glint/base/diagnostics.h"
 #include "glint/formats/scene_writer.h"
@@ -218,6 +219,48 @@ TEST(Vocabulary, TheWritersOutputReadsBack) {
     }
     std::filesystem::remove_all(std::filesystem::temp_directory_path() / "glint-vocabulary-test");
     EXPECT_GE(written, 10);
+}
+
+// Keys the writer used to leave out (a YAML scene converted lost its tone curve, a flat integrator
+// became whitted, a pbr material its glTF layers): each written and read back to the same value.
+TEST(Vocabulary, TheWriterKeepsWhatTheReaderRead) {
+    const std::string text =
+        "film: {width: 32, height: 16, encoding: raw, tonemap: aces, exposure: 1.5, aovs: true}\n"
+        "integrator: {type: path, max_depth: 7, rr_depth: 3, clamp: 10, strategy: light}\n"
+        "materials:\n"
+        "  p: {type: pbr, base_color: [0.5, 0.5, 0.5], clearcoat: 0.5, clearcoat_roughness: 0.25,\n"
+        "      sheen: [0.2, 0.3, 0.4], sheen_roughness: 0.5, specular: 0.7, specular_color: [1, 0.5, 0.25]}\n"
+        "objects:\n"
+        "  - {type: sphere, center: [0, 0, 3], radius: 1, material: p}\n";
+    const auto round_trip = [](const std::string& yaml) {
+        const SceneDescription d = parse_scene(yaml, "scene.yaml", std::make_shared<SourceFiles>());
+        const std::filesystem::path out = std::filesystem::temp_directory_path() / "glint-writer-test.yaml";
+        const std::string written = write_scene_yaml(d, out).yaml;
+        return std::pair{d, parse_scene(written, "written.yaml", std::make_shared<SourceFiles>())};
+    };
+    const auto [a, b] = round_trip(text);
+    EXPECT_EQ(b.film.display.encoding, Encoding::kRaw);
+    EXPECT_EQ(b.film.display.curve, ToneCurve::kAces);
+    EXPECT_EQ(b.film.display.exposure, 1.5f);
+    EXPECT_TRUE(b.film.aovs);
+    EXPECT_EQ(b.integrator.kind, IntegratorKind::kPath);
+    EXPECT_EQ(b.integrator.max_depth.value, 7);
+    EXPECT_EQ(b.integrator.path.rr_depth, 3);
+    EXPECT_EQ(b.integrator.path.clamp, 10.0f);
+    EXPECT_EQ(b.integrator.path.strategy, LightStrategy::kLight);
+    ASSERT_EQ(b.materials.size(), 1u);
+    const MaterialDesc& m = b.materials[0].material;
+    for (const auto& [name, layer, want] :
+         {std::tuple{"clearcoat", &m.clearcoat, Color{0.5f}}, {"clearcoat_roughness", &m.clearcoat_roughness, Color{0.25f}},
+          {"sheen", &m.sheen, Color{0.2f, 0.3f, 0.4f}}, {"sheen_roughness", &m.sheen_roughness, Color{0.5f}},
+          {"specular", &m.specular, Color{0.7f}}, {"specular_color", &m.specular_color, Color{1, 0.5f, 0.25f}}}) {
+        ASSERT_TRUE(layer->has_value()) << name;
+        EXPECT_EQ((*layer)->value, want) << name;
+    }
+    for (const char* kind : {"flat", "normals"}) {
+        const auto [c, d] = round_trip(std::string("integrator: {type: ") + kind + "}\n");
+        EXPECT_EQ(d.integrator.kind, c.integrator.kind) << kind;
+    }
 }
 
 }  // namespace

@@ -117,6 +117,10 @@ std::string Writer::material(const MaterialDesc& m) const {
         case K::kPbr:
             s = fmt::format("type: pbr, base_color: {}, metallic: {}, roughness: {}, transmission: {}, ior: {}",
                             texture(m.color), num(m.metallic), num(m.roughness), num(m.transmission), num(m.ior));
+            for (const auto& [key, layer] : {std::pair{"clearcoat", &m.clearcoat}, {"clearcoat_roughness", &m.clearcoat_roughness},
+                                             {"sheen", &m.sheen}, {"sheen_roughness", &m.sheen_roughness},
+                                             {"specular", &m.specular}, {"specular_color", &m.specular_color}})
+                if (*layer) s += fmt::format(", {}: {}", key, texture(**layer));
             break;
         case K::kInterface: s = "type: interface"; break;
         case K::kCoated:
@@ -259,15 +263,27 @@ WrittenScene Writer::run() {
         y.insert(y.size() - 1, fmt::format(", crop_pixels: [{}, {}, {}, {}]", p->value[0], p->value[1],
                                            p->value[2], p->value[3]));
     if (d_.film.scale != 1) y.insert(y.size() - 1, ", scale: " + num(d_.film.scale));
+    const DisplaySettings& display = d_.film.display;
+    if (display.encoding != Encoding::kSrgb) y.insert(y.size() - 1, fmt::format(", encoding: {}", vocabulary_name(display.encoding)));
+    if (display.curve != ToneCurve::kClamp) y.insert(y.size() - 1, fmt::format(", tonemap: {}", vocabulary_name(display.curve)));
+    if (display.exposure != 0) y.insert(y.size() - 1, ", exposure: " + num(display.exposure));
+    if (d_.film.aovs) y.insert(y.size() - 1, ", aovs: true");
     y += "\n";
     y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}", vocabulary_name(d_.sampler.type),
                      d_.sampler.spp.value, d_.sampler.seed);
     if (d_.sampler.noise_threshold > 0)
         y += fmt::format(", noise_threshold: {}, min_spp: {}", d_.sampler.noise_threshold, d_.sampler.min_spp);
     y += "}\n";
-    if (d_.integrator.kind == IntegratorKind::kPath)
-        y += fmt::format("integrator: {{type: path, max_depth: {}}}\n", d_.integrator.max_depth.value);
-    else
+    if (d_.integrator.kind == IntegratorKind::kPath) {
+        const PathSettings& p = d_.integrator.path;
+        y += fmt::format("integrator: {{type: path, max_depth: {}", d_.integrator.max_depth.value);
+        if (p.rr_depth != PathSettings{}.rr_depth) y += fmt::format(", rr_depth: {}", p.rr_depth);
+        if (std::isfinite(p.clamp)) y += ", clamp: " + num(p.clamp);
+        if (p.strategy != LightStrategy::kMis) y += fmt::format(", strategy: {}", vocabulary_name(p.strategy));
+        y += "}\n";
+    } else if (d_.integrator.kind == IntegratorKind::kFlat || d_.integrator.kind == IntegratorKind::kNormals) {
+        y += fmt::format("integrator: {{type: {}}}\n", d_.integrator.kind == IntegratorKind::kFlat ? "flat" : "normals");
+    } else
         y += fmt::format("integrator: {{type: whitted, ambient: {}, shadows: {}, max_depth: {}}}\n", num(d_.integrator.ambient),
                          d_.integrator.shadows, d_.integrator.max_depth.value);
     if (d_.environment && d_.environment->equal_area)
