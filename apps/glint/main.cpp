@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <atomic>
 #include <csignal>
@@ -85,19 +86,14 @@ std::string bytes(std::uint64_t b) {
 // glint render --list-formats: the format tables (session/formats.h, image/image_io.h).
 void print_formats() {
     fmt::print("Scene and mesh files (glint render, glint info; glint convert reads the scene files):\n");
-    for (const glint::SceneFileFormat& f : glint::scene_file_formats()) {
-        std::string exts;
-        for (std::string_view e : f.extensions) exts += (exts.empty() ? "" : " ") + std::string(e);
-        fmt::print("  {:<6} {:<16} {:<6} {}\n", f.name, exts, f.mesh ? "mesh" : "scene", f.description);
-    }
+    for (const glint::SceneFileFormat& f : glint::scene_file_formats())
+        fmt::print("  {:<6} {:<16} {:<6} {}\n", f.name, fmt::format("{}", fmt::join(f.extensions, " ")),
+                   f.mesh ? "mesh" : "scene", f.description);
     fmt::print("  (another extension: a binary glTF or a PLY is known by its first bytes; anything else is read "
                "as YAML)\n");
     fmt::print("Images written (-o, chosen by the extension):\n");
-    for (const glint::ImageFormatInfo& f : glint::image_formats()) {
-        std::string exts;
-        for (std::string_view e : f.extensions) exts += (exts.empty() ? "" : " ") + std::string(e);
-        fmt::print("  {:<16} {}\n", exts, f.description);
-    }
+    for (const glint::ImageFormatInfo& f : glint::image_formats())
+        fmt::print("  {:<16} {}\n", fmt::format("{}", fmt::join(f.extensions, " ")), f.description);
     fmt::print("Images read (textures, environment maps): the formats above by glint's own readers, and any other "
                "that OpenImageIO reads\n");
 }
