@@ -8,7 +8,10 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <atomic>
+#include <charconv>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "glint/base/diagnostics.h"
 #include "glint/base/limits.h"
 #include "glint/formats/scene_writer.h"
 #include "glint/image/image_io.h"
@@ -219,7 +223,8 @@ int main(int argc, char** argv) {
                        "Under mpirun: seconds after which a rank's unanswered tiles are given to another "
                        "(default 60; at least four times the tiles' expected time)")
         ->check(CLI::PositiveNumber);
-    render->add_option("--seed", args.seed, "Sampler seed (overrides the scene)");
+    std::string seed_text;
+    render->add_option("--seed", seed_text, "Sampler seed, 0 to 18446744073709551615 (overrides the scene)");
     render->add_option("--max-depth", args.max_depth,
                        "Path length: whitted's reflection depth (the camera ray is depth 0), "
                        "path's scattering events (1 = direct light only)");
@@ -299,8 +304,43 @@ int main(int argc, char** argv) {
     convert->add_option("--limit", limits, limit_help);
     convert->add_flag("--restrict-paths", restrict_paths, restrict_help);
 
+    // A first word that is no command and no flag: name it and the nearest command, before CLI11
+    // says only that a subcommand is required.
+    if (argc > 1 && argv[1][0] != '-') {
+        std::vector<std::string> commands;
+        for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+        const std::string word = argv[1];
+        if (std::find(commands.begin(), commands.end(), word) == commands.end()) {
+            const std::string guess = glint::closest_match(word, commands);
+            std::error_code ec;
+            const std::string hint = std::filesystem::exists(word, ec)
+                                         ? fmt::format("; to render that file: glint render {}", word)
+                                     : guess.empty() ? std::string()
+                                                     : fmt::format("; did you mean '{}'?", guess);
+            fmt::print(stderr, "glint: error: unknown command '{}'{} (commands: {}; see glint --help)\n", word, hint,
+                       fmt::join(commands, ", "));
+            return static_cast<int>(CLI::ExitCodes::RequiredError);  // 106, as for no command
+        }
+    }
     try {
         app.parse(argc, argv);
+        // An empty argument is a mistake (an unset shell variable), never a request for a default:
+        // `render ""` is not the demo and `-o ""` is not scene.png.
+        for (const CLI::App* sub : app.get_subcommands())
+            for (const CLI::Option* opt : sub->get_options())
+                for (const std::string& r : opt->results())
+                    if (r.empty())
+                        throw CLI::ValidationError(opt->get_name(), "an empty argument (give a value, or leave the option out)");
+        if (!seed_text.empty()) {
+            std::uint64_t seed = 0;
+            const char* end = seed_text.data() + seed_text.size();
+            const auto [ptr, ec] = std::from_chars(seed_text.data(), end, seed);
+            if (ec == std::errc::result_out_of_range)
+                throw CLI::ValidationError("--seed", fmt::format("{} is out of range (0 to {})", seed_text, UINT64_MAX));
+            if (ec != std::errc{} || ptr != end)
+                throw CLI::ValidationError("--seed", fmt::format("'{}' is not a whole number from 0 to {}", seed_text, UINT64_MAX));
+            args.seed = seed;
+        }
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
