@@ -482,7 +482,7 @@ TEST_F(UntrustedScene, LimitsNameTheFlagThatRaisesThem) {
     r = run_limited("render quad.obj --limit frobs=3 -o b.png");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("unknown limit 'frobs' (known: film-pixels, texture-pixels, triangles, vertices, grid-voxels, "
-                         "nesting, includes, memory)"), std::string::npos) << r.err;
+                         "nesting, includes, memory, nodes)"), std::string::npos) << r.err;
     r = run_limited("render quad.obj --limit triangles=lots -o b.png");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("'lots' is not a whole number of at least 1"), std::string::npos) << r.err;

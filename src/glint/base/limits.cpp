@@ -28,6 +28,7 @@ constexpr std::array<Entry, kLimitCount> kEntries{{
     {"nesting", "levels of nesting"},
     {"includes", "levels of included files"},
     {"memory", "bytes"},
+    {"nodes", "values"},
 }};
 
 long long physical_memory() {
@@ -45,6 +46,7 @@ std::array<std::atomic<long long>, kLimitCount>& values() {
         {256},                // nesting
         {32},                 // includes
         {physical_memory()},  // memory
+        {1LL << 24},          // nodes
     }};
     return v;
 }

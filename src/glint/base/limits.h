@@ -29,8 +29,9 @@ enum class Limit {
     kNesting,        ///< nesting: depth of nested blocks (YAML, JSON, pbrt attributes, glTF nodes)
     kIncludes,       ///< includes: depth of files including files
     kMemory,         ///< memory: bytes a scene may allocate before the first pixel (the machine's RAM)
+    kNodes,          ///< nodes: values one YAML/JSON file holds once its aliases are expanded (16M)
 };
-inline constexpr int kLimitCount = 8;
+inline constexpr int kLimitCount = 9;
 
 /// The current value of a limit.
 long long limit(Limit l);

@@ -523,6 +523,11 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
                           fmt::format("invalid YAML: {}", e.msg));
         diagnostics.throw_if_errors();
     }
+    {
+        YamlReader reader(diagnostics, path);
+        check_expanded_size(reader, root);
+        diagnostics.throw_if_errors();
+    }
     SceneParser(diagnostics, path).parse_root(root, scene);
     diagnostics.throw_if_errors();
     return scene;

@@ -1,11 +1,16 @@
 #include "glint/formats/yaml_reader.h"
 
+#include "glint/base/limits.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace glint {
 
@@ -222,6 +227,86 @@ std::optional<YAML::Node> MapReader::require(const std::string& key) {
         return std::nullopt;
     }
     return get(key);
+}
+
+bool check_expanded_size(YamlReader& reader, const YAML::Node& root) {
+    // Post-order, with an explicit stack, over the graph yaml-cpp built (an alias is the anchored
+    // node itself, shared): each collection's expanded size and depth are computed once and
+    // remembered by where it starts in the text (a node's identity; yaml-cpp offers no other), so
+    // a "billion laughs" costs what its text costs. A collection met again while it is still open
+    // is an alias inside its own anchor.
+    struct Measure {
+        long long size = 1, depth = 1;
+    };
+    struct Frame {
+        YAML::Node node;
+        std::vector<YAML::Node> children;
+        std::size_t next = 0;
+        Measure m;
+    };
+    const long long max_values = limit(Limit::kNodes), max_depth = limit(Limit::kNesting);
+    std::unordered_map<int, Measure> done;
+    std::unordered_set<int> open;
+    std::vector<Frame> stack;
+    // Opens a collection (true), or gives a leaf's or a known collection's measure in `m` (false).
+    const auto open_node = [&](const YAML::Node& node, Measure& m) -> std::optional<bool> {
+        m = Measure{};
+        if (!node.IsSequence() && !node.IsMap()) return false;
+        const int pos = node.Mark().pos;
+        if (const auto it = done.find(pos); it != done.end()) {
+            m = it->second;
+            return false;
+        }
+        if (open.count(pos)) {
+            reader.error(node, "an alias (*name) inside the anchor (&name) it refers to: the value would contain itself");
+            return std::nullopt;
+        }
+        Frame f{node, {}, 0, Measure{1, 1}};
+        if (node.IsSequence()) {
+            for (const YAML::Node& child : node) f.children.push_back(child);
+        } else {
+            for (const auto& kv : node) {
+                f.children.push_back(kv.first);
+                f.children.push_back(kv.second);
+            }
+        }
+        open.insert(pos);
+        stack.push_back(std::move(f));
+        return true;
+    };
+    Measure m;
+    if (!open_node(root, m).has_value()) return false;  // (not reached: nothing is open yet)
+    while (!stack.empty()) {
+        Frame& top = stack.back();
+        if (top.next < top.children.size()) {
+            const YAML::Node child = top.children[top.next++];
+            const auto opened = open_node(child, m);
+            if (!opened) return false;
+            if (*opened) continue;
+        } else {  // a collection is complete
+            m = top.m;
+            const YAML::Node node = top.node;
+            open.erase(node.Mark().pos);
+            done[node.Mark().pos] = m;
+            stack.pop_back();
+            if (stack.empty()) return true;
+        }
+        // Add the child's measure to its parent's, with the limits checked as the sums grow.
+        Frame& parent = stack.back();
+        parent.m.size = std::min(max_values + 1, parent.m.size + m.size);
+        parent.m.depth = std::max(parent.m.depth, m.depth + 1);
+        if (parent.m.size > max_values) {
+            reader.error(parent.node, fmt::format("this value, with its aliases (*name) expanded, holds more than {} "
+                                                  "values, the limit (raise it with --limit nodes=N)", max_values));
+            return false;
+        }
+        if (parent.m.depth > max_depth) {
+            reader.error(parent.node, "this value, with its aliases (*name) expanded: " +
+                                          over_limit(Limit::kNesting, parent.m.depth));
+            return false;
+        }
+    }
+    return true;
 }
 
 }  // namespace glint

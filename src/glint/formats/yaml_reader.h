@@ -74,6 +74,12 @@ private:
     bool valid_ = false;
 };
 
+/// Walks `root` as the scene reader will, with aliases expanded, without recursion: an alias that
+/// contains itself, nesting deeper than the nesting limit or more values in all than the nodes
+/// limit (a "billion laughs") is reported at the node where it shows. Returns whether the tree is
+/// safe to read recursively.
+bool check_expanded_size(YamlReader& reader, const YAML::Node& root);
+
 /// "a list", "a map", "'text'" or "nothing": how a node is described in "expected X, got Y".
 std::string describe(const YAML::Node& node);
 
