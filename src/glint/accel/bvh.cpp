@@ -45,7 +45,21 @@ bool finite_box(const Bounds3& b) {
     return true;
 }
 
-Point3 centre(const Bounds3& b) { return b.lo + (b.hi - b.lo) * 0.5f; }
+// Halves first: hi - lo overflows to infinity for a box near float max (a sphere of radius 1e38).
+Point3 centre(const Bounds3& b) {
+    return {b.lo.x * 0.5f + b.hi.x * 0.5f, b.lo.y * 0.5f + b.hi.y * 0.5f, b.lo.z * 0.5f + b.hi.z * 0.5f};
+}
+
+/// Which of kBins equal bins over [lo, lo + extent] holds x, in double: a float extent or
+/// scale overflows for boxes near float max, and a NaN or out-of-range bin would index outside
+/// the bins. Always in 0 … kBins-1.
+int bin_index(float x, float lo, double extent) {
+    const double t = (static_cast<double>(x) - lo) * (kBins / extent);
+    return t >= kBins - 1 ? kBins - 1 : t > 0 ? static_cast<int>(t) : 0;
+}
+
+/// The extent of an axis of a box, in double (finite for every finite box).
+double extent_of(const Bounds3& b, int axis) { return static_cast<double>(b.hi[axis]) - b.lo[axis]; }
 
 void max_into(std::atomic<int>& m, int d) {
     int cur = m.load();
@@ -61,9 +75,7 @@ struct ObjectSplit {
     Bounds3 left, right;
     /// Whether a primitive with this centroid goes left.
     bool goes_left(Point3 c, const Bounds3& centroids) const {
-        const float lo = centroids.lo[axis];
-        const float scale = kBins / (centroids.hi[axis] - lo);
-        return std::min(kBins - 1, static_cast<int>((c[axis] - lo) * scale)) < bin;
+        return bin_index(c[axis], centroids.lo[axis], extent_of(centroids, axis)) < bin;
     }
 };
 
@@ -78,12 +90,12 @@ ObjectSplit find_object_split(const Bounds3& centroids, std::uint32_t count, int
     };
     ObjectSplit best;
     for (int axis = 0; axis < 3; ++axis) {
-        const float lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
-        if (!(extent > 0)) continue;
-        const float scale = kBins / extent;
+        const float lo = centroids.lo[axis];
+        const double extent = extent_of(centroids, axis);
+        if (!(extent > 0) || !std::isfinite(extent)) continue;
         std::array<Bin, kBins> bins{};
         each([&](Point3 c, const Bounds3& box) {
-            const int b = std::min(kBins - 1, static_cast<int>((c[axis] - lo) * scale));
+            const int b = bin_index(c[axis], lo, extent);
             bins[b].b = merge(bins[b].b, box);
             ++bins[b].n;
         });
@@ -351,18 +363,18 @@ private:
 
     /// The bin boundary b (1..kBins-1) on axis a of the set's bounds.
     static float plane(const Bounds3& bounds, int a, int b) {
-        return bounds.lo[a] + (bounds.hi[a] - bounds.lo[a]) * (static_cast<float>(b) / kBins);
+        return static_cast<float>(bounds.lo[a] + extent_of(bounds, a) * (static_cast<double>(b) / kBins));
     }
 
     SpatialSplit find_spatial_split(const RefSet& s) const {
         SpatialSplit best;
         for (int a = 0; a < 3; ++a) {
-            const float lo = s.bounds.lo[a], extent = s.bounds.hi[a] - lo;
-            if (!(extent > 0)) continue;
-            const float scale = kBins / extent;
+            const float lo = s.bounds.lo[a];
+            const double extent = extent_of(s.bounds, a);
+            if (!(extent > 0) || !std::isfinite(extent)) continue;
             std::array<Bounds3, kBins> box{};
             std::array<std::uint32_t, kBins> enter{}, exit{};
-            const auto bin_of = [&](float x) { return std::clamp(static_cast<int>((x - lo) * scale), 0, kBins - 1); };
+            const auto bin_of = [&](float x) { return bin_index(x, lo, extent); };
             for (const Ref& r : s.refs) {
                 const int b0 = bin_of(r.box.lo[a]), b1 = bin_of(r.box.hi[a]);
                 ++enter[b0];
