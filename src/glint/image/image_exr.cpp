@@ -36,7 +36,7 @@ RawImage read_exr(const fs::path& path, long long max_pixels) {
         const Imath::Box2i dw = file.header().dataWindow();
         const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
         const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-        admit_image(path, w, h, max_pixels, 3 * 4 * 2);
+        admit_image(path, w, h, max_pixels, 3 * 4 * 2, kExrPixelsPerByte);
         const Imf::ChannelList& channels = file.header().channels();
         std::vector<std::string> names;
         if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B")) {

@@ -22,14 +22,24 @@ struct RawImage {
     std::vector<float> data;
 };
 
+/// The most pixels one byte of a file can decode to, per format: what a header's size is checked
+/// against before anything is allocated, so that a 56-byte file claiming 11000 x 11000 pixels is
+/// refused at once. Deflate expands at most 1032:1 (PNG: 8 one-bit pixels a byte); a baseline or
+/// progressive JPEG needs at least one bit per 8 x 8 block; EXR's codecs (ZIP, PIZ's Huffman runs)
+/// stay far below 2^16; Radiance HDR rows are checked row by row instead (a repeat code expands
+/// without bound), PFM and PNM by their exact sizes.
+inline constexpr double kPngPixelsPerByte = 1032.0 * 8, kJpegPixelsPerByte = 8 * 64, kExrPixelsPerByte = 65536,
+                        kAnyPixelsPerByte = 65536;
+
 /// Called by every reader once it knows the size, before it allocates the pixels: throws IoError
-/// if width x height exceeds `max_pixels` or the memory budget refuses `bytes_per_pixel` bytes a
+/// if width x height exceeds `max_pixels`, is more than the file's bytes can hold at
+/// `pixels_per_byte` (0: not checked) or the memory budget refuses `bytes_per_pixel` bytes a
 /// pixel. (Defined in image_io.cpp.)
 void admit_image(const std::filesystem::path& path, long long width, long long height, long long max_pixels,
-                 int bytes_per_pixel);
+                 int bytes_per_pixel, double pixels_per_byte);
 /// The same check's message, or "" when the image is admitted (and its memory charged).
 std::string image_admission_error(const std::filesystem::path& path, long long width, long long height,
-                                  long long max_pixels, int bytes_per_pixel);
+                                  long long max_pixels, int bytes_per_pixel, double pixels_per_byte);
 
 RawImage read_png(const std::filesystem::path& path, long long max_pixels);
 RawImage read_exr(const std::filesystem::path& path, long long max_pixels);

@@ -167,7 +167,8 @@ TEST(HdrReader, DecodesFlatOldRunsAndBothRowOrders) {
     }
     const auto bad = dir.path() / "bad.hdr";
     // New RLE, width 8: a run of 9 (0x89) in the first component passes the row's end.
-    std::ofstream(bad, std::ios::binary) << header << "-Y 1 +X 8\n" << std::string("\x02\x02\x00\x08\x89\x10", 6);
+    // (Padded to the 8 bytes an 8-pixel row needs at least, which the reader checks first.)
+    std::ofstream(bad, std::ios::binary) << header << "-Y 1 +X 8\n" << std::string("\x02\x02\x00\x08\x89\x10\x00\x00", 8);
     try {
         read_image(bad, ImageEncoding::kAuto);
         ADD_FAILURE() << "no error";

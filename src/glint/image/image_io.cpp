@@ -113,18 +113,25 @@ std::string exr_header_error(const fs::path& path) {
 }  // namespace
 
 std::string image_admission_error(const fs::path& path, long long width, long long height, long long max_pixels,
-                                  int bytes_per_pixel) {
+                                  int bytes_per_pixel, double pixels_per_byte) {
     if (width <= 0 || height <= 0 || static_cast<double>(width) * static_cast<double>(height) > static_cast<double>(max_pixels)) {
         const double pixels = std::min(9.0e18, std::max(0.0, static_cast<double>(width) * static_cast<double>(height)));
         return fmt::format("image '{}' is {} x {} pixels: {}", path.string(), width, height,
                            width <= 0 || height <= 0 ? std::string("an empty image")
                                                      : over_limit(Limit::kTexturePixels, static_cast<long long>(pixels), max_pixels));
     }
+    std::error_code ec;
+    const auto file_size = fs::file_size(path, ec);
+    if (pixels_per_byte > 0 && !ec &&
+        static_cast<double>(width) * static_cast<double>(height) > pixels_per_byte * static_cast<double>(file_size) + 4096)
+        return fmt::format("image '{}': its header claims {} x {} pixels, more than its {} bytes can hold", path.string(),
+                           width, height, file_size);
     return charge_memory(width * height * bytes_per_pixel, "image '" + path.string() + "'");
 }
 
-void admit_image(const fs::path& path, long long width, long long height, long long max_pixels, int bytes_per_pixel) {
-    if (std::string e = image_admission_error(path, width, height, max_pixels, bytes_per_pixel); !e.empty())
+void admit_image(const fs::path& path, long long width, long long height, long long max_pixels, int bytes_per_pixel,
+                 double pixels_per_byte) {
+    if (std::string e = image_admission_error(path, width, height, max_pixels, bytes_per_pixel, pixels_per_byte); !e.empty())
         throw IoError(std::move(e));
 }
 
@@ -145,7 +152,7 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
         void* image;
         ~Closer() { m->close(image); }
     } closer{oiio, image};
-    admit_image(path, spec.width, spec.height, max_pixels, 4 * std::max(spec.channels, 3) * 2);
+    admit_image(path, spec.width, spec.height, max_pixels, 4 * std::max(spec.channels, 3) * 2, kAnyPixelsPerByte);
     if (spec.channels <= 0) throw IoError(fmt::format("cannot read image '{}': it has no channels", path.string()));
     RawImage raw;
     raw.width = spec.width;
@@ -159,11 +166,37 @@ RawImage read_oiio(const fs::path& path, long long max_pixels) {
     return raw;
 }
 
+// The format a file's first bytes show, among those glint reads itself ("" if none).
+const char* format_by_content(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char b[8] = {};
+    in.read(b, sizeof b);
+    const std::string_view h(b, static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+    if (h.rfind("\x89PNG\r\n\x1a\n", 0) == 0) return "PNG";
+    if (h.rfind("\x76\x2f\x31\x01", 0) == 0) return "OpenEXR";
+    if (h.rfind("\xff\xd8\xff", 0) == 0) return "JPEG";
+    if (h.rfind("#?", 0) == 0) return "Radiance HDR";
+    if (h.rfind("PF", 0) == 0 || h.rfind("Pf", 0) == 0) return "PFM";
+    return "";
+}
+
 Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
     if (max_pixels <= 0) max_pixels = limit(Limit::kTexturePixels);
     if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': it {}", path.string(), why));
     const std::string ext = lower_extension(path);
+    {
+        // A file whose contents are another format than its extension names (a PNG saved as
+        // .exr) is refused in glint's words, before a library reports it in its own.
+        const char* named = ext == ".png" ? "PNG" : ext == ".exr" ? "OpenEXR" : ext == ".pfm" ? "PFM"
+                            : ext == ".hdr" || ext == ".rgbe" || ext == ".pic"               ? "Radiance HDR"
+                            : ext == ".jpg" || ext == ".jpeg" || ext == ".jpe"               ? "JPEG"
+                                                                                             : "";
+        const char* actual = format_by_content(path);
+        if (*named && *actual && std::string_view(named) != actual)
+            throw IoError(fmt::format("cannot read image '{}': it is a {} file, not {} as its extension says", path.string(),
+                                      actual, named));
+    }
     if (const std::string why = exr_header_error(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
     RawImage raw;

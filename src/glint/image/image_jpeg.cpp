@@ -55,7 +55,7 @@ bool read_jpeg(const std::filesystem::path& path, long long max_pixels, RawImage
     w = cinfo.image_width;
     h = cinfo.image_height;
     cmyk = cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK;
-    if (!cmyk) failure = image_admission_error(path, w, h, max_pixels, 3 * 4 + 3);
+    if (!cmyk) failure = image_admission_error(path, w, h, max_pixels, 3 * 4 + 3, kJpegPixelsPerByte);
     if (cmyk || !failure.empty()) {
         jpeg_destroy_decompress(&cinfo);
     } else {

@@ -175,8 +175,20 @@ RawImage read_hdr(const fs::path& path, long long max_pixels) {
                                   res.substr(0, 64)));
         }
     }
-    admit_image(path, w, h, max_pixels, 3 * 4 + 4);
+    admit_image(path, w, h, max_pixels, 3 * 4 + 4, 0);
     const auto W = static_cast<std::size_t>(w), H = static_cast<std::size_t>(h);
+    {
+        // The fewest bytes a row of W pixels can take: one 4-byte pixel, then the old encoding's
+        // repeat codes (4 bytes each; three in a row repeat at most 255 + 255 << 8 + 255 << 16
+        // times) and a literal pixel after each three. Checked for all rows before allocating.
+        const std::size_t chains = (W - 1 + 16777214) / 16777215;  // a literal + up to 3 repeats each
+        const std::size_t rest = W - 1 - (chains > 0 ? (chains - 1) * 16777215 : 0);
+        const std::size_t last = chains == 0 ? 0 : rest <= 255 ? 1 : rest <= 65535 ? 2 : 3;
+        const double min_row = 4.0 + (chains == 0 ? 0.0 : 16.0 * static_cast<double>(chains - 1) + 4.0 * static_cast<double>(last));
+        if (static_cast<double>(bytes.size() - pos) < min_row * static_cast<double>(H))
+            throw bad(fmt::format("the header claims {} x {} pixels; {} rows need at least {:.0f} bytes, and {} are left",
+                                  w, h, h, min_row * static_cast<double>(H), bytes.size() - pos));
+    }
     std::vector<unsigned char> rgbe(W * 4);
     RawImage raw;
     raw.width = static_cast<int>(w);
@@ -259,12 +271,16 @@ RawImage read_pnm(const fs::path& path, long long max_pixels) {
     if (w < 0 || h < 0 || maxval < 0) throw bad("the header needs a width, a height and a maximum value (1 to 65535)");
     const bool ascii = magic == "P2" || magic == "P3";
     const std::size_t channels = magic == "P3" || magic == "P6" ? 3 : 1;
-    admit_image(path, w, h, max_pixels, 3 * 4);
+    admit_image(path, w, h, max_pixels, 3 * 4, 0);
     RawImage raw;
     raw.width = static_cast<int>(w);
     raw.height = static_cast<int>(h);
     raw.channels = static_cast<int>(channels);
     const std::size_t count = static_cast<std::size_t>(w * h) * channels;
+    // Each value takes at least a byte (a digit, or a binary sample): checked before allocating.
+    if (count > bytes.size() - std::min(bytes.size(), t.pos))
+        throw bad(fmt::format("the header claims {} x {} pixels ({} values); only {} bytes follow it", w, h, count,
+                              bytes.size() - std::min(bytes.size(), t.pos)));
     raw.data.resize(count);
     const float scale = 1.0f / static_cast<float>(maxval);
     if (ascii) {

@@ -33,7 +33,7 @@ RawImage read_png(const fs::path& path, long long max_pixels) {
     if (int e = spng_set_png_file(ctx.get(), file.get()); e != 0) throw fail(spng_strerror(e));
     spng_ihdr ihdr{};
     if (int e = spng_get_ihdr(ctx.get(), &ihdr); e != 0) throw fail(spng_strerror(e));
-    admit_image(path, ihdr.width, ihdr.height, max_pixels, 4 * 3 + (ihdr.bit_depth > 8 ? 8 : 4));
+    admit_image(path, ihdr.width, ihdr.height, max_pixels, 4 * 3 + (ihdr.bit_depth > 8 ? 8 : 4), kPngPixelsPerByte);
     const bool wide = ihdr.bit_depth > 8;
     const int fmt = wide ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8;
     std::size_t size = 0;
