@@ -217,11 +217,23 @@ std::string read_scene_text(const std::string& path, const std::shared_ptr<Sourc
     const auto starts = [&s](const char* bom, std::size_t n) { return s.size() >= n && s.compare(0, n, bom, n) == 0; };
     const char* encoding = starts("\xFF\xFE\0\0", 4) || starts("\0\0\xFE\xFF", 4) ? "UTF-32"
                            : starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2)           ? "UTF-16"
-                           : s.find('\0') < 4096                                        ? "not text (it holds NUL bytes; UTF-16 without a byte-order mark?)"
-                                                                                          : nullptr;
+                                                                                        : nullptr;
     if (encoding) {
         Diagnostics d(sources);
         d.error({path, 1, 1}, fmt::format("the file is {}; glint reads scene files as UTF-8: save it as UTF-8", encoding));
+        d.throw_if_errors();
+    }
+    // A NUL byte anywhere: at its line and column (a parser would stop there, or read past it).
+    if (const std::size_t nul = s.find('\0'); nul != std::string::npos) {
+        const std::size_t line_start = s.rfind('\n', nul) == std::string::npos ? 0 : s.rfind('\n', nul) + 1;
+        const int line = 1 + static_cast<int>(std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
+        const int column = 1 + static_cast<int>(nul - line_start);
+        Diagnostics d(sources);
+        d.error({path, line, column},
+                line == 1 && s.find('\0', nul + 1) != std::string::npos
+                    ? std::string("the file is not text (it holds NUL bytes; UTF-16 without a byte-order mark?); glint "
+                                  "reads scene files as UTF-8")
+                    : std::string("a NUL byte: scene files are UTF-8 text"));
         d.throw_if_errors();
     }
     return s;
