@@ -25,13 +25,91 @@
 #include "glint/base/diagnostics.h"
 #include "glint/base/limits.h"
 #include "glint/assets/mesh_import.h"
+#include "glint/shapes/polygon.h"
 
 namespace glint {
 
 namespace {
 
+// tinyobjloader's `mtllib` reader, replaced: a material library is read only if glint may read it
+// (why_not_readable: a FIFO would block, --restrict-paths may forbid it), and a missing one is
+// an error at the OBJ's `mtllib` line, not a warning. It keeps each library's text so that a
+// material's errors can name the .mtl file and line.
+class MtlReader : public tinyobj::MaterialReader {
+public:
+    MtlReader(std::filesystem::path dir, std::string obj_file, const std::string& obj_text)
+        : dir_(std::move(dir)), obj_file_(std::move(obj_file)), obj_text_(obj_text) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string* warn, std::string* err) override {
+        const std::filesystem::path mtl = dir_ / name;
+        const auto refuse = [&](const std::string& why) {
+            if (failure_.empty()) {
+                const long long line = line_naming("mtllib", name, obj_text_);
+                failure_ = fmt::format("{}{}: material library '{}' ({}): {}", obj_file_,
+                                       line > 0 ? fmt::format(":{}", line) : "", name, mtl.string(), why);
+            }
+            if (err) *err += failure_;
+            return false;
+        };
+        if (const std::string why = why_not_readable(mtl); !why.empty()) return refuse("cannot read: it " + why);
+        std::ifstream in(mtl, std::ios::binary);
+        if (!in) return refuse(std::filesystem::exists(mtl) ? "cannot open" : "no such file");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad()) return refuse("cannot read");
+        std::istringstream stream(text);
+        std::string mtl_warn, mtl_err;
+        tinyobj::LoadMtl(names, materials, &stream, &mtl_warn, &mtl_err);
+        if (warn && !mtl_warn.empty()) *warn += mtl_warn;
+        if (!mtl_err.empty()) return refuse(mtl_err);
+        libraries_.push_back({mtl.string(), std::move(text)});
+        return true;
+    }
+    /// The first failure, located at the OBJ's line, or empty.
+    const std::string& failure() const { return failure_; }
+
+    /// "lib.mtl:12" for the line of `keyword` (map_Kd, norm, ...) naming `value` in material
+    /// `material`'s block, or the OBJ file's name when it cannot be found.
+    std::string locate(const std::string& material, const std::string& value) const {
+        for (const auto& [path, text] : libraries_) {
+            const long long start = line_naming("newmtl", material, text);
+            if (start == 0) continue;
+            const long long line = line_naming("", value, text, start);
+            return fmt::format("{}:{}", path, line > 0 ? line : start);
+        }
+        return obj_file_;
+    }
+
+private:
+    // The 1-based line, from line `from` on, whose first word is `keyword` (any, if empty) and
+    // which names `value`; 0 if none (for a `newmtl`, a later one ends the search).
+    static long long line_naming(const std::string& keyword, const std::string& value, const std::string& text,
+                                 long long from = 1) {
+        long long line = 0;
+        for (std::size_t at = 0; at <= text.size();) {
+            std::size_t end = text.find('\n', at);
+            if (end == std::string::npos) end = text.size();
+            std::string_view l(text.data() + at, end - at);
+            at = end + 1;
+            if (++line < from) continue;
+            while (!l.empty() && (l.back() == '\r' || l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
+            while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+            if (keyword.empty() && line > from && l.rfind("newmtl", 0) == 0) return 0;  // the next material
+            if (!keyword.empty() && l.rfind(keyword, 0) != 0) continue;
+            if (l.find(value) != std::string_view::npos) return line;
+            if (end == text.size()) break;
+        }
+        return 0;
+    }
+
+    std::filesystem::path dir_;
+    std::string obj_file_;
+    const std::string& obj_text_;
+    std::string failure_;
+    std::vector<std::pair<std::string, std::string>> libraries_;  // path, text
+};
+
 MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::path& dir,
-                          const std::string& file, ImportedFile& out) {
+                          const std::string& file, ImportedFile& out, const MtlReader& mtl) {
     MaterialDesc d;
     const Color kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]};
     const Color ks{m.specular[0], m.specular[1], m.specular[2]};
@@ -41,8 +119,8 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     if (!m.diffuse_texname.empty()) {
         const std::filesystem::path tex = dir / m.diffuse_texname;
         if (!std::filesystem::exists(tex))
-            throw IoError(fmt::format("{}: material '{}': texture map_Kd '{}' not found (looked for {})", file,
-                                      m.name, m.diffuse_texname, tex.string()));
+            throw IoError(fmt::format("{}: material '{}': texture map_Kd '{}' not found (looked for {})",
+                                      mtl.locate(m.name, m.diffuse_texname), m.name, m.diffuse_texname, tex.string()));
         d.color.kind = TextureDesc::Kind::kImage;
         d.color.filename.value = tex.string();
         d.color.encoding = ImageEncoding::kSrgb;
@@ -71,8 +149,8 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     if (!normal_name.empty()) {
         const std::filesystem::path tex = dir / normal_name;
         if (!std::filesystem::exists(tex))
-            throw IoError(fmt::format("{}: material '{}': normal map '{}' not found (looked for {})", file, m.name,
-                                      normal_name, tex.string()));
+            throw IoError(fmt::format("{}: material '{}': normal map '{}' not found (looked for {})",
+                                      mtl.locate(m.name, normal_name), m.name, normal_name, tex.string()));
         TextureDesc n;
         n.kind = TextureDesc::Kind::kImage;
         n.filename.value = tex.string();
@@ -88,8 +166,13 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
 
 // What tinyobjloader would otherwise report in its own words, or get wrong: every index of an
 // `f`, `l` or `p` line checked here first, read as written (in 64 bits: an index of 4000000000
-// is reported as that), located at line and column. Returns the line of every face, in order.
-std::vector<long long> check_obj_indices(const std::string& text, const std::string& file) {
+// is reported as that), located at line and column. Returns the line and corner count of every face
+// of three or more corners (the faces tinyobjloader keeps), in order.
+struct ObjFaces {
+    std::vector<long long> line;
+    std::vector<std::uint32_t> corners;  ///< tinyobjloader keeps a face's count in a byte: 256 reads as 0
+};
+ObjFaces check_obj_indices(const std::string& text, const std::string& file) {
     const auto fail = [&](long long line, std::size_t column, const std::string& what) -> void {
         throw IoError(fmt::format("{}:{}:{}: {}", file, line, column, what));
     };
@@ -122,7 +205,7 @@ std::vector<long long> check_obj_indices(const std::string& text, const std::str
     });
     long long count[3] = {0, 0, 0};
     long long triangles = 0;
-    std::vector<long long> face_line;
+    ObjFaces faces;
     each_line([&](long long line_no, std::string_view line, std::size_t i, std::string_view key) {
         if (key == "v") ++count[0];
         if (key == "vt") ++count[1];
@@ -175,43 +258,15 @@ std::vector<long long> check_obj_indices(const std::string& text, const std::str
                 }
             }
         }
-        if (key == "f") {
-            triangles += std::max(corners - 2, 0);
-            if (corners > 255)
-                fail(line_no, 1, fmt::format("a face with {} corners (at most 255; split it)", corners));
-            face_line.push_back(line_no);
+        if (key == "f" && corners >= 3) {
+            triangles += corners - 2;
+            faces.line.push_back(line_no);
+            faces.corners.push_back(static_cast<std::uint32_t>(corners));
         }
     });
     if (const std::string e = mesh_size_error(total[0], triangles); !e.empty()) throw IoError(fmt::format("{}: {}", file, e));
-    return face_line;
+    return faces;
 }
-
-// tinyobjloader's `mtllib` reader, replaced: a material library is read only if glint may read it
-// (why_not_readable: a FIFO would block, --restrict-paths may forbid it), and a missing one is
-// an error, not a warning.
-class MtlReader : public tinyobj::MaterialReader {
-public:
-    explicit MtlReader(std::filesystem::path dir) : dir_(std::move(dir)) {}
-    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                    std::map<std::string, int>* names, std::string* warn, std::string* err) override {
-        const std::filesystem::path mtl = dir_ / name;
-        const auto refuse = [&](const std::string& why) {
-            if (err) *err += fmt::format("material library '{}' ({}): {}", name, mtl.string(), why);
-            return false;
-        };
-        if (const std::string why = why_not_readable(mtl); !why.empty()) return refuse("cannot read: it " + why);
-        std::ifstream in(mtl, std::ios::binary);
-        if (!in) return refuse("no such file");
-        std::string mtl_warn, mtl_err;
-        tinyobj::LoadMtl(names, materials, &in, &mtl_warn, &mtl_err);
-        if (warn && !mtl_warn.empty()) *warn += mtl_warn;
-        if (!mtl_err.empty()) return refuse(mtl_err);
-        return true;
-    }
-
-private:
-    std::filesystem::path dir_;
-};
 
 }  // namespace
 
@@ -226,17 +281,19 @@ ImportedFile import_obj(const std::filesystem::path& path) {
 }
 
 ImportedFile parse_obj(const std::string& text, const std::string& file, const std::filesystem::path& dir) {
-    const std::vector<long long> face_line = check_obj_indices(text, file);
+    const ObjFaces faces = check_obj_indices(text, file);
+    const std::vector<long long>& face_line = faces.line;
+    MtlReader mtl(dir, file, text);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warning, error;
     {
         std::istringstream stream(text);
-        MtlReader mtl(dir);
         // Faces are split into triangles by us, keeping their material; no vertex colours.
         const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream, &mtl,
                                          /*triangulate=*/false, /*default_vcols_fallback=*/false);
+        if (!mtl.failure().empty()) throw IoError(mtl.failure());
         while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
         if (!error.empty()) throw IoError(fmt::format("{}: {}", file, error));
         if (!ok) throw IoError(fmt::format("{}: cannot parse", file));
@@ -252,7 +309,7 @@ ImportedFile parse_obj(const std::string& text, const std::string& file, const s
         return k < face_line.size() ? fmt::format("{}:{}", file, face_line[k]) : file;
     };
     const tinyobj::attrib_t& a = attrib;
-    for (const tinyobj::material_t& m : materials) out.materials.push_back({m.name, map_material(m, dir, file, out), std::nullopt});
+    for (const tinyobj::material_t& m : materials) out.materials.push_back({m.name, map_material(m, dir, file, out, mtl), std::nullopt});
 
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& sm = shape.mesh;
@@ -265,9 +322,16 @@ ImportedFile parse_obj(const std::string& text, const std::string& file, const s
                          std::all_of(sm.indices.begin(), sm.indices.end(), [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
         std::map<std::tuple<int, int, int>, std::uint32_t> weld;
         std::vector<std::uint32_t> counts, polygon, face_of;
-        std::size_t face = 0, left_in_face = sm.num_face_vertices[0];
+        // The faces' true corner counts (tinyobjloader keeps them in a byte, so 256 reads as 0),
+        // when its faces are the ones check_obj_indices read.
+        for (std::size_t f = 0; f < sm.num_face_vertices.size(); ++f) {
+            const std::size_t k = face_base + f;
+            const bool ours = k < faces.corners.size() && faces.corners[k] % 256 == sm.num_face_vertices[f];
+            counts.push_back(ours ? faces.corners[k] : sm.num_face_vertices[f]);
+        }
+        std::size_t face = 0, left_in_face = counts[0];
         for (const tinyobj::index_t& i : sm.indices) {
-            while (left_in_face == 0 && face + 1 < sm.num_face_vertices.size()) left_in_face = sm.num_face_vertices[++face];
+            while (left_in_face == 0 && face + 1 < counts.size()) left_in_face = counts[++face];
             --left_in_face;
             const auto key = std::make_tuple(i.vertex_index, normals ? i.normal_index : -1, uvs ? i.texcoord_index : -1);
             auto [it, fresh] = weld.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
@@ -291,8 +355,7 @@ ImportedFile parse_obj(const std::string& text, const std::string& file, const s
             polygon.push_back(it->second);
         }
         face_base += sm.num_face_vertices.size();
-        for (unsigned char c : sm.num_face_vertices) counts.push_back(c);
-        triangulate_fans(counts, polygon, mesh.indices, &face_of);
+        triangulate_faces(counts, polygon, mesh.positions, mesh.indices, &face_of);
         bool any_material = false;
         for (std::uint32_t f : face_of) {
             const int id = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
@@ -309,6 +372,9 @@ ImportedFile parse_obj(const std::string& text, const std::string& file, const s
         out.meshes.push_back(std::move(mesh));
     }
     if (out.meshes.empty()) throw IoError(fmt::format("{}: no faces", file));
+    if (std::all_of(out.meshes.begin(), out.meshes.end(), [](const TriangleMesh& m) { return m.indices.empty(); }))
+        throw IoError(fmt::format("{}: all {} of its triangles are degenerate (no area, or a position not finite): "
+                                  "nothing to render", file, out.dropped_triangles));
     return out;
 }
 

@@ -17,6 +17,7 @@
 #include "glint/base/diagnostics.h"
 #include "glint/base/limits.h"
 #include "glint/assets/mesh_import.h"
+#include "glint/shapes/polygon.h"
 
 namespace glint {
 
@@ -87,13 +88,16 @@ public:
             elem_ = nullptr;
         }
         if (mesh.positions.empty()) fail(0, "no vertex element with x, y and z");
-        triangulate_fans(counts, polygon, mesh.indices);
         if (!has_colors) mesh.colors.clear();
         try {
+            triangulate_faces(counts, polygon, mesh.positions, mesh.indices);
             out.dropped_triangles = validate_and_drop_degenerate(mesh);
         } catch (const std::invalid_argument& e) {
             fail(0, e.what());
         }
+        if (mesh.indices.empty() && out.dropped_triangles > 0)
+            fail(0, fmt::format("all {} of its triangles are degenerate (no area, or a position not finite): nothing to "
+                                "render", out.dropped_triangles));
         out.meshes.push_back(std::move(mesh));
         out.nodes.push_back({0, Transform{}});
         return out;
