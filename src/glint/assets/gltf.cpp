@@ -42,6 +42,7 @@
 #include "glint/assets/mesh_import.h"
 
 #include "glint/assets/gltf_importer.h"
+#include "glint/assets/gltf_validate.h"
 
 namespace glint {
 
@@ -79,6 +80,7 @@ void Importer::fetch(int view, std::size_t offset, std::size_t count, int n, int
     const std::size_t stride = strided && bv.byteStride ? bv.byteStride : elem;
     if (count > 0 && Wide{offset} + Wide{count - 1} * stride + elem > length)
         fail_at(at + "/count", fmt::format("{} reaches past the end of its buffer", what));
+    if (!dst) return;  // only the ranges were asked for
     const unsigned char* base = bytes + offset;
     for (std::size_t i = 0; i < count; ++i) {
         const unsigned char* p = base + i * stride;
@@ -171,6 +173,17 @@ std::vector<double> Importer::read(int index, int n, const std::string& what, co
         fail_at(at + "/count", fmt::format("{}: accessor {} has {} elements; the limit is {} values", what, index,
                                            a.count, kMaxAccessorValues));
     const std::string name = fmt::format("{}: accessor {}", what, index);
+    // Sized from what the file holds, before allocating: the view's bytes must reach the last
+    // element; without a view the elements are zeros but for the sparse ones, and glint takes at
+    // most kMaxZeroElements more zeros than the file gives sparse values.
+    if (a.bufferView >= 0) {
+        fetch(a.bufferView, a.byteOffset, a.count, n, a.componentType, a.normalized, true, nullptr, name, at);
+    } else {
+        const std::size_t given = a.sparse.isSparse ? static_cast<std::size_t>(std::max(a.sparse.count, 0)) : 0;
+        if (a.count > given + kMaxZeroElements)
+            fail_at(at + "/count", fmt::format("{}: {} elements with no bufferView (all zero but {} sparse ones): at most {} "
+                                               "more than the file gives values for", name, a.count, given, kMaxZeroElements));
+    }
     std::vector<double> v(a.count * static_cast<std::size_t>(n), 0.0);
     if (a.bufferView >= 0)
         fetch(a.bufferView, a.byteOffset, a.count, n, a.componentType, a.normalized, true, v.data(), name, at);
@@ -183,7 +196,12 @@ std::vector<double> Importer::read(int index, int n, const std::string& what, co
         if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
             fail_at(sat + "/indices/componentType", fmt::format("{}: sparse indices must be unsigned integers", name));
-        std::vector<double> idx(static_cast<std::size_t>(sp.count)), val(idx.size() * n);
+        const std::size_t sn = static_cast<std::size_t>(sp.count);
+        fetch(sp.indices.bufferView, static_cast<std::size_t>(std::max(sp.indices.byteOffset, 0)), sn, 1, ict, false, false,
+              nullptr, name + "'s sparse indices", sat + "/indices");
+        fetch(sp.values.bufferView, static_cast<std::size_t>(std::max(sp.values.byteOffset, 0)), sn, n, a.componentType,
+              a.normalized, false, nullptr, name + "'s sparse values", sat + "/values");
+        std::vector<double> idx(sn), val(idx.size() * n);
         fetch(sp.indices.bufferView, static_cast<std::size_t>(std::max(sp.indices.byteOffset, 0)), idx.size(), 1, ict,
               false, false, idx.data(), name + "'s sparse indices", sat + "/indices");
         fetch(sp.values.bufferView, static_cast<std::size_t>(std::max(sp.values.byteOffset, 0)), idx.size(), n,
@@ -319,7 +337,16 @@ void Importer::mesh(int index) {
                 idx.push_back(v);
             }
         } else if (prim.indices >= 0) {
+            // The largest value of the index type is the primitive restart value, which glTF
+            // forbids (the spec: "MUST NOT contain the maximum possible value").
+            const int ict = prim.indices < static_cast<int>(model.accessors.size()) ? model.accessors[prim.indices].componentType : 0;
+            const double restart = ict == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 255.0
+                                   : ict == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 65535.0
+                                                                                   : 4294967295.0;
             for (double x : read(prim.indices, 1, what, at + "/indices")) {
+                if (x == restart)
+                    fail_at(fmt::format("/accessors/{}", prim.indices),
+                            fmt::format("{}: index {} is the primitive restart value, which glTF does not allow", what, x));
                 if (!(x >= 0 && x < double(nv)))
                     fail_at(fmt::format("/accessors/{}", prim.indices),
                             fmt::format("{}: index {} out of range ({} vertices)", what, x, nv));
@@ -342,6 +369,11 @@ void Importer::mesh(int index) {
                         fmt::format("{}: {} indices is not a whole number of triangles", what, idx.size()));
             m.indices = std::move(idx);
         }
+        // Positions are mirrored (z negated), which turns each triangle's winding around: with no
+        // NORMAL the faces' own normals must still point to glTF's front (counter-clockwise) side,
+        // so that one-sided emission and the flat normals face the way the file means.
+        if (m.normals.empty())
+            for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
         m.material = prim.material >= 0 && prim.material < static_cast<int>(out.materials.size())
                          ? static_cast<MaterialId>(prim.material)
                          : kNoImportedMaterial;
@@ -644,6 +676,29 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (glb)
         if (const std::string why = glb_container_error(bytes); !why.empty()) throw IoError(fmt::format("{}: {}", file, why));
+    {
+        // Nesting is checked on the text, before the JSON parsers (which recurse, tinygltf on
+        // `extras` without a bound) see it; a .glb's JSON chunk starts at byte 20.
+        std::string_view json(bytes);
+        if (glb) {
+            std::uint32_t n = 0;
+            std::memcpy(&n, bytes.data() + 12, 4);
+            json = json.substr(20, n);
+        }
+        if (const auto at = json_too_deep(json, limit(Limit::kNesting)))
+            throw IoError(fmt::format("{}:{}:{}: JSON: {}", file, at->line, at->column,
+                                      over_limit(Limit::kNesting, limit(Limit::kNesting) + 1)));
+        // The specification's types, ranges and version, at the value that breaks them.
+        if (const auto e = gltf_rule_error(json)) {
+            std::optional<TextPosition> at;
+            for (std::string p = e->pointer; !glb && !at; p.erase(p.rfind('/'))) {
+                at = json_locate(json, p);
+                if (p.empty()) break;
+            }
+            if (at) throw IoError(fmt::format("{}:{}:{}: {}", file, at->line, at->column, e->message));
+            throw IoError(fmt::format("{}: {}", file, e->message));
+        }
+    }
     if (auto patched = prepare_for_tinygltf(bytes, glb)) bytes = std::move(*patched);
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw IoError(fmt::format("{}: too large", file));
     const auto size = static_cast<unsigned int>(bytes.size());
@@ -664,6 +719,28 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
         if (std::regex_search(why, m, located))
             throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
         throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : tinygltf_message(why)));
+    }
+    // A primitive without a material gets the spec's default material, which multiplies COLOR_0
+    // like any other: one such material, added when a primitive has vertex colours and no material.
+    {
+        int default_material = -1;
+        for (tinygltf::Mesh& mesh : model.meshes)
+            for (tinygltf::Primitive& p : mesh.primitives)
+                if (p.material < 0 && p.attributes.count("COLOR_0")) {
+                    if (default_material < 0) {
+                        default_material = static_cast<int>(model.materials.size());
+                        tinygltf::Material m;  // the spec's defaults: base colour 1, metallic 1, roughness 1
+                        m.name = "(glTF default material)";
+                        m.pbrMetallicRoughness.baseColorFactor = {1, 1, 1, 1};
+                        m.pbrMetallicRoughness.metallicFactor = 1;
+                        m.pbrMetallicRoughness.roughnessFactor = 1;
+                        m.emissiveFactor = {0, 0, 0};
+                        m.alphaMode = "OPAQUE";
+                        m.alphaCutoff = 0.5;
+                        model.materials.push_back(m);
+                    }
+                    p.material = default_material;
+                }
     }
     Importer im{model, file, glb, {}, {}, {}, {}, {}, {}, std::nullopt, camera_name, {}};
     if (!warn.empty()) im.out.notes.push_back(fmt::format("{}: {}", file, tinygltf_message(warn)));
@@ -692,6 +769,9 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
                                         camera_name, im.out.cameras.size(), im.out.cameras.size() - 1));
     im.out.camera = im.camera;
     if (im.out.meshes.empty()) throw IoError(fmt::format("{}: no triangle meshes in the scene", file));
+    if (std::all_of(im.out.meshes.begin(), im.out.meshes.end(), [](const TriangleMesh& m) { return m.indices.empty(); }))
+        throw IoError(fmt::format("{}: all {} of its triangles are degenerate (no area, or a position not finite): nothing "
+                                  "to render", file, im.out.dropped_triangles));
     return std::move(im.out);
 }
 

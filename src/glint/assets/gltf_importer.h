@@ -26,6 +26,9 @@ namespace glint::gltf_detail {
 
 // 2^28 values (2 GB as doubles) per accessor: 89M vertices.
 inline constexpr std::size_t kMaxAccessorValues = std::size_t{1} << 28;
+// An accessor without a bufferView is zeros (the spec), but for its sparse values: 1M zero
+// elements beyond those, far more than any exporter writes, and 24 MB as doubles.
+inline constexpr std::size_t kMaxZeroElements = std::size_t{1} << 20;
 // TEXCOORD_0 to TEXCOORD_7: more than any exporter writes.
 inline constexpr int kMaxUvSets = 8;
 

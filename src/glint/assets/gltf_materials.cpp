@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <regex>
 
 #include "glint/assets/gltf_importer.h"
@@ -19,8 +21,28 @@ std::shared_ptr<const Image> Importer::image(int index, bool srgb, const std::st
     if (index < 0 || index >= static_cast<int>(model.images.size())) fail_at(ref, fmt::format("image {} does not exist", index));
     const tinygltf::Image& im = model.images[index];
     const std::string at = fmt::format("/images/{}", index);
-    if (im.width <= 0 || im.height <= 0 || im.image.empty())
+    if (im.width <= 0 || im.height <= 0 || im.image.empty()) {
+        // A file that is not there is "not found", not "could not be decoded".
+        if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0) {
+            std::string name;  // the uri, percent-decoded as tinygltf does
+            for (std::size_t i = 0; i < im.uri.size(); ++i) {
+                if (im.uri[i] == '%' && i + 2 < im.uri.size() && std::isxdigit(static_cast<unsigned char>(im.uri[i + 1])) &&
+                    std::isxdigit(static_cast<unsigned char>(im.uri[i + 2]))) {
+                    name += static_cast<char>(std::stoi(im.uri.substr(i + 1, 2), nullptr, 16));
+                    i += 2;
+                } else {
+                    name += im.uri[i];
+                }
+            }
+            const std::filesystem::path path = std::filesystem::path(file).parent_path() / name;
+            std::error_code ec;
+            if (!std::filesystem::exists(path, ec))
+                fail_at(at + "/uri", fmt::format("image {}: '{}' not found (looked for {})", index, im.uri, path.string()));
+            if (const std::string why = why_not_readable(path); !why.empty())
+                fail_at(at + "/uri", fmt::format("image {}: cannot read '{}': it {}", index, path.string(), why));
+        }
         fail_at(at, fmt::format("image {} ('{}') could not be decoded", index, im.uri.empty() ? im.name : im.uri));
+    }
     if (static_cast<long long>(im.width) * im.height > limit(Limit::kTexturePixels))
         fail_at(at, fmt::format("image {} is {} x {} pixels: {}", index, im.width, im.height,
                                 over_limit(Limit::kTexturePixels, static_cast<long long>(im.width) * im.height)));

@@ -145,4 +145,29 @@ std::optional<TextPosition> json_locate(std::string_view text, std::string_view 
     return p;
 }
 
+std::optional<TextPosition> json_too_deep(std::string_view text, long long max_depth) {
+    long long depth = 0;
+    int line = 1, column = 0;
+    bool in_string = false, escaped = false;
+    for (const char c : text) {
+        if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++column;  // characters, as json_locate counts
+        if (c == '\n') {
+            ++line;
+            column = 0;
+        }
+        if (in_string) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_depth) return TextPosition{line, column};
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace glint

@@ -18,4 +18,9 @@ struct TextPosition {
 /// any input, however nested or malformed, ends in an answer.
 std::optional<TextPosition> json_locate(std::string_view text, std::string_view pointer);
 
+/// The first '[' or '{' of `text` that opens a level deeper than `max_depth`, found by a scan
+/// that only counts brackets outside strings (no recursion, no allocation), so that a file nested
+/// 40,000 deep is refused before any recursive JSON parser sees it; nullopt if none is.
+std::optional<TextPosition> json_too_deep(std::string_view text, long long max_depth);
+
 }  // namespace glint
