@@ -12,6 +12,7 @@
 #include "glint/formats/scene_yaml.h"
 #include "glint/render/render.h"
 #include "glint/samplers/hash.h"
+#include "testing.h"
 
 namespace glint {
 namespace {
@@ -60,7 +61,7 @@ TEST(Robustness, MutatedScenesBuildOrFailCleanly) {
     }
     ASSERT_FALSE(originals.empty());
     int failed = 0, built = 0;
-    for (std::uint32_t i = 0; i < 3000; ++i) {
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(testing::scaled(3000)); ++i) {
         const std::string text = mutate(originals[i % originals.size()], i);
         auto sources = std::make_shared<SourceFiles>();
         try {
@@ -85,8 +86,8 @@ TEST(Robustness, MutatedScenesBuildOrFailCleanly) {
             FAIL() << "unexpected exception: " << e.what() << "\n--- scene ---\n" << text;
         }
     }
-    EXPECT_GT(failed, 300);  // the mutations do produce errors...
-    EXPECT_GT(built, 300);   // ...and plenty of valid variants
+    EXPECT_GT(failed, testing::scaled(300));  // the mutations do produce errors...
+    EXPECT_GT(built, testing::scaled(300));   // ...and plenty of valid variants
 }
 
 }  // namespace

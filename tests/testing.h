@@ -10,6 +10,18 @@
 
 namespace glint::testing {
 
+/// Whether this is the sanitized build's run of the suite (`make test` runs the suite twice: the
+/// release build, then ASan + UBSan, where the same code runs 5-20 times slower). A test whose
+/// cost is repetitions of one check (rays against brute force, mutated scenes, BSDF samples) takes
+/// `scaled(n)` of them: all of them in the release run, a fifth under the sanitizers, which look
+/// for memory and undefined-behaviour errors on the same code paths, not for statistical power.
+#if GLINT_TESTS_SANITIZED
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+constexpr int scaled(int n) { return kSanitized ? (n + 4) / 5 : n; }
+
 /// A fresh, empty folder named after the running test, removed with everything in it at the
 /// end of the scope.
 class TempDir {

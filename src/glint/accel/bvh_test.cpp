@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "glint/scene.h"
+#include "testing.h"
 
 namespace glint {
 namespace {
@@ -110,17 +111,17 @@ struct Backend {
     AccelKind accel;
     SimdIsa isa;
 };
-std::string backend_name(const testing::TestParamInfo<Backend>& p) {
+std::string backend_name(const ::testing::TestParamInfo<Backend>& p) {
     return std::string(accel_name(p.param.accel)) + "_" + simd_isa_name(p.param.isa);
 }
-class BvhBackends : public testing::TestWithParam<Backend> {
+class BvhBackends : public ::testing::TestWithParam<Backend> {
 protected:
     void SetUp() override {
         if (!cpu_supports(GetParam().isa)) GTEST_SKIP() << "this CPU has no " << simd_isa_name(GetParam().isa);
     }
 };
 INSTANTIATE_TEST_SUITE_P(All, BvhBackends,
-                         testing::Values(Backend{AccelKind::kBvh, SimdIsa::kSse4}, Backend{AccelKind::kBvh, SimdIsa::kAvx2},
+                         ::testing::Values(Backend{AccelKind::kBvh, SimdIsa::kSse4}, Backend{AccelKind::kBvh, SimdIsa::kAvx2},
                                          Backend{AccelKind::kBvh, SimdIsa::kAvx512},
                                          Backend{AccelKind::kSbvh, SimdIsa::kSse4},
                                          Backend{AccelKind::kSbvh, SimdIsa::kAvx2},
@@ -143,7 +144,7 @@ TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
     const Scene s = mixed_scene(GetParam().accel, GetParam().isa);
     int hits = 0;
     std::array<int, 6> kinds{};
-    for (const Ray& r : random_rays(10000)) {
+    for (const Ray& r : random_rays(testing::scaled(10000))) {
         const auto a = s.intersect(r), b = s.intersect_brute_force(r);
         ASSERT_EQ(a.has_value(), b.has_value());
         ASSERT_EQ(s.occluded(r), b.has_value());
@@ -158,10 +159,10 @@ TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
         EXPECT_EQ(a->prim, b->prim);
         EXPECT_EQ(a->b1, b->b1);
     }
-    EXPECT_GT(hits, 1000);
+    EXPECT_GT(hits, testing::scaled(1000));
     for (ShapeKind k : {ShapeKind::kSphere, ShapeKind::kQuad, ShapeKind::kDisk, ShapeKind::kTriangle,
                         ShapeKind::kMesh})
-        EXPECT_GT(kinds[static_cast<int>(k)], 20) << "kind " << static_cast<int>(k);
+        EXPECT_GT(kinds[static_cast<int>(k)], testing::scaled(20)) << "kind " << static_cast<int>(k);
 }
 
 // Alpha cut-outs are an any-hit filter inside the traversal: every kernel must agree with brute
@@ -170,7 +171,7 @@ TEST_P(BvhBackends, AlphaMasksAgreeWithBruteForce) {
     const Scene opaque = mixed_scene(GetParam().accel, GetParam().isa);
     const Scene s = mixed_scene(GetParam().accel, GetParam().isa, true);
     int hits = 0, opaque_hits = 0, masked_mesh_hits = 0, passed = 0;
-    for (const Ray& r : random_rays(10000)) {
+    for (const Ray& r : random_rays(testing::scaled(10000))) {
         const auto a = s.intersect(r), b = s.intersect_brute_force(r);
         ASSERT_EQ(a.has_value(), b.has_value());
         ASSERT_EQ(s.occluded(r), b.has_value());
@@ -192,8 +193,8 @@ TEST_P(BvhBackends, AlphaMasksAgreeWithBruteForce) {
         }
     }
     EXPECT_LT(hits, opaque_hits);
-    EXPECT_GT(passed, 50);            // the cut-outs let rays through (139 of these rays)
-    EXPECT_GT(masked_mesh_hits, 200);  // and keep the rest
+    EXPECT_GT(passed, testing::scaled(50));            // the cut-outs let rays through (139 of 10000 rays)
+    EXPECT_GT(masked_mesh_hits, testing::scaled(200));  // and keep the rest
 }
 
 TEST(Sbvh, SplitsLargeTrianglesAndLowersTheSahCost) {
@@ -491,7 +492,7 @@ TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
   for (const bool alpha : {false, true}) {
     const Scene s = mixed_scene(AccelKind::kEmbree, std::nullopt, alpha);
     int compared = 0, differ = 0;
-    for (const Ray& r : random_rays(10000)) {
+    for (const Ray& r : random_rays(testing::scaled(10000))) {
         const auto a = s.intersect(r), b = s.intersect_brute_force(r);
         const bool occluded = s.occluded(r);
         // Embree's triangle test is not watertight and its interval ends differ by an ulp:
@@ -512,7 +513,7 @@ TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
             EXPECT_NEAR(a->b2, b->b2, 1e-3f);
         }
     }
-    EXPECT_GT(compared, 1000);
+    EXPECT_GT(compared, testing::scaled(1000));
     EXPECT_LE(differ, alpha ? 10 : 5) << "alpha " << alpha;  // a checker edge may fall either side too
     EXPECT_GT(s.accel_memory_bytes(), 0u);
   }
