@@ -7,6 +7,11 @@ FUZZ_BUILD ?= build-fuzz
 # line: a fifth less compile time than RelWithDebInfo's -O2 -g.
 FUZZ_OPT ?= -O1 -gline-tables-only -DNDEBUG
 JOBS  ?= $(shell nproc)
+# ccache (CMakeLists.txt, GLINT_CCACHE): paths inside the checkout are hashed relative to it, and
+# the working folder not at all, so a fresh clone in another folder reuses what an earlier build
+# compiled.
+export CCACHE_BASEDIR ?= $(CURDIR)
+export CCACHE_NOHASHDIR ?= 1
 CMAKE_FLAGS ?=
 
 .PHONY: all deps configure build demo test test-release test-sanitized fuzz bench bench-cycles bench-embree bench-volumes gallery sanitize clean

@@ -130,6 +130,16 @@ def checkpoint_seeds(folder, cli):
                 put(folder, name + ".ckpt", f.read())
 
 
+def structure_seeds(folder):
+    """Choice streams for fuzz_structure: one per kind of attack (the first byte picks it), the
+    rest the choices; each reaches its class at once (a self-referencing anchor, extras 40,000
+    deep, an 11000 x 11000 HDR header over 56 bytes, a 360-corner polygon)."""
+    put(folder, "aliases", bytes([0, 40, 0, 5, 0, 3, 0, 0, 0, 7, 0, 11, 0, 1]))
+    put(folder, "deep-extras", bytes([1, 0x40, 0x9c, 1, 3, 0, 0, 0, 36, 0, 0, 0, 1]))
+    put(folder, "hdr-lie", bytes([2, 0xf8, 0x2a, 0, 0, 0xf8, 0x2a, 0, 0, 0, 16, 0]) + bytes(16))
+    put(folder, "circle", bytes([3, 0x65, 0x01]) + bytes(400))
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit("usage: fuzz/make_corpus.py OUT_DIR GLINT_CLI")
@@ -142,6 +152,7 @@ def main():
     gltf_seeds(os.path.join(out, "gltf"))
     image_seeds(os.path.join(out, "image"))
     checkpoint_seeds(os.path.join(out, "checkpoint"), cli)
+    structure_seeds(os.path.join(out, "structure"))
     for target in sorted(os.listdir(out)):
         print(f"make_corpus: {target}: {len(os.listdir(os.path.join(out, target)))} seeds")
 

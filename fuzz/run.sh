@@ -26,7 +26,7 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$src/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 if [[ $mode == regression ]]; then
-  declare -A runs=([scene]=10000 [pbrt]=4000 [obj]=20000 [ply]=20000 [gltf]=10000 [image]=400 [checkpoint]=20000)
+  declare -A runs=([scene]=10000 [pbrt]=4000 [obj]=20000 [ply]=20000 [gltf]=10000 [image]=400 [checkpoint]=20000 [structure]=2000)
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   # The first folder receives what the run finds; a temporary one, so that the repository and the

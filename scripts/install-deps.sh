@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                   # compiles each unchanged file once across builds and fresh clones
   libyaml-cpp-dev          # scene files
   libopenexr-dev           # EXR read and written through OpenEXR
   libspng-dev              # PNG read with libspng (PNG written by glint over zlib)
