@@ -109,7 +109,7 @@ void lying_image(Choices& c) {
 }
 
 void polygon(Choices& c) {
-    const std::uint32_t corners = 3 + c.below(3000);
+    const std::uint32_t corners = 3 + c.below(1000);
     std::string obj;
     for (std::uint32_t i = 0; i < corners; ++i) {
         const double a = 2 * 3.14159265358979 * i / corners, r = 1 + (c.byte() % 2 ? c.number() : 0);
