@@ -98,6 +98,17 @@ TEST_F(Hostile, AChainOfTenThousandAliasesIsRefusedByTheNestingLimit) {
     expect_refused("render chain.yaml -o out.png", "levels of nesting exceed the limit of 256 (raise it with --limit nesting=N)");
 }
 
+TEST_F(Hostile, BlockNestingDeeperThanTheLimitIsRefusedAsSuch) {
+    // Indentation, not brackets: 300 levels reach glint's own check, 3000 yaml-cpp's guard (which
+    // says only "bad file"); both are the nesting limit's error.
+    for (const int levels : {300, 3000}) {
+        std::string text = std::string(kCamera) + "materials:\n  m:";
+        for (int i = 0; i < levels; ++i) text += "\n" + std::string(2 * i + 4, ' ') + fmt::format("k{}:", i);
+        write("deep.yaml", text + " 1\n");
+        expect_refused("render deep.yaml -o out.png", "levels of nesting exceed the limit of 256 (raise it with --limit nesting=N)");
+    }
+}
+
 TEST_F(Hostile, ABillionLaughsOfTexturesIsRefusedAtOnceUsedOrNot) {
     for (const bool used : {false, true}) {
         std::string text = std::string(kCamera) + "materials:\n  l0: {color: &t0 {type: mix, a: [1, 1, 1], b: [0, 0, 0], amount: 0.5}}\n";
@@ -133,6 +144,17 @@ TEST_F(Hostile, ASphereOfRadiusNearFloatMaxRendersBesideOthers) {
     const Result r = run_limited("render huge.yaml -o out.png --width 32 --height 24");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "out.png"));
+}
+
+TEST_F(Hostile, ASphereWhoseBoundsLeaveFloatsRangeIsRefusedAtItsRadius) {
+    write("far.yaml", std::string(kCamera) + "objects:\n  - {type: sphere, center: [1e38, 0, 0], radius: 3e38}\n");
+    expect_refused("render far.yaml -o out.png", "far.yaml:3:50: error: sphere: centre ± radius reaches past float's range");
+}
+
+TEST_F(Hostile, AVectorTooLongForFloatIsSaidSoNotCalledZeroLength) {
+    write("long.yaml", std::string(kCamera) +
+                           "objects:\n  - {type: quad, corner: [0, 0, 10], edge1: [3.4e38, 0, 0], edge2: [0, 1, 0]}\n");
+    expect_refused("render long.yaml -o out.png", "long.yaml:3:45: error: edge1 is too long for float arithmetic");
 }
 
 // --- allocations a header can lie about ----------------------------------------------------------

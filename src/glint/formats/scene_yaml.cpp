@@ -2,6 +2,7 @@
 #include "glint/formats/pbrt.h"
 
 #include <fmt/core.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -517,6 +518,10 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
     YAML::Node root;
     try {
         root = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {  // block nesting past yaml-cpp's own guard, which says only "bad file"
+        diagnostics.error({path, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1},
+                          over_limit(Limit::kNesting, std::max<long long>(e.depth(), limit(Limit::kNesting) + 1)));
+        diagnostics.throw_if_errors();
     } catch (const YAML::Exception& e) {
         diagnostics.error({path, e.mark.is_null() ? 0 : e.mark.line + 1,
                            e.mark.is_null() ? 0 : e.mark.column + 1},

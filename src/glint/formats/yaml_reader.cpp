@@ -129,6 +129,13 @@ std::optional<Vector3> YamlReader::direction(const YAML::Node& node, const char*
     if (!t) return std::nullopt;
     const Vector3 v{static_cast<Float>((*t)[0]), static_cast<Float>((*t)[1]),
                     static_cast<Float>((*t)[2])};
+    // In double, so that a long vector is not mistaken for a zero one (float's length overflows).
+    const double len = std::sqrt((*t)[0] * (*t)[0] + (*t)[1] * (*t)[1] + (*t)[2] * (*t)[2]);
+    if (len > 0 && !std::isfinite(length(v))) {
+        error(node, fmt::format("{} is too long for float arithmetic: length {:g}, at most about 1.8e19 (its square must "
+                                "be a float)", what, len));
+        return std::nullopt;
+    }
     if (!(length(v) > 0) || !std::isfinite(length(v))) {
         error(node, fmt::format("{} must not be zero-length", what));
         return std::nullopt;
