@@ -64,6 +64,13 @@ std::string triangle_gltf(const std::string& primitive_extra = "", const std::st
         top_extra, primitive_extra, scale, scale, indices.size(), 2 * indices.size(), buffer.size(), base64(buffer));
 }
 
+// triangle_gltf with the first `from` replaced by `to`.
+std::string triangle_gltf_with(const std::string& from, const std::string& to) {
+    std::string g = triangle_gltf();
+    g.replace(g.find(from), from.size(), to);
+    return g;
+}
+
 // triangle_gltf with a COLOR_0 of `rgb` at every corner and no material.
 std::string colored_triangle_gltf(float r, float g, float b) {
     std::string buffer;
@@ -174,17 +181,14 @@ TEST_F(Hostile, AnHdrHeaderClaimingMorePixelsThanItsBytesIsRefusedBeforeAllocati
 }
 
 TEST_F(Hostile, AGltfAccessorOfMillionsWithNoDataIsRefusedNamingTheFile) {
-    std::string g = triangle_gltf();
-    g.replace(g.find("\"count\": 3"), 10, "\"count\": 89000000");
+    std::string g = triangle_gltf_with("\"count\": 3", "\"count\": 89000000");
     g.replace(g.find("{\"bufferView\": 0, "), 18, "{");
     write("zeros.gltf", g);
     expect_refused("render zeros.gltf -o out.png", "zeros.gltf:");
 }
 
 TEST_F(Hostile, ANegativeGltfAccessorCountIsLocated) {
-    std::string g = triangle_gltf();
-    g.replace(g.find("\"count\": 3"), 10, "\"count\": -3");
-    write("negative.gltf", g);
+    write("negative.gltf", triangle_gltf_with("\"count\": 3", "\"count\": -3"));
     expect_refused("render negative.gltf -o out.png", "negative.gltf:5:");
     expect_refused("render negative.gltf -o out.png", "accessors[0].count: -3 is not an integer of at least 1");
 }
@@ -268,23 +272,15 @@ TEST_F(Hostile, AnUnknownCommandIsNamedWithTheNearest) {
 // --- glTF as its specification says --------------------------------------------------------------
 
 TEST_F(Hostile, GltfVersionsAGlint20ReaderCannotReadAreRefused) {
-    std::string g = triangle_gltf();
-    g.replace(g.find("{\"version\": \"2.0\"}"), 18, "{\"version\": \"2.0\", \"minVersion\": \"2.1\"}");
-    write("min.gltf", g);
+    write("min.gltf", triangle_gltf_with("{\"version\": \"2.0\"}", "{\"version\": \"2.0\", \"minVersion\": \"2.1\"}"));
     expect_refused("render min.gltf -o out.png", "min.gltf:1:");
     expect_refused("render min.gltf -o out.png", "asset.minVersion: the file needs glTF 2.1; glint reads glTF 2.0");
-    g = triangle_gltf();
-    g.replace(g.find("\"2.0\""), 5, "\"3.0\"");
-    write("three.gltf", g);
+    write("three.gltf", triangle_gltf_with("\"2.0\"", "\"3.0\""));
     expect_refused("render three.gltf -o out.png", "asset.version: the file needs glTF 3.0");
 }
 
 TEST_F(Hostile, GltfPropertiesOfTheWrongTypeAreLocatedErrors) {
-    const auto with = [](std::string from, std::string to) {
-        std::string g = triangle_gltf();
-        g.replace(g.find(from), from.size(), to);
-        return g;
-    };
+    const auto with = triangle_gltf_with;
     write("a.gltf", with("\"count\": 3", "\"count\": \"3\""));
     expect_refused("render a.gltf -o out.png", "a.gltf:5:");
     expect_refused("render a.gltf -o out.png", "accessors[0].count: \"3\" is not an integer of at least 1");
