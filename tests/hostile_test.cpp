@@ -116,6 +116,19 @@ TEST_F(Hostile, BlockNestingDeeperThanTheLimitIsRefusedAsSuch) {
     }
 }
 
+TEST_F(Hostile, TheNestingLimitCountsAsTheFlowPrescanDoes) {
+    // Every collection counts, block or flow: the document, `materials`, `m` and 253 lists are 256
+    // levels, within the limit (the value is wrong for its key, not for its depth); 254 lists
+    // are 257, refused although their brackets alone (255) pass the text's pre-scan.
+    for (const int levels : {253, 254}) {
+        write("n.yaml", std::string(kCamera) + "materials:\n  m: {color: " + std::string(levels, '[') + "1" +
+                            std::string(levels, ']') + "}\n");
+        const Result r = run_limited("render n.yaml -o out.png");
+        EXPECT_EQ(r.status, 1);
+        EXPECT_EQ(r.err.find("257 levels of nesting exceed") != std::string::npos, levels == 254) << levels << "\n" << r.err;
+    }
+}
+
 TEST_F(Hostile, ABillionLaughsOfTexturesIsRefusedAtOnceUsedOrNot) {
     for (const bool used : {false, true}) {
         std::string text = std::string(kCamera) + "materials:\n  l0: {color: &t0 {type: mix, a: [1, 1, 1], b: [0, 0, 0], amount: 0.5}}\n";

@@ -243,7 +243,7 @@ bool check_expanded_size(YamlReader& reader, const YAML::Node& root) {
     // a "billion laughs" costs what its text costs. A collection met again while it is still open
     // is an alias inside its own anchor.
     struct Measure {
-        long long size = 1, depth = 1;
+        long long size = 1, depth = 0;  // values; collections nested (a leaf: none, as the flow pre-scan counts)
     };
     struct Frame {
         YAML::Node node;
