@@ -284,6 +284,14 @@ TEST_F(Hostile, AnUnknownCommandIsNamedWithTheNearest) {
 
 // --- glTF as its specification says --------------------------------------------------------------
 
+TEST_F(Hostile, AGltfSyntaxErrorQuotingALongStretchIsALocatedErrorNotAStackOverflow) {
+    // Found by fuzz_gltf (fuzz/regressions/gltf/): tinygltf's message quoted a 20 KB literal, and
+    // libstdc++'s std::regex, matching it, recursed per character until the stack overflowed.
+    write("long.gltf", "{\n  \"accessors\": [\n    {\n      \"buffe" + std::string(20000, 'A') + "A/ \"x\"}]}\n");
+    expect_refused("render long.gltf -o out.png", "long.gltf:4:");
+    expect_refused("render long.gltf -o out.png", "JSON syntax error");
+}
+
 TEST_F(Hostile, GltfVersionsAGlint20ReaderCannotReadAreRefused) {
     write("min.gltf", triangle_gltf_with("{\"version\": \"2.0\"}", "{\"version\": \"2.0\", \"minVersion\": \"2.1\"}"));
     expect_refused("render min.gltf -o out.png", "min.gltf:1:");

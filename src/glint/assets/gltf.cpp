@@ -31,7 +31,8 @@
 #include <limits>
 #include <map>
 #include <numbers>
-#include <regex>
+#include <cstdio>
+#include <cstring>
 #include <set>
 #include <sstream>
 
@@ -564,11 +565,17 @@ std::string glb_container_error(const std::string& bytes) {
 /// or line breaks, a lower-case start, "File read error : X : why" as "cannot read 'X': why".
 std::string tinygltf_message(std::string why) {
     while (!why.empty() && (why.back() == '\n' || why.back() == ' ' || why.back() == '.')) why.pop_back();
-    static const std::regex read_error(R"(File (?:read|open) error : (.*?) : (.*))");
-    std::smatch m;
-    if (std::regex_search(why, m, read_error)) return fmt::format("cannot read '{}': {}", m[1].str(), m[2].str());
-    static const std::regex open_error(R"(File open error : ([^\n]*))");
-    if (std::regex_search(why, m, open_error)) return fmt::format("cannot open '{}'", m[1].str());
+    // Matched by hand, not with std::regex: libstdc++'s matcher recurses per character, and a
+    // message quoting a long stretch of the file overflowed the stack (found by fuzz_gltf).
+    const auto line_from = [&](std::size_t at) { return why.substr(at, why.find('\n', at) - at); };
+    for (const char* kind : {"File read error : ", "File open error : "}) {
+        const std::size_t at = why.find(kind);
+        if (at == std::string::npos) continue;
+        const std::string rest = line_from(at + std::strlen(kind));
+        if (const std::size_t sep = rest.find(" : "); sep != std::string::npos)
+            return fmt::format("cannot read '{}': {}", rest.substr(0, sep), rest.substr(sep + 3));
+        if (kind[5] == 'o') return fmt::format("cannot open '{}'", rest);
+    }
     for (std::size_t at = 0; (at = why.find(".\n", at)) != std::string::npos;) why.replace(at, 2, "; ");
     for (char& c : why)
         if (c == '\n') c = ' ';
@@ -713,11 +720,18 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     if (!ok) {
         // nlohmann::json's syntax errors name a line and column: put them where the OBJ and PLY
         // readers put theirs, after the file's name.
-        std::smatch m;
         const std::string why = trim(err);
-        static const std::regex located(R"(parse error at line (\d+), column (\d+): (.*))");
-        if (std::regex_search(why, m, located))
-            throw IoError(fmt::format("{}:{}:{}: JSON {}", file, m[1].str(), m[2].str(), m[3].str()));
+        // "parse error at line L, column C: what", read by hand (see tinygltf_message).
+        if (const std::size_t at = why.find("parse error at line "); at != std::string::npos) {
+            unsigned long line = 0, column = 0;
+            int used = 0;
+            if (std::sscanf(why.c_str() + at, "parse error at line %lu, column %lu: %n", &line, &column, &used) == 2 && used > 0) {
+                const std::size_t from = at + static_cast<std::size_t>(used);
+                std::string what = why.substr(from, why.find('\n', from) - from);
+                if (what.size() > 240) what = what.substr(0, 240) + "...";  // it may quote a long stretch of the file
+                throw IoError(fmt::format("{}:{}:{}: JSON {}", file, line, column, what));
+            }
+        }
         throw IoError(fmt::format("{}: {}", file, why.empty() ? "cannot parse" : tinygltf_message(why)));
     }
     // A primitive without a material gets the spec's default material, which multiplies COLOR_0

@@ -6,7 +6,6 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <regex>
 
 #include "glint/assets/gltf_importer.h"
 #include "glint/base/diagnostics.h"
