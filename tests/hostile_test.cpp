@@ -185,7 +185,7 @@ TEST_F(Hostile, AnHdrHeaderClaimingMorePixelsThanItsBytesIsRefusedBeforeAllocati
     ASSERT_EQ(hdr.size(), 56u);
     write("lie.hdr", hdr);
     write("env.yaml", std::string(kCamera) + "background: {type: environment, filename: lie.hdr}\n");
-    // Under a 512 MiB address-space cap: 1.4 GB would fail as "out of memory", not as this.
+    // The message is the row check's, which runs before the pixels are allocated.
     const Result r = run_limited("render env.yaml -o out.png");
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("lie.hdr"), std::string::npos) << r.err;

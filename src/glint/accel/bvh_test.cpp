@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "glint/scene.h"
+#include "glint/shapes/polygon.h"
 #include "testing.h"
 
 namespace glint {
@@ -451,12 +452,15 @@ TEST(Mesh, DegenerateAndNonFiniteTrianglesAreDroppedAndCounted) {
     EXPECT_THROW(validate_and_drop_degenerate(bad), std::invalid_argument);
 }
 
-TEST(Mesh, PolygonsTriangulateAsFans) {
+TEST(Mesh, ConvexPolygonsTriangulateAsFans) {
+    // A convex quad (a unit square), a two-corner face (skipped) and a triangle.
+    const std::vector<Point3> p{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0},
+                                {1, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
     std::vector<std::uint32_t> tris, face_of;
-    EXPECT_EQ(triangulate_fans({4, 2, 3}, {0, 1, 2, 3, 4, 5, 6, 7, 8}, tris, &face_of), 1u);
+    EXPECT_EQ(triangulate_faces({4, 2, 3}, {0, 1, 2, 3, 4, 5, 6, 7, 8}, p, tris, &face_of), 1u);
     EXPECT_EQ(tris, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 6, 7, 8}));
     EXPECT_EQ(face_of, (std::vector<std::uint32_t>{0, 0, 2}));
-    EXPECT_THROW(triangulate_fans({5}, {0, 1, 2}, tris), std::invalid_argument);
+    EXPECT_THROW(triangulate_faces({5}, {0, 1, 2}, p, tris), std::invalid_argument);
 }
 
 TEST(Bvh, NanRaysHitNothing) {

@@ -29,13 +29,13 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
             assign(m.require("radius"), s.radius, positive("radius"));
             // Its bounds, centre +- radius, must be floats: one past 3.4e38 could be neither
             // stored in the BVH nor hit.
-            for (int a = 0; a < 3; ++a)
-                if (const auto r = m.get("radius");
-                    r && !std::isfinite(std::abs(s.center[a]) + s.radius)) {
-                    r_.error(*r, fmt::format("sphere: centre ± radius reaches past float's range (3.4e38) on axis {}",
-                                             "xyz"[a]));
-                    break;
-                }
+            if (const auto r = m.get("radius"))
+                for (int a = 0; a < 3; ++a)
+                    if (!std::isfinite(std::abs(s.center[a]) + s.radius)) {
+                        r_.error(*r, fmt::format("sphere: centre ± radius reaches past float's range (3.4e38) on "
+                                                 "axis {}", "xyz"[a]));
+                        break;
+                    }
             out.push_back(object_of(s));
             mat = m.get("material");
         } else if (*type == "plane") {

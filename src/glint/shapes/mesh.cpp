@@ -49,28 +49,4 @@ std::size_t validate_and_drop_degenerate(TriangleMesh& mesh) {
     return n - kept;
 }
 
-std::size_t triangulate_fans(const std::vector<std::uint32_t>& counts,
-                             const std::vector<std::uint32_t>& polygon_indices,
-                             std::vector<std::uint32_t>& out, std::vector<std::uint32_t>* face_of) {
-    std::size_t skipped = 0, at = 0;
-    for (std::uint32_t f = 0; f < counts.size(); ++f) {
-        const std::uint32_t c = counts[f];
-        if (c > polygon_indices.size() - at)
-            throw std::invalid_argument(fmt::format("face {} has {} vertices, but only {} indices remain",
-                                                    f, c, polygon_indices.size() - at));
-        if (c < 3) {
-            ++skipped;
-        } else {
-            for (std::uint32_t k = 1; k + 1 < c; ++k) {
-                out.push_back(polygon_indices[at]);
-                out.push_back(polygon_indices[at + k]);
-                out.push_back(polygon_indices[at + k + 1]);
-                if (face_of) face_of->push_back(f);
-            }
-        }
-        at += c;
-    }
-    return skipped;
-}
-
 }  // namespace glint

@@ -92,14 +92,6 @@ struct TriangleMesh {
 /// std::invalid_argument naming what is wrong when the arrays disagree.
 std::size_t validate_and_drop_degenerate(TriangleMesh& mesh);
 
-/// Splits polygons (faces of any vertex count >= 3, given as counts and a flat index list)
-/// into triangles by a fan from each face's first vertex; faces with fewer than three vertices
-/// are skipped (counted in the return value).
-std::size_t triangulate_fans(const std::vector<std::uint32_t>& counts,
-                             const std::vector<std::uint32_t>& polygon_indices,
-                             std::vector<std::uint32_t>& triangles_out,
-                             std::vector<std::uint32_t>* face_of_triangle = nullptr);
-
 struct Instance {
     std::uint32_t mesh = 0;
     Transform transform;
