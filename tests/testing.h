@@ -22,15 +22,16 @@ inline constexpr bool kSanitized = false;
 #endif
 constexpr int scaled(int n) { return kSanitized ? (n + 4) / 5 : n; }
 
+/// Of `n` variations of one check (viewing angles, seeds), whether the `i`th runs: every one in
+/// the release run, one in `n` under the sanitizers; `offset` (a case's index) turns which one,
+/// so that across cases every variation still runs.
+constexpr bool variation_runs(int i, int offset, int n) { return !kSanitized || (i + offset) % n == 0; }
+
 /// A fresh, empty folder named after the running test, removed with everything in it at the
 /// end of the scope.
 class TempDir {
 public:
-    TempDir()
-        : path_(std::filesystem::temp_directory_path() /
-                ("glint_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+    TempDir() : path_(std::filesystem::temp_directory_path() / folder_name()) {
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }
@@ -49,6 +50,17 @@ public:
     }
 
 private:
+    // One folder, not nested ones: a parameterised test's names hold slashes ("Backends/Suite",
+    // "Name/0"), which would leave the parents behind.
+    static std::string folder_name() {
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string name = "glint_" + std::to_string(::getpid()) + "_" +
+                           info->test_suite_name() + "_" + info->name();
+        for (char& c : name)
+            if (c == '/') c = '-';
+        return name;
+    }
+
     std::filesystem::path path_;
 };
 

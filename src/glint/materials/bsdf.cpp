@@ -16,7 +16,6 @@ constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 bool same_side(Vector3 a, Vector3 b) { return a.z * b.z > 0; }
 Vector3 mirror_z(Vector3 v) { return {-v.x, -v.y, v.z}; }
 Vector3 flip_z(Vector3 v) { return {v.x, v.y, -v.z}; }
-float sqr(float v) { return v * v; }
 
 // Reflection-only lobes are two-sided: seen from below, mirror both directions to the upper side.
 template <typename F>

@@ -11,6 +11,8 @@
 
 namespace glint {
 
+constexpr float sqr(float v) { return v * v; }
+
 /// Unpolarised reflectance of a smooth dielectric interface. A negative cos_i means the light
 /// arrives from the other side, where the relative index is 1 / eta. Total internal reflection
 /// gives 1.

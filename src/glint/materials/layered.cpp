@@ -23,7 +23,6 @@ namespace {
 enum class Part : std::uint8_t { kAll, kReflection, kTransmission };
 enum class Mode : std::uint8_t { kRadiance, kImportance };
 
-float sqr(float v) { return v * v; }
 bool same_hemisphere(Vector3 a, Vector3 b) { return a.z * b.z > 0; }
 
 // Probabilities of choosing reflection and transmission, given their Fresnel weights r, t and
