@@ -80,11 +80,15 @@ protected:
     const std::string cornell_ = std::string(GLINT_SOURCE_DIR) + "/scenes/cornell-box.yaml";
 };
 
+// The renders these tests stop and resume: long enough to be stopped several times, a quarter of
+// the samples under the sanitizers, where each sample costs 5-20 times more.
+const std::string kLongSpp = glint::testing::kSanitized ? "64" : "256";
+
 // Interrupted by SIGINT, then SIGTERM, then SIGKILL, each time resumed from the checkpoint: the
 // final image is the uninterrupted one, bit for bit. After SIGINT and SIGTERM the exit status is
 // 3 and the image of the completed passes is whole; after SIGKILL the last checkpoint is whole.
 TEST_F(LongRender, InterruptedAndResumedRendersEqualTheUninterruptedOne) {
-    const std::string scene = cornell_ + " --width 96 --height 72 --spp 256 --threads 2";
+    const std::string scene = cornell_ + " --width 96 --height 72 --spp " + kLongSpp + " --threads 2";
     ASSERT_EQ(run("render " + scene + " -q -o full.exr").status, 0);
     const std::vector<float> full = pixels(dir_ / "full.exr");
     ASSERT_FALSE(full.empty());
@@ -164,7 +168,7 @@ const char* kAnimatedScene =
 // the end is the uninterrupted job's, bit for bit.
 TEST_F(LongRender, AnAnimationStoppedMidwayGoesOnWhereItStopped) {
     write("anim.yaml", kAnimatedScene);
-    const std::string scene = "anim.yaml --spp 256 --threads 2";
+    const std::string scene = "anim.yaml --spp " + kLongSpp + " --threads 2";
     ASSERT_EQ(run("render " + scene + " --frames 0:5 -q -o full_%d.exr").status, 0) << read(dir_ / "err.txt");
     std::vector<std::vector<float>> full;
     for (int f = 0; f <= 5; ++f) full.push_back(pixels(dir_ / ("full_" + std::to_string(f) + ".exr")));
