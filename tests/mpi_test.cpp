@@ -120,7 +120,8 @@ TEST_F(Mpi, EveryRankCountGivesTheSingleProcessImage) {
     // MPI's leftovers), one rank and an uneven three.
     const Case cases[] = {{"--spp 8", glint::testing::kSanitized ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 4}},
                           {"--spp 64 --noise-threshold 0.05 --min-spp 4", {3}},
-                          {"--spp 4 --aovs", {2}}};
+                          {"--spp 4 --aovs", {2}},
+                          {"--spp 4 --denoise", {2}}};  // rank 0 denoises
     for (const Case& c : cases) {
         SCOPED_TRACE(c.options);
         const std::string render = "{glint} render '" + scene("cornell-box.yaml") + "' --width 64 --height 48 " +

@@ -230,7 +230,11 @@ int main(int argc, char** argv) {
                        "path's scattering events (1 = direct light only)");
     render->add_flag("--aovs", args.aovs,
                      "Also write albedo, normal and depth (for denoisers) as EXR channels "
-                     "albedo.R/G/B, N.X/Y/Z and Z; needs an .exr output");
+                     "albedo.R/G/B, N.X/Y/Z and Z, and the half images even.R/G/B, odd.R/G/B; "
+                     "needs an .exr output");
+    render->add_flag("--denoise", args.denoise,
+                     "Write the image denoised by glint's feature-guided filter (needs 2 spp or more); "
+                     "an .exr also keeps the image before (noisy.R/G/B), the features and the half images");
     render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
     const char* accel_help =
         "Acceleration structure: bvh (glint's own), sbvh (the same with spatial splits) or embree "
@@ -303,6 +307,17 @@ int main(int argc, char** argv) {
     convert->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
     convert->add_option("--limit", limits, limit_help);
     convert->add_flag("--restrict-paths", restrict_paths, restrict_help);
+
+    std::string denoise_in, denoise_out;
+    CLI::App* denoise = app.add_subcommand(
+        "denoise", "Denoise an EXR written by `glint render --aovs` (or any EXR with R, G, B and the half "
+                   "images even.R/G/B, odd.R/G/B; albedo.R/G/B, N.X/Y/Z and Z guide the filter when present)");
+    denoise->add_option("IMAGE", denoise_in, "The .exr to denoise")->required();
+    denoise->add_option("-o,--output", denoise_out,
+                        "The image to write: .exr keeps the input's channels and the image before as "
+                        "noisy.R/G/B; .png, .jpg ... the denoised image alone")->required();
+    denoise->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
+    denoise->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
 
     // A first word that is no command and no flag: name it and the nearest command, before CLI11
     // says only that a subcommand is required.
@@ -380,6 +395,11 @@ int main(int argc, char** argv) {
         }
         if (info->parsed()) return run_info(args);
         if (convert->parsed()) return run_convert(args, convert_out);
+        if (denoise->parsed()) {
+            const double seconds = glint::denoise_file(denoise_in, denoise_out, static_cast<int>(args.threads.value_or(0)));
+            if (!args.quiet) fmt::print(stderr, "denoised in {:.2f} s\nwrote {}\n", seconds, denoise_out);
+            return 0;
+        }
         if (bench->parsed()) {
             // The backends to compare; the scene itself is loaded with the default one.
             const std::string set = args.accel == "both" ? "" : args.accel;

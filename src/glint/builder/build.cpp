@@ -535,6 +535,7 @@ void build_film(const SceneDescription& d, const Overrides& overrides, RenderJob
     job.display = d.film.display;
     job.options.filter = d.film.filter;
     job.aovs = d.film.aovs || overrides.aovs;
+    job.denoise = d.film.denoise || overrides.denoise;
     job.filename = d.film.filename.value;
 
 }

@@ -22,6 +22,7 @@ struct Overrides {
     std::optional<long long> width, height, spp, max_depth, threads;
     std::optional<std::uint64_t> seed;
     bool aovs = false;  ///< --aovs: write the AOVs even if the scene does not ask
+    bool denoise = false;  ///< --denoise: denoise even if the scene does not ask
     std::optional<AccelKind> accel;  ///< --accel
 };
 
@@ -35,6 +36,9 @@ struct RenderJob {
     int film_width = 0, film_height = 0;
     DisplaySettings display;
     bool aovs = false;
+    bool denoise = false;  ///< the written image is denoised (the features are rendered for it)
+    /// Whether the render keeps the AOVs and the half images: to write them, or to denoise.
+    bool features() const { return aovs || denoise; }
     std::string filename;  ///< the scene's film.filename, or empty
     std::vector<std::string> notes;  ///< for the user: dropped triangles, importer warnings
     /// The first camera found in an included glTF file (used when rendering that file directly).

@@ -87,6 +87,7 @@ struct FilmDesc {
     DisplaySettings display;
     FilterDesc filter;
     bool aovs = false;  ///< write albedo, normal and depth channels (EXR only)
+    bool denoise = false;  ///< write the image denoised (denoise/denoise.h)
     Located<std::string> filename;  ///< empty: the CLI chooses
     /// Render only part of the frame: [x0, x1, y0, y1] as fractions of the width and height
     /// (y down), pixel bounds rounded up as pbrt's cropwindow; or pixel bounds directly

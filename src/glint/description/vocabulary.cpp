@@ -28,7 +28,7 @@ const std::vector<VocabularyEntry>& table() {
                                "aperture_radius", "focus_distance", "handedness"}},
         {"camera", "look_at", {"type", "from", "to", "up", "fov", "aperture_radius", "focus_distance", "handedness",
                                "projection", "height", "window"}},
-        {"film", "", {"width", "height", "encoding", "tonemap", "exposure", "filter", "aovs", "filename", "crop",
+        {"film", "", {"width", "height", "encoding", "tonemap", "exposure", "filter", "aovs", "denoise", "filename", "crop",
                       "crop_pixels", "scale"}},
         {"encoding", "srgb", {}},
         {"encoding", "raw", {}},

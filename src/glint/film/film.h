@@ -3,6 +3,7 @@
 // consume (albedo, normal, depth) and each pixel's sample count. It knows nothing about scenes or files; the renderer fills
 // it, image_io encodes and writes it.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "glint/film/big_buffer.h"
@@ -22,11 +23,14 @@ public:
     const Color& at(int col, int row) const { return pixels_[index(col, row)]; }
     const BigVector<Color>& pixels() const { return pixels_; }
 
-    /// Allocates the AOV planes (albedo, normal, depth), before rendering.
+    /// Allocates the AOV planes (albedo, normal, depth, and the two half images: the means of
+    /// the even- and of the odd-numbered samples), before rendering.
     void enable_aovs() {
         albedo_.assign(pixels_.size(), Color{0});
         normal_.assign(pixels_.size(), Normal3{0, 0, 0});
         depth_.assign(pixels_.size(), 0);
+        even_.assign(pixels_.size(), Color{0});
+        odd_.assign(pixels_.size(), Color{0});
     }
     bool has_aovs() const { return !albedo_.empty(); }
     Color& albedo(int col, int row) { return albedo_[index(col, row)]; }
@@ -35,6 +39,16 @@ public:
     const BigVector<Color>& albedo() const { return albedo_; }
     const BigVector<Normal3>& normal() const { return normal_; }
     const BigVector<float>& depth() const { return depth_; }
+    Color& even(int col, int row) { return even_[index(col, row)]; }
+    Color& odd(int col, int row) { return odd_[index(col, row)]; }
+    const BigVector<Color>& even() const { return even_; }
+    const BigVector<Color>& odd() const { return odd_; }
+
+    /// The image before denoising, kept beside the denoised one (written as EXR channels).
+    void keep_noisy(BigVector<Color> noisy) { noisy_ = std::move(noisy); }
+    bool has_noisy() const { return !noisy_.empty(); }
+    const BigVector<Color>& noisy() const { return noisy_; }
+    BigVector<Color>& pixels() { return pixels_; }
 
     /// Allocates the per-pixel sample-count plane (adaptive sampling writes it).
     void enable_sample_counts() { samples_.assign(pixels_.size(), 0); }
@@ -52,6 +66,7 @@ private:
     BigVector<Color> albedo_;
     BigVector<Normal3> normal_;
     BigVector<float> depth_;
+    BigVector<Color> even_, odd_, noisy_;
     BigVector<float> samples_;
 };
 

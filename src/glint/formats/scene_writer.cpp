@@ -268,6 +268,7 @@ WrittenScene Writer::run() {
     if (display.curve != ToneCurve::kClamp) y.insert(y.size() - 1, fmt::format(", tonemap: {}", vocabulary_name(display.curve)));
     if (display.exposure != 0) y.insert(y.size() - 1, ", exposure: " + num(display.exposure));
     if (d_.film.aovs) y.insert(y.size() - 1, ", aovs: true");
+    if (d_.film.denoise) y.insert(y.size() - 1, ", denoise: true");
     y += "\n";
     y += fmt::format("sampler: {{type: {}, spp: {}, seed: {}", vocabulary_name(d_.sampler.type),
                      d_.sampler.spp.value, d_.sampler.seed);

@@ -259,6 +259,7 @@ CameraDesc SceneParser::camera(const YAML::Node& node) {
 void SceneParser::film(const YAML::Node& node, FilmDesc& f) {
     MapReader m(r_, node, "film", vocabulary_keys("film"));
     assign(m.get("aovs"), f.aovs, [this](const YAML::Node& v) { return r_.boolean(v); });
+    assign(m.get("denoise"), f.denoise, [this](const YAML::Node& v) { return r_.boolean(v); });
     if (auto n = m.get("filter")) f.filter = filter(*n);
     auto size = [this, &m](const char* key, Located<int>& out) {
         if (auto n = m.get(key)) {

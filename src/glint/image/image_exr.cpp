@@ -72,6 +72,41 @@ RawImage read_exr(const fs::path& path, long long max_pixels) {
     }
 }
 
+ExrChannels read_exr_planes(const fs::path& path, const std::vector<std::string>& wanted, long long max_pixels) {
+    exr_threads();
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+        const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+        const Imf::ChannelList& channels = file.header().channels();
+        ExrChannels out;
+        for (auto c = channels.begin(); c != channels.end(); ++c) out.names.emplace_back(c.name());
+        std::vector<std::size_t> present;
+        for (std::size_t i = 0; i < wanted.size(); ++i)
+            if (channels.findChannel(wanted[i])) present.push_back(i);
+        admit_image(path, w, h, max_pixels, static_cast<int>(std::max<std::size_t>(1, present.size())) * 4, kExrPixelsPerByte);
+        out.width = static_cast<int>(w), out.height = static_cast<int>(h);
+        out.planes.resize(wanted.size());
+        Imf::FrameBuffer fb;
+        const std::size_t row = sizeof(float) * static_cast<std::size_t>(w);
+        for (const std::size_t i : present) {
+            out.planes[i].assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
+            char* base = reinterpret_cast<char*>(out.planes[i].data()) -
+                         static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(sizeof(float)) -
+                         static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(row);
+            fb.insert(wanted[i], Imf::Slice(Imf::FLOAT, base, sizeof(float), row));
+        }
+        file.setFrameBuffer(fb);
+        if (!present.empty()) file.readPixels(dw.min.y, dw.max.y);
+        return out;
+    } catch (const IoError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), e.what()));
+    }
+}
+
 void write_exr(const fs::path& path, int width, int height, const std::vector<std::string>& names,
                const float* data, const ImageMetadata& metadata) {
     exr_threads();

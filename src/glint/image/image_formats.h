@@ -43,6 +43,9 @@ std::string image_admission_error(const std::filesystem::path& path, long long w
 
 RawImage read_png(const std::filesystem::path& path, long long max_pixels);
 RawImage read_exr(const std::filesystem::path& path, long long max_pixels);
+/// read_exr_channels (image_io.h) without the checks of the header's bytes.
+ExrChannels read_exr_planes(const std::filesystem::path& path, const std::vector<std::string>& wanted,
+                            long long max_pixels);
 /// Returns false (nothing read) for a JPEG libjpeg cannot convert to RGB (CMYK): the caller
 /// offers it to OpenImageIO.
 bool read_jpeg(const std::filesystem::path& path, long long max_pixels, RawImage& out);

@@ -180,6 +180,13 @@ const char* format_by_content(const fs::path& path) {
     return "";
 }
 
+ExrChannels read_exr_channels(const fs::path& path, const std::vector<std::string>& wanted, long long max_pixels) {
+    if (!fs::is_regular_file(path)) throw IoError(fmt::format("cannot read image '{}': not found", path.string()));
+    if (const std::string why = exr_header_error(path); !why.empty())
+        throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
+    return read_exr_planes(path, wanted, max_pixels);
+}
+
 Image read_image(const fs::path& path, ImageEncoding encoding, long long max_pixels) {
     if (max_pixels <= 0) max_pixels = limit(Limit::kTexturePixels);
     if (const std::string why = why_not_readable(path); !why.empty())
@@ -282,11 +289,15 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     const fs::path tmp = temporary_path(path);
     const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (format == ImageFormat::kExr) {
-        // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names, then
-        // the sample counts.
-        const bool counts = film.has_sample_counts();
+        // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names, the
+        // half images even.R/G/B and odd.R/G/B; the image before denoising noisy.R/G/B; then the
+        // sample counts.
+        const bool counts = film.has_sample_counts(), noisy = film.has_noisy();
         std::vector<std::string> names = {"R", "G", "B"};
-        if (film.has_aovs()) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
+        if (film.has_aovs())
+            names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "even.R", "even.G",
+                                       "even.B", "odd.R", "odd.G", "odd.B"});
+        if (noisy) names.insert(names.end(), {"noisy.R", "noisy.G", "noisy.B"});
         if (counts) names.emplace_back("spp");
         const std::size_t stride = names.size();
         std::vector<float> floats(n * stride);
@@ -300,6 +311,14 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
                 px[3] = a.r, px[4] = a.g, px[5] = a.b;
                 px[6] = nn.x, px[7] = nn.y, px[8] = nn.z;
                 px[9] = film.depth()[i];
+                const Color e = film.even()[i], o = film.odd()[i];
+                px[10] = e.r, px[11] = e.g, px[12] = e.b;
+                px[13] = o.r, px[14] = o.g, px[15] = o.b;
+            }
+            if (noisy) {
+                const Color c0 = film.noisy()[i];
+                float* q = px + (film.has_aovs() ? 16 : 3);
+                q[0] = c0.r, q[1] = c0.g, q[2] = c0.b;
             }
             if (counts) px[stride - 1] = film.sample_counts()[i];
         });

@@ -72,6 +72,17 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 void write_image(const std::filesystem::path& path, const Film& film,
                  const DisplaySettings& display, const ImageMetadata& metadata = {});
 
+/// Named channels of an OpenEXR file (its first part), as float planes of width x height.
+struct ExrChannels {
+    int width = 0, height = 0;
+    std::vector<std::string> names;          ///< every channel the file has
+    std::vector<std::vector<float>> planes;  ///< one per name asked for; empty where the file lacks it
+};
+/// Reads the channels `wanted` of an EXR (checked as read_image checks, against `max_pixels` and the
+/// memory budget, before anything is allocated). Throws IoError naming the file.
+ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vector<std::string>& wanted,
+                              long long max_pixels);
+
 /// A PNG, JPEG or PPM written while it is rendered (render_8bit's output): the renderer fills rgb()
 /// (width x height x 3 bytes, rows top first, codes already through the display transform) and
 /// announces final rows with rows_ready (from any thread), which encodes each PNG strip on that

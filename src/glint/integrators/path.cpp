@@ -146,11 +146,32 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         radiance += path_beta * f * ls->L * tr * (w / light_pdf) / average(path_r * r_l);
     };
 
+    // The denoiser's features (`first`) come from the first surface that is not purely specular:
+    // through a mirror or smooth glass, the surface seen in it (at the distance travelled), so that
+    // edges seen through glass are edges in the features too; through fog, the surface along the
+    // camera ray behind it. Interfaces between media are passed.
+    bool want_features = first != nullptr;
+    float feature_distance = 0;
+    const auto features_along = [&](Ray line, auto h, float travelled) {
+        for (int k = 0; k <= kMaxInterfaceCrossings; ++k) {
+            if (!h) return FirstHit{evaluate(scene.background, line.direction), {}, 0, false};
+            const SurfaceInteraction s = scene.interaction(line, *h);
+            if (!scene.is_interface(s.material))
+                return FirstHit{article_view(scene, s).color, face_forward(s.ns, line.direction), travelled + h->t, true};
+            travelled += h->t;
+            line = spawn_ray(s.p, s.n, line.direction);
+            ++counter.rays;
+            h = scene.intersect(line);
+        }
+        return FirstHit{};
+    };
+
     int depth = 0;
     int crossings = 0;  // interface surfaces passed since the last scattering event
     for (;;) {
         ++counter.rays;
         const auto hit = scene.intersect(ray);
+        const Ray line = ray;  // the ray before the medium may turn it
 
         // Through the medium up to the surface (or forever): delta tracking.
         if (medium != kNoMedium) {
@@ -278,6 +299,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                     r_u *= T * sigma_n / pdf;
                     return beta.max_component() > 0 && r_u.max_component() > 0;
                 });
+            if (want_features && (scattered || terminated)) {
+                *first = features_along(line, hit, feature_distance);
+                want_features = false;
+            }
             if (terminated || !(beta.max_component() > 0) || !(r_u.max_component() > 0)) break;
             if (scattered) {
                 ++depth;
@@ -292,7 +317,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         }
 
         if (!hit) {
-            if (first && depth == 0) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
+            if (want_features) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
             for (const std::uint32_t l : lights.distant())
                 add_emission(lights.distant_radiance(scene, l, ray.direction), l, {});
             // A background that is no light (black has no power) still shows to the camera.
@@ -306,17 +331,19 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             if (const MediumInterface* mi = scene.medium_interface(si.material))
                 medium = mi->side(dot(si.n, ray.direction));
             if (++crossings > kMaxInterfaceCrossings) break;
+            if (want_features) feature_distance += hit->t;
             ray = spawn_ray(si.p, si.n, ray.direction);
             continue;
         }
         const Vector3 wo = -ray.direction;
         add_emission(scene.emitted(si, wo), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
-        if (first && depth == 0) {
-            *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), hit->t, true};
+        if (want_features) {
+            *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), feature_distance + hit->t, true};
         }
         if (depth >= settings_.max_depth) break;
 
         const Bsdf bsdf = make_bsdf(scene, si);
+        if (bsdf.has_smooth_part()) want_features = false;
         const Sample2 choices = samples.next_2d();
         const Sample2 u_light = samples.next_2d();
         const Sample2 u_bsdf = samples.next_2d();
@@ -339,6 +366,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!bs || bs->f.max_component() <= 0 || !same_side(si, bs->wi)) break;
         beta *= bs->f * (std::abs(dot(si.ns, bs->wi)) / bs->pdf);
         specular = bs->specular;
+        if (want_features) {
+            if (bs->specular) feature_distance += hit->t;
+            else want_features = false;
+        }
         bsdf_pdf = bs->pdf_is_proportional ? walk_pdf(bsdf, wo, bs->wi) : bs->pdf;
         prev_p = si.p;
         if (bs->eta != 1) eta_scale *= bs->eta * bs->eta;

@@ -279,3 +279,42 @@ TEST(Path, CornellBoxRedWallIsOnTheLeft) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// The denoiser's features through smooth glass are those of the surface seen through it: a
+// checker floor (albedo 0.1 | 0.9) under a sheet of glass that fills the view shows both albedos
+// in the albedo AOV, not the glass's one colour, so the checker's edges guide the filter.
+TEST(Path, FeaturesThroughSmoothGlassAreThoseOfTheSurfaceBehind) {
+    const RenderJob job = job_from(R"(
+camera: {type: look_at, from: [0, 4, 0], to: [0, 0, 0], up: [0, 0, 1], fov: 60}
+film: {width: 32, height: 32}
+integrator: {type: path, max_depth: 8}
+background: {type: constant, color: [1, 1, 1]}
+materials:
+  floor: {type: diffuse, albedo: {type: checker, size: 1, even: [0.9, 0.9, 0.9], odd: [0.1, 0.1, 0.1]}}
+  glass: {type: dielectric, ior: 1.5}
+objects:
+  - {type: quad, corner: [-10, 0, -10], edge1: [0, 0, 20], edge2: [20, 0, 0], material: floor}
+  - {type: quad, corner: [-10, 2, -10], edge1: [0, 0, 20], edge2: [20, 0, 0], material: glass}
+)");
+    Film film(job.film_width, job.film_height);
+    film.enable_aovs();
+    RenderOptions o = job.options;
+    o.spp = 16;
+    render(job.scene, job.camera, *job.integrator, o, film);
+    int dark = 0, light = 0;
+    for (const Color& a : film.albedo()) {
+        dark += a.r < 0.3f ? 1 : 0;
+        light += a.r > 0.6f ? 1 : 0;
+    }
+    const int n = job.film_width * job.film_height;
+    EXPECT_GT(dark, n / 5) << dark << " dark, " << light << " light of " << n;
+    EXPECT_GT(light, n / 5) << dark << " dark, " << light << " light of " << n;
+    // Depth is the distance travelled to the floor: past the glass at 2, more than 4.
+    for (const float z : film.depth()) EXPECT_GT(z, 4.0f);
+}
+
+}  // namespace
+}  // namespace glint

@@ -35,8 +35,8 @@ void ProgressiveState::allocate() {
     const std::size_t n = pixels();
     sum.assign(n, Color{0});
     weight.assign(n, 0.0f);
-    odd_sum.assign(adaptive ? n : 0, Color{0});
-    odd_weight.assign(adaptive ? n : 0, 0.0f);
+    odd_sum.assign(halves() ? n : 0, Color{0});
+    odd_weight.assign(halves() ? n : 0, 0.0f);
     samples.assign(adaptive ? n : 0, 0);
     active.assign(adaptive ? n : 0, 1);
     albedo.assign(aovs ? n : 0, Color{0});
@@ -46,11 +46,11 @@ void ProgressiveState::allocate() {
 }
 
 void ProgressiveState::check_shape() const {
-    const std::size_t n = pixels(), a = adaptive ? n : 0, v = aovs ? n : 0;
+    const std::size_t n = pixels(), a = adaptive ? n : 0, v = aovs ? n : 0, o = halves() ? n : 0;
     check_plane(sum, n, "sum");
     check_plane(weight, n, "weight");
-    check_plane(odd_sum, a, "odd-sample sum");
-    check_plane(odd_weight, a, "odd-sample weight");
+    check_plane(odd_sum, o, "odd-sample sum");
+    check_plane(odd_weight, o, "odd-sample weight");
     check_plane(samples, a, "sample count");
     check_plane(active, a, "active");
     check_plane(albedo, v, "albedo");
@@ -180,8 +180,8 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
     const int first = in.adaptive ? static_cast<int>(in.samples[i]) : in.spp_done;
     const int last = std::min(spp, first + n);
 
-    Color sum = in.sum[i], odd = in.adaptive ? in.odd_sum[i] : Color{0};
-    float weight = in.weight[i], odd_weight = in.adaptive ? in.odd_weight[i] : 0.0f;
+    Color sum = in.sum[i], odd = in.halves() ? in.odd_sum[i] : Color{0};
+    float weight = in.weight[i], odd_weight = in.halves() ? in.odd_weight[i] : 0.0f;
     Color albedo{0};
     Vector3 normal{0, 0, 0};
     float depth = 0, hit_weight = 0;
@@ -213,7 +213,7 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
             w = f.weight;
             sum += li * w;
             weight += w;
-            if (in.adaptive && (s & 1)) odd += li * w, odd_weight += w;
+            if (in.halves() && (s & 1)) odd += li * w, odd_weight += w;
         }
         if (in.aovs) {
             albedo += hit.albedo * w;
@@ -223,9 +223,11 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
     }
     out.sum[i] = sum;
     out.weight[i] = weight;
-    if (in.adaptive) {
+    if (in.halves()) {
         out.odd_sum[i] = odd;
         out.odd_weight[i] = odd_weight;
+    }
+    if (in.adaptive) {
         out.samples[i] = static_cast<std::uint32_t>(std::max(first, last));
         out.active[i] = in.active[i];
     }
@@ -282,9 +284,11 @@ template <typename State, typename F>
 void each_plane(State& s, F&& f) {
     f(s.sum);
     f(s.weight);
-    if (s.adaptive) {
+    if (s.halves()) {
         f(s.odd_sum);
         f(s.odd_weight);
+    }
+    if (s.adaptive) {
         f(s.samples);
         f(s.active);
     }
@@ -467,6 +471,12 @@ void ProgressiveRender::resolve(Film& film) const {
                 film.normal(col, row) = Normal3(state_.normal[i] * inv);
                 film.depth(col, row) = state_.hit_weight[i] > 0 ? state_.depth[i] / state_.hit_weight[i]
                                                                  : std::numeric_limits<float>::infinity();
+                // The halves: the odd-numbered samples and the rest (each 0 before it has any).
+                const float ow = state_.odd_weight[i], ew = weight - ow;
+                const Color odd = ow > 0 ? state_.odd_sum[i] / ow : Color{0};
+                const Color even = ew > 0 ? (state_.sum[i] - state_.odd_sum[i]) / ew : Color{0};
+                film.even(col, row) = options_.scale != 1 ? even * options_.scale : even;
+                film.odd(col, row) = options_.scale != 1 ? odd * options_.scale : odd;
             }
             if (film.has_sample_counts()) {
                 film.sample_count(col, row) = static_cast<float>(

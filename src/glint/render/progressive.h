@@ -41,9 +41,10 @@ struct ProgressiveState {
     std::uint64_t rays = 0;
     std::vector<Color> sum;
     std::vector<float> weight;
-    // Adaptive sampling only.
+    // Adaptive sampling and AOVs (the denoiser's two half images): the odd-numbered samples.
     std::vector<Color> odd_sum;
     std::vector<float> odd_weight;
+    // Adaptive sampling only.
     std::vector<std::uint32_t> samples;  ///< per pixel
     std::vector<std::uint8_t> active;    ///< 1: still sampling
     // AOVs only: filter-weighted albedo and normal; depth over the samples that hit.
@@ -51,6 +52,9 @@ struct ProgressiveState {
     std::vector<Vector3> normal;
     std::vector<float> depth, hit_weight;
 
+    /// Whether the odd-numbered samples are summed apart (adaptive sampling's error estimate, the
+    /// denoiser's noise estimate).
+    bool halves() const { return adaptive || aovs; }
     std::size_t pixels() const {
         return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     }

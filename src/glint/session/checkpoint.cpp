@@ -27,13 +27,14 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: AOVs bring the odd-numbered samples' sums
 constexpr std::size_t kHeaderBytes = 72;
 
 // Bytes per pixel of the planes the flags call for.
 std::size_t pixel_bytes(bool adaptive, bool aovs) {
     std::size_t b = 12 + 4;
-    if (adaptive) b += 12 + 4 + 4 + 1;
+    if (adaptive || aovs) b += 12 + 4;
+    if (adaptive) b += 4 + 1;
     if (aovs) b += 12 + 12 + 4 + 4;
     return b;
 }
@@ -153,9 +154,11 @@ void write_checkpoint(const fs::path& path, std::uint64_t fingerprint, const Pro
     w.put(static_cast<std::uint64_t>(s.pixels() * pixel_bytes(s.adaptive, s.aovs)));
     w.plane(s.sum);
     w.plane(s.weight);
-    if (s.adaptive) {
+    if (s.halves()) {
         w.plane(s.odd_sum);
         w.plane(s.odd_weight);
+    }
+    if (s.adaptive) {
         w.plane(s.samples);
         w.plane(s.active);
     }
@@ -231,9 +234,11 @@ Checkpoint read_checkpoint(const fs::path& path) {
     const std::size_t n = s.pixels();
     r.plane(s.sum, n);
     r.plane(s.weight, n);
-    if (s.adaptive) {
+    if (s.halves()) {
         r.plane(s.odd_sum, n);
         r.plane(s.odd_weight, n);
+    }
+    if (s.adaptive) {
         r.plane(s.samples, n);
         r.plane(s.active, n);
         for (std::size_t i = 0; i < n; ++i) {

@@ -174,7 +174,7 @@ int RenderSession::run_rank_frame(const SessionOptions& args, std::optional<Temp
             job.emplace(prepare_job(a));
             render = std::make_unique<ProgressiveRender>(job->scene, job->camera, *job->integrator,
                                                                 job->options, job->film_width, job->film_height,
-                                                                job->aovs);
+                                                                job->features());
             fingerprint = render_fingerprint(*job, image_settings(a, *job));
             return std::string();
         } catch (const SceneError& e) {

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "glint/demo_scene.h"
+#include "glint/denoise/denoise.h"
 #include "glint/film/film.h"
 #include "glint/formats/scene_yaml.h"
 #include "glint/image/image_io.h"
@@ -90,6 +91,7 @@ RenderJob load_job(const SessionOptions& args) {
     overrides.threads = args.threads;
     overrides.seed = args.seed;
     overrides.aovs = args.aovs;
+    overrides.denoise = args.denoise;
     overrides.accel = parse_accel(args.accel);
     RenderJob job = build(description, overrides, sources);
     if (mesh) {
@@ -135,7 +137,7 @@ std::string image_settings(const SessionOptions& args, const RenderJob& job) {
         "noise {} min {}|aovs {}|max-depth {}|camera {}|{}",
         GLINT_VERSION, job.film_width, job.film_height, job.width, job.height, o.offset_x, o.offset_y, o.spp,
         o.seed, static_cast<int>(o.sampler), static_cast<int>(o.filter.type), o.filter.radius,
-        o.filter.sigma, o.scale, o.noise_threshold, o.min_spp, job.aovs,
+        o.filter.sigma, o.scale, o.noise_threshold, o.min_spp, job.features(),
         args.max_depth ? *args.max_depth : -1, args.camera, args.scene.empty() ? "(demo)" : "");
 }
 
@@ -200,6 +202,24 @@ RenderJob RenderSession::prepare_job(const SessionOptions& args) {
     return job;
 }
 
+namespace {
+
+// The film's image denoised in place, the image before kept beside it (an EXR writes both); the
+// seconds it took.
+double denoise_film(Film& film, int threads) {
+    const DenoiseInput in{film.width(),         film.height(),        film.pixels().data(),
+                          film.even().data(),   film.odd().data(),    film.albedo().data(),
+                          film.normal().data(), film.depth().data()};
+    DenoiseStats stats;
+    std::vector<Color> out = denoise(in, {7, threads}, &stats);
+    BigVector<Color> noisy(film.pixels().begin(), film.pixels().end());
+    std::copy(out.begin(), out.end(), film.pixels().begin());
+    film.keep_noisy(std::move(noisy));
+    return stats.seconds;
+}
+
+}  // namespace
+
 SessionResult RenderSession::render(const SessionOptions& args, std::optional<RenderJob> preloaded) {
     const bool distributed = !args.local && cluster_ && cluster_->size() > 1;
     if (distributed && cluster_->rank() > 0) return run_rank(args) == 0 ? SessionResult::kComplete : SessionResult::kInterrupted;
@@ -211,6 +231,10 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
             "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
             out.string()));
     }
+    if (job.denoise && job.options.spp < 2)
+        throw IoError(fmt::format("--denoise: the render has {} sample per pixel; the denoiser estimates the noise "
+                                  "from two halves of the samples, so it needs at least 2",
+                                  job.options.spp));
     const double budget = args.time.empty() ? -1 : parse_duration(args.time, "--time");
     const double every = parse_duration(args.checkpoint_every, "--checkpoint-every");
     // --resume FILE goes on writing FILE, unless --checkpoint names another.
@@ -237,7 +261,7 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums;
     // for PNG and PPM straight to 8-bit codes, with no float film (a 1080p film is 25 MB of
     // memory the kernel must clear and the encoder read back: docs/architecture.md).
-    if (job.options.spp == 1 && !job.aovs && checkpoint.empty() && args.display.empty() && !distributed) {
+    if (job.options.spp == 1 && !job.features() && checkpoint.empty() && args.display.empty() && !distributed) {
         if (!is_linear_format(image_format_for(out))) {
             // PNG strips are encoded by the render's threads as their rows come in.
             Image8Writer writer(out, w, h, job.display.encoding == Encoding::kSrgb);
@@ -260,9 +284,9 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
         return SessionResult::kComplete;
     }
     Film film(w, h);
-    if (job.aovs) film.enable_aovs();
+    if (job.features()) film.enable_aovs();
 
-    ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.aovs);
+    ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.features());
     if (render.adaptive() && image_format_for(out) == ImageFormat::kExr) film.enable_sample_counts();
     std::uint64_t fingerprint = 0;
     if (!checkpoint.empty() || distributed) {
@@ -336,6 +360,7 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
         if (hooks_.pass_done) hooks_.pass_done(render, std::chrono::duration<double>(clock::now() - start).count());
         if (display && display->connected()) {
             render.resolve(film);
+            if (job.denoise && render.spp_done() >= 2) denoise_film(film, job.options.threads);
             if (!display->send(view_name, film)) note(args, display->note());
         }
         if (!checkpoint.empty() && seconds_since(last_checkpoint) >= every && !render.finished()) save();
@@ -353,6 +378,14 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     }
     if (!checkpoint.empty()) save();
     render.resolve(film);
+    if (job.denoise) {
+        if (render.spp_done() >= 2) {
+            const double took = denoise_film(film, job.options.threads);
+            note(args, fmt::format("denoised in {:.2f} s", took));
+        } else {
+            note(args, "not denoised: it needs at least 2 samples per pixel, and the render stopped at 1");
+        }
+    }
     const ProgressiveState& state = render.state();
     RenderStats stats;
     stats.complete = !interrupted;

@@ -34,6 +34,7 @@ struct SessionOptions {
     std::optional<std::uint64_t> seed;
     bool quiet = false;   ///< nothing printed but errors (no notes, no progress)
     bool aovs = false;
+    bool denoise = false; ///< the written image is denoised (the scene's film.denoise also asks)
     bool strict = false;  ///< pbrt: what glint cannot render is an error
     std::string accel;    ///< bvh, sbvh, embree; empty: the scene's or the default
     std::string camera;   ///< a glTF file rendered directly: its camera by name
@@ -142,6 +143,13 @@ private:
     bool ranks_stopped_ = false;    ///< rank 0 has told the other ranks to stop
     bool animation_ranks_ = false;  ///< rank 0 of a distributed animation: the ranks wait for a frame
 };
+
+/// `glint denoise`: the image of an EXR written by `glint render --aovs` (or any EXR with channels
+/// R, G, B, the half images even.R/G/B and odd.R/G/B, and optionally albedo.R/G/B, N.X/Y/Z and
+/// Z), denoised, written to `out` (EXR: with the input's channels and noisy.R/G/B; PNG, JPEG ...:
+/// the image alone). `threads` 0: every core. Returns the seconds the filter took. Throws IoError
+/// naming the file, the channel or the pixel at fault; nothing is written then.
+double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads);
 
 /// The options that change the image, as text: part of a checkpoint's fingerprint.
 std::string image_settings(const SessionOptions& args, const RenderJob& job);

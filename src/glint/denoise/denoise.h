@@ -1,0 +1,60 @@
+#pragma once
+// The denoiser: a feature-guided filter of a rendered image, run on any CPU from what the
+// renderer keeps beside the image (no trained weights). docs/denoising.md says why this design.
+//
+//  - Noise: each pixel's variance is estimated from two half images (the mean of the even- and
+//    of the odd-numbered samples): E[(even - odd)^2] / 4 is the variance of the full mean. The
+//    single-pixel estimate is smoothed over 5 x 5 pixels.
+//  - Features (first non-specular hit: albedo, normal, depth) are prefiltered: each is averaged
+//    over 3 x 3 pixels with weights from its own differences, so that a feature that varies per
+//    sample (depth of field, edges) weighs less noisily.
+//  - Candidates: three filters over a (2r+1)^2 window, each weighing a neighbour by the least of
+//    a colour weight (non-local means on 3 x 3 patches, distances normalised by the variance,
+//    Rousselle et al. 2012/2013) and the feature weights: strict colour (k = 0.45), loose colour
+//    (k = 1), and features alone.
+//  - Selection: per pixel, the candidate with the least estimated error, by Stein's unbiased
+//    risk estimate (SURE, as Li et al. 2012 use it for rendering): |F(c) - c|^2 + sigma^2
+//    (2 dF/dc - 1) per channel, with dF_p/dc_p = w_pp / sum w. The error maps are smoothed over
+//    7 x 7 pixels and the choice over 5 x 5, so that neighbouring pixels blend, not jump.
+//
+// Every pixel's sums are accumulated in a fixed order of offsets, so the result has the same bits
+// for any number of threads.
+#include <string>
+#include <vector>
+
+#include "glint/math/color.h"
+#include "glint/math/vector.h"
+
+namespace glint {
+
+/// The planes the denoiser reads, row 0 at the top, `width * height` entries each.
+struct DenoiseInput {
+    int width = 0, height = 0;
+    const Color* color = nullptr;   ///< the image (mean of all samples)
+    const Color* even = nullptr;    ///< mean of the even-numbered samples
+    const Color* odd = nullptr;     ///< mean of the odd-numbered samples
+    const Color* albedo = nullptr;  ///< features; each may be null (then not used)
+    const Normal3* normal = nullptr;
+    const float* depth = nullptr;   ///< +inf where nothing was hit
+};
+
+struct DenoiseOptions {
+    int radius = 7;    ///< the window is (2 radius + 1)^2 pixels
+    int threads = 0;   ///< 0: every core
+};
+
+/// What the filter found, for tests and reports.
+struct DenoiseStats {
+    double seconds = 0;
+    double chosen[3] = {0, 0, 0};  ///< the share of pixels each candidate won
+};
+
+/// The denoised image. Throws std::invalid_argument naming the first bad input: missing planes,
+/// a size that is not positive, a value that is not finite (its pixel and plane).
+std::vector<Color> denoise(const DenoiseInput& in, const DenoiseOptions& options = {},
+                           DenoiseStats* stats = nullptr);
+
+/// The per-pixel variance of the image's mean the filter uses (smoothed), per channel.
+std::vector<Color> denoise_variance(const DenoiseInput& in);
+
+}  // namespace glint

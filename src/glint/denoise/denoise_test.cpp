@@ -1,0 +1,151 @@
+// The denoiser against what is known without it: noise of a known variance about a known mean,
+// an image without noise, an edge in the albedo, the variance of the halves' difference, and the
+// same bits for any thread count.
+#include "glint/denoise/denoise.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace glint {
+namespace {
+
+// An image of `truth` (per pixel) with Gaussian noise: each half the mean of half the samples
+// (standard deviation `sigma_half` per channel), the image their mean; flat features unless set.
+struct Noisy {
+    int w, h;
+    std::vector<Color> truth, color, even, odd, albedo;
+    std::vector<Normal3> normal;
+    std::vector<float> depth;
+    Noisy(int w_, int h_, float sigma_half, unsigned seed, const std::vector<Color>& t)
+        : w(w_), h(h_), truth(t), color(t.size()), even(t.size()), odd(t.size()), albedo(t.size(), Color{0.5f}),
+          normal(t.size(), Normal3{0, 0, 1}), depth(t.size(), 4.0f) {
+        std::mt19937 rng(seed);
+        std::normal_distribution<float> g(0, sigma_half);
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            even[i] = t[i] + Color{g(rng), g(rng), g(rng)};
+            odd[i] = t[i] + Color{g(rng), g(rng), g(rng)};
+            color[i] = (even[i] + odd[i]) * 0.5f;
+        }
+    }
+    DenoiseInput input() const {
+        return {w, h, color.data(), even.data(), odd.data(), albedo.data(), normal.data(), depth.data()};
+    }
+};
+
+double rms(const std::vector<Color>& a, const std::vector<Color>& b) {
+    double s = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Color d = a[i] - b[i];
+        s += (d.r * d.r + d.g * d.g + d.b * d.b) / 3.0;
+    }
+    return std::sqrt(s / static_cast<double>(a.size()));
+}
+
+// A grey of 0.5 with noise of standard deviation 0.1 in the image (0.1 sqrt 2 in each half): the
+// denoised image's mean is 0.5 within its standard error, and its error is a small share of the
+// noise (a 15 x 15 window averages up to 225 pixels: at best 1/15 of it).
+TEST(Denoise, ConstantColourWithNoiseGivesItsMean) {
+    const int w = 64, h = 48;
+    const float sigma = 0.1f;
+    const Noisy img(w, h, sigma * std::sqrt(2.0f), 1, std::vector<Color>(static_cast<std::size_t>(w * h), Color{0.5f}));
+    EXPECT_NEAR(rms(img.color, img.truth), sigma, 0.005);
+    DenoiseStats stats;
+    const std::vector<Color> out = denoise(img.input(), {}, &stats);
+    double mean = 0;
+    for (const Color& c : out) mean += (c.r + c.g + c.b) / 3.0;
+    mean /= static_cast<double>(out.size());
+    // Neighbouring pixels share most of their windows, so the image mean's error is at most that
+    // of one window's mean: 0.1 / sqrt(225 * 3) = 0.004; five of them.
+    EXPECT_NEAR(mean, 0.5, 0.02);
+    EXPECT_LT(rms(out, img.truth), 0.25 * sigma) << "candidates won: " << stats.chosen[0] << " " << stats.chosen[1]
+                                                 << " " << stats.chosen[2];
+}
+
+// Without noise (both halves equal to the image) every pixel comes back as it was, edges and
+// gradients included: every candidate filter that could blur has a larger error estimate.
+TEST(Denoise, ANoiseFreeImageComesBackUnchanged) {
+    const int w = 40, h = 30;
+    std::vector<Color> t(static_cast<std::size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            t[static_cast<std::size_t>(y * w + x)] = Color{x < 20 ? 0.2f : 0.9f, 0.01f * static_cast<float>(y), 0.3f + 0.01f * static_cast<float>(x)};
+    const Noisy img(w, h, 0, 1, t);
+    const std::vector<Color> out = denoise(img.input());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(out[i][c], t[i][c], 1e-5f * (1 + t[i][c])) << "pixel " << i;
+    }
+}
+
+// An albedo edge (0.2 | 0.8) under white light with noise: the columns beside the edge keep
+// their own side's value, and the noise falls. Averaged over the 48 rows, a column's noise is
+// about 0.057 / sqrt(48) = 0.008 where it is left as it was (the edge's own columns keep most of
+// theirs); a blur across the edge that moved them a tenth of the way would be 0.06.
+TEST(Denoise, AnAlbedoEdgeIsNotBlurredAcross) {
+    const int w = 48, h = 48;
+    std::vector<Color> t(static_cast<std::size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) t[static_cast<std::size_t>(y * w + x)] = Color{x < 24 ? 0.2f : 0.8f};
+    Noisy img(w, h, 0.08f, 2, t);
+    img.albedo = t;
+    const std::vector<Color> out = denoise(img.input());
+    for (const int x : {22, 23, 24, 25}) {
+        double mean = 0;
+        for (int y = 0; y < h; ++y) mean += out[static_cast<std::size_t>(y * w + x)].g;
+        mean /= h;
+        EXPECT_NEAR(mean, x < 24 ? 0.2 : 0.8, 0.035) << "column " << x;
+    }
+    EXPECT_LT(rms(out, t), 0.5 * rms(img.color, t));
+}
+
+// The half images' difference estimates the variance of the image's mean: over a flat noisy
+// image its average is sigma^2 (here sigma = 0.05), within the estimate's sampling error.
+TEST(Denoise, HalfBufferVarianceMatchesTheNoise) {
+    const int w = 64, h = 64;
+    const float sigma = 0.05f;
+    const Noisy img(w, h, sigma * std::sqrt(2.0f), 3, std::vector<Color>(static_cast<std::size_t>(w * h), Color{1.0f}));
+    const std::vector<Color> v = denoise_variance(img.input());
+    double mean = 0;
+    for (const Color& c : v) mean += (c.r + c.g + c.b) / 3.0;
+    mean /= static_cast<double>(v.size());
+    // (even - odd)^2 / 4 per pixel and channel is sigma^2 times a chi-square of one degree of
+    // freedom: relative standard error sqrt(2 / 12288) = 1.3 % for the mean; 5 % allowed.
+    EXPECT_NEAR(mean / (sigma * sigma), 1.0, 0.05);
+}
+
+TEST(Denoise, TheSameBitsForAnyThreadCount) {
+    const int w = 70, h = 53;  // bands of 16 rows that do not divide the height
+    std::vector<Color> t(static_cast<std::size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) t[static_cast<std::size_t>(y * w + x)] = Color{(x / 8 + y / 8) % 2 ? 0.7f : 0.1f, 0.4f, 0.2f};
+    Noisy img(w, h, 0.1f, 4, t);
+    for (std::size_t i = 0; i < t.size(); ++i) img.depth[i] = 2 + 0.01f * static_cast<float>(i % static_cast<std::size_t>(w));
+    std::vector<std::vector<Color>> outs;
+    for (const int threads : {1, 2, 3}) outs.push_back(denoise(img.input(), {7, threads}));
+    for (std::size_t k = 1; k < outs.size(); ++k)
+        EXPECT_EQ(std::memcmp(outs[0].data(), outs[k].data(), outs[0].size() * sizeof(Color)), 0) << "threads " << k + 1;
+}
+
+TEST(Denoise, BadInputsAreErrorsThatNameThePixel) {
+    Noisy img(8, 6, 0.1f, 5, std::vector<Color>(48, Color{0.5f}));
+    DenoiseInput in = img.input();
+    in.odd = nullptr;
+    EXPECT_THROW(denoise(in), std::invalid_argument);
+    in = img.input();
+    in.width = 0;
+    EXPECT_THROW(denoise(in), std::invalid_argument);
+    img.color[3 * 8 + 5].g = std::nanf("");
+    try {
+        denoise(img.input());
+        FAIL() << "a NaN was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("pixel (5, 3) of the image"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,110 @@
+// Denoising where a user meets it: `glint render --denoise` and `glint denoise`. The denoised
+// image is closer to a converged render than the noisy one; an EXR keeps the image before, the
+// features and the half images; `glint denoise` of an --aovs EXR gives the render's own denoised
+// bits on any thread count; what cannot be denoised is a clear error and writes nothing.
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "cli_fixture.h"
+#include "glint/image/image_formats.h"
+#include "glint/image/image_io.h"
+
+namespace glint_cli_test {
+namespace {
+
+class DenoiseCli : public Cli {
+protected:
+    // A channel of an EXR in the test's folder (empty when missing).
+    std::vector<float> channel(const std::string& file, const std::string& name) {
+        return glint::read_exr_channels(dir_ / file, {name}, 1 << 24).planes[0];
+    }
+    // Relative MSE over R, G, B against a reference: (x - ref)^2 / (ref^2 + 0.01), the mean.
+    double rel_mse(const std::string& file, const std::string& prefix, const std::string& ref) {
+        double sum = 0;
+        std::size_t n = 0;
+        for (const char* c : {"R", "G", "B"}) {
+            const std::vector<float> x = channel(file, prefix + c), r = channel(ref, c);
+            EXPECT_EQ(x.size(), r.size());
+            for (std::size_t i = 0; i < x.size() && i < r.size(); ++i, ++n)
+                sum += (x[i] - r[i]) * (x[i] - r[i]) / (r[i] * r[i] + 0.01);
+        }
+        return n ? sum / static_cast<double>(n) : 1e9;
+    }
+    static std::string cornell() { return std::string("'") + GLINT_SOURCE_DIR + "/scenes/cornell-box.yaml' --width 64 --height 48"; }
+};
+
+TEST_F(DenoiseCli, TheDenoisedImageIsCloserToTheConvergedOneAndTheExrKeepsTheRest) {
+    ASSERT_EQ(run("render " + cornell() + " --spp 1024 -q -o ref.exr").status, 0);
+    Result r = run("render " + cornell() + " --spp 8 --denoise -o d.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("denoised in"), std::string::npos) << r.err;
+    for (const char* name : {"R", "noisy.R", "albedo.G", "N.Z", "Z", "even.B", "odd.B"})
+        EXPECT_FALSE(channel("d.exr", name).empty()) << name;
+    const double noisy = rel_mse("d.exr", "noisy.", "ref.exr"), denoised = rel_mse("d.exr", "", "ref.exr");
+    EXPECT_LT(denoised, 0.5 * noisy) << "relative MSE: noisy " << noisy << ", denoised " << denoised;
+    // The image before is the render without --denoise, to the bit.
+    ASSERT_EQ(run("render " + cornell() + " --spp 8 -q -o plain.exr").status, 0);
+    const std::vector<float> plain = channel("plain.exr", "R"), before = channel("d.exr", "noisy.R");
+    ASSERT_EQ(plain.size(), before.size());
+    EXPECT_EQ(std::memcmp(plain.data(), before.data(), plain.size() * sizeof(float)), 0);
+    // A PNG gets the denoised image alone.
+    r = run("render " + cornell() + " --spp 8 --denoise -q -o d.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "d.png"));
+}
+
+// `glint denoise` of the --aovs EXR of the same render gives the same bits as --denoise did,
+// whatever the number of threads.
+TEST_F(DenoiseCli, TheDenoiseCommandGivesTheRendersBitsOnAnyThreadCount) {
+    ASSERT_EQ(run("render " + cornell() + " --spp 8 --denoise -q -o d.exr").status, 0);
+    ASSERT_EQ(run("render " + cornell() + " --spp 8 --aovs -q -o a.exr").status, 0);
+    const std::vector<float> want = channel("d.exr", "G");
+    for (const char* threads : {"1", "2", "3"}) {
+        const Result r = run(std::string("denoise a.exr -o b.exr --threads ") + threads);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::vector<float> got = channel("b.exr", "G");
+        ASSERT_EQ(got.size(), want.size());
+        EXPECT_EQ(std::memcmp(got.data(), want.data(), got.size() * sizeof(float)), 0) << threads << " threads";
+        EXPECT_FALSE(channel("b.exr", "noisy.G").empty());
+    }
+}
+
+TEST_F(DenoiseCli, WhatCannotBeDenoisedIsAnErrorAndNothingIsWritten) {
+    // One sample: no two halves to estimate the noise from.
+    Result r = run("render " + cornell() + " --spp 1 --denoise -o one.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--denoise: the render has 1 sample per pixel"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "one.png"));
+    // An EXR without the half images, a PNG, a missing file, the input as output.
+    ASSERT_EQ(run("render " + cornell() + " --spp 4 -q -o plain.exr").status, 0);
+    r = run("denoise plain.exr -o out.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("plain.exr: no channel even.R"), std::string::npos) << r.err;
+    ASSERT_EQ(run("render " + cornell() + " --spp 4 -q -o plain.png").status, 0);
+    r = run("denoise plain.png -o out.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("plain.png: glint denoise reads OpenEXR files"), std::string::npos) << r.err;
+    r = run("denoise nowhere.exr -o out.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("nowhere.exr': not found"), std::string::npos) << r.err;
+    ASSERT_EQ(run("render " + cornell() + " --spp 4 --aovs -q -o a.exr").status, 0);
+    const std::string before = read(dir_ / "a.exr");
+    r = run("denoise a.exr -o a.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("the output would replace the input"), std::string::npos) << r.err;
+    EXPECT_EQ(read(dir_ / "a.exr"), before);
+    // A NaN in a channel: named by pixel and plane.
+    const int w = 4, h = 3;
+    const std::vector<std::string> names = {"R", "G", "B", "even.R", "even.G", "even.B", "odd.R", "odd.G", "odd.B"};
+    std::vector<float> px(static_cast<std::size_t>(w * h) * names.size(), 0.5f);
+    px[(1 * w + 2) * names.size() + 7] = std::nanf("");  // odd.G of pixel (2, 1)
+    glint::write_exr(dir_ / "nan.exr", w, h, names, px.data(), {});
+    r = run("denoise nan.exr -o out.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("nan.exr: pixel (2, 1) of the odd half is not a finite number"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+}
+
+}  // namespace
+}  // namespace glint_cli_test
