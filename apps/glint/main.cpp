@@ -317,6 +317,9 @@ int main(int argc, char** argv) {
                         "The image to write: .exr keeps the input's channels and the image before as "
                         "noisy.R/G/B; .png, .jpg ... the denoised image alone")->required();
     denoise->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
+    int denoise_radius = 6;
+    denoise->add_option("--radius", denoise_radius, "The filter window's half size in pixels (default 6: 13 x 13)")
+        ->check(CLI::Range(1, 20));
     denoise->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
 
     // A first word that is no command and no flag: name it and the nearest command, before CLI11
@@ -396,7 +399,8 @@ int main(int argc, char** argv) {
         if (info->parsed()) return run_info(args);
         if (convert->parsed()) return run_convert(args, convert_out);
         if (denoise->parsed()) {
-            const double seconds = glint::denoise_file(denoise_in, denoise_out, static_cast<int>(args.threads.value_or(0)));
+            const double seconds = glint::denoise_file(denoise_in, denoise_out, static_cast<int>(args.threads.value_or(0)),
+                                                       denoise_radius);
             if (!args.quiet) fmt::print(stderr, "denoised in {:.2f} s\nwrote {}\n", seconds, denoise_out);
             return 0;
         }

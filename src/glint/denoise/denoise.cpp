@@ -25,47 +25,61 @@ constexpr float kEpsilon = 1e-10f;             // keeps a noise-free pixel's dis
 constexpr float kAlbedoScale = 0.05f, kNormalScale = 0.2f, kDepthScale = 0.02f;
 constexpr int kBand = 16;  // rows per task: fixed, so the work's split never depends on threads
 
-// exp(-x) for x >= 0, to about 6e-6 relative, as a polynomial in plain arithmetic (vectorisable;
-// the same bits on every machine and thread count). 0 beyond x = 80.
+// Maximum and minimum by value, which the vectoriser turns into selects.
+inline float max2(float a, float b) { return a > b ? a : b; }
+inline float min2(float a, float b) { return a < b ? a : b; }
+
+// exp(-x) for x >= 0, to 4e-6 relative, in plain arithmetic (vectorisable; the same bits on
+// every machine and thread count): 2^y = 2^n 2^f with n = y rounded (by adding 1.5 x 2^23, whose
+// low bits then hold n) and f in [-1/2, 1/2], 2^f by its Taylor polynomial of degree 6. x is
+// clamped to 80 (exp(-80) = 1.8e-35 is no weight), which also turns NaN and inf into 80.
 inline float exp_neg(float x) {
-    if (!(x < 80.0f)) return 0.0f;
-    const float y = -x * 1.44269504f;  // log2(e)
-    const float fl = std::floor(y);
-    const float f = y - fl;  // in [0, 1)
-    // 2^f on [0, 1): a degree-6 polynomial (Horner), within 5.6e-6 of it.
-    float p = 1.535336188319500e-4f;
-    p = p * f + 1.339887440266574e-3f;
-    p = p * f + 9.618437357674640e-3f;
-    p = p * f + 5.550332471162809e-2f;
-    p = p * f + 2.402264791363012e-1f;
-    p = p * f + 6.931472028550421e-1f;
+    const float y = -min2(x, 80.0f) * 1.44269504f;  // log2(e); in [-115.5, 0]
+    constexpr float kMagic = 12582912.0f;
+    const float r = y + kMagic;
+    const float f = y - (r - kMagic);
+    float p = 1.5403530393381606e-4f;
+    p = p * f + 1.3333558146428443e-3f;
+    p = p * f + 9.6181291076284772e-3f;
+    p = p * f + 5.5504108664821580e-2f;
+    p = p * f + 2.4022650695910071e-1f;
+    p = p * f + 6.9314718055994531e-1f;
     p = p * f + 1.0f;
-    const int e = static_cast<int>(fl);  // in (-116, 0]
-    return p * std::bit_cast<float>(static_cast<std::uint32_t>(e + 127) << 23);
+    const std::int32_t n = std::bit_cast<std::int32_t>(r) - std::bit_cast<std::int32_t>(kMagic);  // in [-116, 0]
+    return p * std::bit_cast<float>(static_cast<std::uint32_t>(n + 127) << 23);
 }
 
 std::size_t at(int w, int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); }
+
+// f(y) for every row y in [0, h), rows in parallel: each row's result depends on nothing another
+// row writes, so the result is the same for any split.
+template <class F>
+void for_rows(int h, const F& f) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& b) {
+        for (int y = b.begin(); y < b.end(); ++y) f(y);
+    });
+}
 
 // Box mean over (2r+1)^2 pixels, clamped at the borders (the mean of the pixels inside).
 template <class T>
 std::vector<T> box(const std::vector<T>& in, int w, int h, int r) {
     std::vector<T> rows(in.size()), out(in.size());
-    for (int y = 0; y < h; ++y) {
+    for_rows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             T s{};
             const int x0 = std::max(0, x - r), x1 = std::min(w - 1, x + r);
             for (int i = x0; i <= x1; ++i) s = s + in[at(w, i, y)];
             rows[at(w, x, y)] = s * (1.0f / static_cast<float>(x1 - x0 + 1));
         }
-    }
-    for (int y = 0; y < h; ++y) {
+    });
+    for_rows(h, [&](int y) {
         const int y0 = std::max(0, y - r), y1 = std::min(h - 1, y + r);
         for (int x = 0; x < w; ++x) {
             T s{};
             for (int j = y0; j <= y1; ++j) s = s + rows[at(w, x, j)];
             out[at(w, x, y)] = s * (1.0f / static_cast<float>(y1 - y0 + 1));
         }
-    }
+    });
     return out;
 }
 
@@ -111,7 +125,7 @@ Features prefilter(const DenoiseInput& in) {
     if (f.normal) f.nrm.resize(n);
     if (f.depth) f.z.resize(n), f.hit.resize(n), f.gx.assign(n, 0), f.gy.assign(n, 0);
     const auto hit = [&](std::size_t i) { return std::isfinite(in.depth[i]); };
-    for (int y = 0; y < h; ++y) {
+    for_rows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t p = at(w, x, y);
             Color sa{0};
@@ -144,11 +158,11 @@ Features prefilter(const DenoiseInput& in) {
                 f.z[p] = hit(p) ? sz / wz : 0;
             }
         }
-    }
+    });
     if (f.depth) {
         // The gradient: of the two one-sided differences the smaller (an edge is not a slope).
         const auto slope = [](float left, float right) { return std::abs(left) < std::abs(right) ? left : right; };
-        for (int y = 0; y < h; ++y) {
+        for_rows(h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 const std::size_t p = at(w, x, y);
                 if (!f.hit[p]) continue;
@@ -164,36 +178,167 @@ Features prefilter(const DenoiseInput& in) {
                 f.gx[p] = std::isfinite(gx) ? gx : 0;
                 f.gy[p] = std::isfinite(gy) ? gy : 0;
             }
-        }
+        });
     }
     return f;
 }
 
-// d(p, q) of the features (the largest of the three), with q = p + (dx, dy).
-inline float feature_distance(const Features& f, std::size_t p, std::size_t q, int dx, int dy) {
-    float d = 0;
-    if (f.albedo) {
-        const Color a = f.a[q] - f.a[p];
-        d = std::max(d, (a.r * a.r + a.g * a.g + a.b * a.b) * (1 / (3 * kAlbedoScale * kAlbedoScale)));
+// The inputs as planes of floats, one per channel (what the loops below vectorise over).
+struct Planes {
+    int width = 0;
+    std::vector<float> c[3], v[3];     // colour, its variance
+    std::vector<float> a[3], nrm[3];   // albedo, normal (zero when absent)
+    std::vector<float> z, inv_z, hit;  // depth, 1 / its scale, 1 where hit (all 1 without depth)
+    std::vector<float> gx, gy;         // depth gradient
+};
+
+Planes planes(const DenoiseInput& in, const std::vector<Color>& var, const Features& f) {
+    const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+    Planes p;
+    p.width = in.width;
+    for (int ch = 0; ch < 3; ++ch) {
+        p.c[ch].resize(n), p.v[ch].resize(n), p.a[ch].assign(n, 0.0f), p.nrm[ch].assign(n, 0.0f);
     }
-    if (f.normal) {
-        const Vector3 v = f.nrm[q] - f.nrm[p];
-        d = std::max(d, dot(v, v) * (1 / (kNormalScale * kNormalScale)));
-    }
-    if (f.depth) {
-        if (f.hit[p] != f.hit[q]) return std::numeric_limits<float>::infinity();
-        if (f.hit[p]) {
-            const float predicted = f.z[p] + f.gx[p] * static_cast<float>(dx) + f.gy[p] * static_cast<float>(dy);
-            const float e = (f.z[q] - predicted) / (kDepthScale * f.z[p] + 1e-6f);
-            d = std::max(d, e * e);
+    p.z.assign(n, 0.0f), p.inv_z.assign(n, 0.0f), p.hit.assign(n, 1.0f), p.gx.assign(n, 0.0f), p.gy.assign(n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int ch = 0; ch < 3; ++ch) {
+            p.c[ch][i] = in.color[i][ch];
+            p.v[ch][i] = var[i][ch];
+            if (f.albedo) p.a[ch][i] = f.a[i][ch];
+        }
+        if (f.normal) p.nrm[0][i] = f.nrm[i].x, p.nrm[1][i] = f.nrm[i].y, p.nrm[2][i] = f.nrm[i].z;
+        if (f.depth) {
+            p.hit[i] = f.hit[i] ? 1.0f : 0.0f;
+            p.z[i] = f.z[i];
+            p.inv_z[i] = f.hit[i] ? 1 / (kDepthScale * f.z[i] + 1e-6f) : 0.0f;
+            p.gx[i] = f.gx[i], p.gy[i] = f.gy[i];
         }
     }
-    return d;
+    return p;
 }
 
-struct Sums {
-    float r, g, b, w;
+// A run of n pixels' colour terms of one channel, added to t0 and t1 (set by the first channel).
+[[gnu::noinline]] void colour_term_run(const float* __restrict cp, const float* __restrict vp, const float* __restrict cq,
+                     const float* __restrict vq, float* __restrict t0, float* __restrict t1, int n, bool first) {
+    constexpr float k0 = kColourK[0] * kColourK[0], k1 = kColourK[1] * kColourK[1];
+    for (int x = 0; x < n; ++x) {
+        const float a = vp[x], b = vq[x];
+        const float d = cp[x] - cq[x];
+        const float num = (d * d - (a + min2(a, b))) * (1.0f / 3);
+        const float sv = a + b;
+        const float u0 = num / (kEpsilon + k0 * sv), u1 = num / (kEpsilon + k1 * sv);
+        t0[x] = first ? u0 : t0[x] + u0;
+        t1[x] = first ? u1 : t1[x] + u1;
+    }
+}
+
+// One row of colour terms for the offset (dx, qy - y): per pixel, the mean over channels of
+// ((c_p - c_q)^2 - (v_p + min(v_p, v_q))) / (eps + k^2 (v_p + v_q)), for both colour bandwidths.
+void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0, float* t1) {
+    const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(w),
+                      q0 = static_cast<std::size_t>(qy) * static_cast<std::size_t>(w);
+    const auto term = [&](int x, int qx, float* o0, float* o1) {
+        *o0 = 0, *o1 = 0;
+        for (int ch = 0; ch < 3; ++ch) {
+            const std::size_t i = p0 + static_cast<std::size_t>(x), j = q0 + static_cast<std::size_t>(qx);
+            colour_term_run(&pl.c[ch][i], &pl.v[ch][i], &pl.c[ch][j], &pl.v[ch][j], o0, o1, 1, ch == 0);
+        }
+    };
+    const int xa = std::clamp(-dx, 0, w), xb = std::clamp(w - dx, xa, w);
+    for (int x = 0; x < xa; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x], &t1[x]);
+    // The interior, where p + d is inside: straight loops over the planes.
+    const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
+    for (int ch = 0; ch < 3; ++ch)
+        colour_term_run(pl.c[ch].data() + p0 + xs, pl.v[ch].data() + p0 + xs, pl.c[ch].data() + qs, pl.v[ch].data() + qs,
+                        t0 + xs, t1 + xs, xb - xa, ch == 0);
+    for (int x = xb; x < w; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x], &t1[x]);
+}
+
+// Adds n neighbours' colours with their weights to the sums.
+[[gnu::noinline]] void accumulate(float* __restrict ar, float* __restrict ag, float* __restrict ab, float* __restrict aw,
+                const float* __restrict wt, const float* __restrict cr, const float* __restrict cg,
+                const float* __restrict cb, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float v = wt[x];
+        ar[x] += v * cr[x];
+        ag[x] += v * cg[x];
+        ab[x] += v * cb[x];
+        aw[x] += v;
+    }
+}
+
+// Sums of three along a row, clamped at its ends.
+void box3_row(const float* in, float* out, int w) {
+    if (w == 1) {
+        out[0] = 3 * in[0];
+        return;
+    }
+    out[0] = 2 * in[0] + in[1];
+    for (int x = 1; x < w - 1; ++x) out[x] = in[x - 1] + in[x] + in[x + 1];
+    out[w - 1] = in[w - 2] + 2 * in[w - 1];
+}
+
+// The three candidates' weights of (p, p + (dx, dy)) for pixels x in [xa, xb) of row y: the least
+// of the colour weight (the 3 x 3 patch's mean term, rows a, b, c of the row sums) and the
+// feature weight, and the feature weight alone.
+struct FeatureRows {
+    const float* a[3];
+    const float* n[3];
+    const float *z, *inv_z, *hit, *gx, *gy;
 };
+
+FeatureRows feature_rows(const Planes& pl, std::size_t at) {
+    return {{pl.a[0].data() + at, pl.a[1].data() + at, pl.a[2].data() + at},
+            {pl.nrm[0].data() + at, pl.nrm[1].data() + at, pl.nrm[2].data() + at},
+            pl.z.data() + at, pl.inv_z.data() + at, pl.hit.data() + at, pl.gx.data() + at, pl.gy.data() + at};
+}
+
+// The feature distances of a run of pixels (the largest of albedo, normal and depth), into df.
+[[gnu::noinline]] void feature_run(const float* __restrict pa0, const float* __restrict pa1, const float* __restrict pa2,
+                                   const float* __restrict qa0, const float* __restrict qa1, const float* __restrict qa2,
+                                   const float* __restrict pn0, const float* __restrict pn1, const float* __restrict pn2,
+                                   const float* __restrict qn0, const float* __restrict qn1, const float* __restrict qn2,
+                                   const float* __restrict pz, const float* __restrict qz, const float* __restrict piz,
+                                   const float* __restrict ph, const float* __restrict qh, const float* __restrict pgx,
+                                   const float* __restrict pgy, float fdx, float fdy, float* __restrict dfo, int count) {
+    constexpr float ka = 1 / (3 * kAlbedoScale * kAlbedoScale), kn = 1 / (kNormalScale * kNormalScale);
+    for (int x = 0; x < count; ++x) {
+        const float a0 = qa0[x] - pa0[x], a1 = qa1[x] - pa1[x], a2 = qa2[x] - pa2[x];
+        const float n0 = qn0[x] - pn0[x], n1 = qn1[x] - pn1[x], n2 = qn2[x] - pn2[x];
+        const float e = (qz[x] - (pz[x] + pgx[x] * fdx + pgy[x] * fdy)) * piz[x];
+        const float hd = ph[x] - qh[x];
+        const float dz = ph[x] * qh[x] * e * e + hd * hd * 1e30f;
+        dfo[x] = max2(max2((a0 * a0 + a1 * a1 + a2 * a2) * ka, (n0 * n0 + n1 * n1 + n2 * n2) * kn), dz);
+    }
+}
+
+// The weights from the feature distances and the colour terms' row sums.
+[[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict h0a, const float* __restrict h0b,
+                                  const float* __restrict h0c, const float* __restrict h1a, const float* __restrict h1b,
+                                  const float* __restrict h1c, float* __restrict w0, float* __restrict w1,
+                                  float* __restrict w2, int count) {
+    for (int x = 0; x < count; ++x) {
+        const float df = dfi[x];
+        const float dc0 = (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9), dc1 = (h1a[x] + h1b[x] + h1c[x]) * (1.0f / 9);
+        w0[x] = exp_neg(max2(max2(0.0f, dc0), df));
+        w1[x] = exp_neg(max2(max2(0.0f, dc1), df));
+        w2[x] = exp_neg(df);
+    }
+}
+
+void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, const float* h0a, const float* h0b,
+             const float* h0c, const float* h1a, const float* h1b, const float* h1c, float* df, float* w0, float* w1,
+             float* w2) {
+    const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa);
+    const std::size_t q = static_cast<std::size_t>(qy) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa + dx);
+    const auto s = static_cast<std::size_t>(xa);
+    const FeatureRows fp = feature_rows(pl, p), fq = feature_rows(pl, q);
+    // The feature distances go through w2, which then receives the weights.
+    feature_run(fp.a[0], fp.a[1], fp.a[2], fq.a[0], fq.a[1], fq.a[2], fp.n[0], fp.n[1], fp.n[2], fq.n[0], fq.n[1], fq.n[2],
+                fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s,
+                xb - xa);
+    weight_run(df + s, h0a + s, h0b + s, h0c + s, h1a + s, h1b + s, h1c + s, w0 + s, w1 + s, w2 + s, xb - xa);
+}
 
 }  // namespace
 
@@ -208,102 +353,80 @@ std::vector<Color> denoise_variance(const DenoiseInput& in) {
     return box(v, in.width, in.height, 2);
 }
 
-std::vector<Color> denoise(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
+namespace {
+
+std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<Color> var = denoise_variance(in);  // checks `in`
-    const Features feat = prefilter(in);
+    const Planes pl = planes(in, var, prefilter(in));
     const int w = in.width, h = in.height, r = std::max(0, options.radius);
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     const Color* c = in.color;
 
-    // The candidates' sums, per pixel.
-    std::vector<std::array<Sums, kCandidates>> sums(n);
+    // Each candidate's image and its SURE error map, filled band by band.
+    std::vector<Color> filtered[kCandidates];
+    std::vector<float> sure[kCandidates];
+    for (int k = 0; k < kCandidates; ++k) filtered[k].resize(n), sure[k].resize(n);
     const int bands = (h + kBand - 1) / kBand;
     const auto run_band = [&](int band) {
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         const int ty0 = std::max(0, y0 - 1), ty1 = std::min(h, y1 + 1);  // with the patches' halo
-        const int rows = ty1 - ty0;
-        std::vector<float> t[2], hsum[2];
-        for (int k = 0; k < 2; ++k) t[k].resize(static_cast<std::size_t>(rows) * w), hsum[k].resize(t[k].size());
+        const auto row_size = static_cast<std::size_t>(w);
+        std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), t1(t0.size()), h0(t0.size()), h1(t0.size());
+        std::vector<float> wk0(row_size), wk1(row_size), wk2(row_size), dfr(row_size);
+        // The band's sums, plane by plane: (r, g, b, weight) of candidate k at planes 4k..4k+3.
+        const std::size_t band_pixels = static_cast<std::size_t>(y1 - y0) * row_size;
+        std::vector<float> acc(4 * kCandidates * band_pixels, 0.0f);
+        const auto plane = [&](std::size_t i) { return acc.data() + i * band_pixels; };
         for (int dy = -r; dy <= r; ++dy) {
             for (int dx = -r; dx <= r; ++dx) {
                 // Per-pixel colour terms of (p, p + d), neighbours clamped to the image.
                 for (int y = ty0; y < ty1; ++y) {
-                    const int qy = std::clamp(y + dy, 0, h - 1);
-                    float* t0 = &t[0][static_cast<std::size_t>(y - ty0) * w];
-                    float* t1 = &t[1][static_cast<std::size_t>(y - ty0) * w];
-                    for (int x = 0; x < w; ++x) {
-                        const std::size_t p = at(w, x, y), q = at(w, std::clamp(x + dx, 0, w - 1), qy);
-                        float s0 = 0, s1 = 0;
-                        for (int ch = 0; ch < 3; ++ch) {
-                            const float vp = var[p][ch], vq = var[q][ch];
-                            const float d = c[p][ch] - c[q][ch];
-                            const float num = d * d - (vp + std::min(vp, vq));
-                            const float s = vp + vq;
-                            s0 += num / (kEpsilon + kColourK[0] * kColourK[0] * s);
-                            s1 += num / (kEpsilon + kColourK[1] * kColourK[1] * s);
-                        }
-                        t0[x] = s0 * (1.0f / 3), t1[x] = s1 * (1.0f / 3);
-                    }
-                }
-                // 3 x 3 patch means: along rows, then down columns.
-                for (int k = 0; k < 2; ++k) {
-                    for (int y = 0; y < rows; ++y) {
-                        const float* row = &t[k][static_cast<std::size_t>(y) * w];
-                        float* out = &hsum[k][static_cast<std::size_t>(y) * w];
-                        for (int x = 0; x < w; ++x)
-                            out[x] = row[std::max(0, x - 1)] + row[x] + row[std::min(w - 1, x + 1)];
-                    }
+                    const std::size_t row = static_cast<std::size_t>(y - ty0) * row_size;
+                    colour_terms(pl, y, std::clamp(y + dy, 0, h - 1), dx, w, &t0[row], &t1[row]);
+                    box3_row(&t0[row], &h0[row], w);
+                    box3_row(&t1[row], &h1[row], w);
                 }
                 for (int y = y0; y < y1; ++y) {
                     const int qy = y + dy;
                     if (qy < 0 || qy >= h) continue;
-                    const int ya = std::max(ty0, y - 1) - ty0, yb = y - ty0, yc = std::min(ty1 - 1, y + 1) - ty0;
-                    for (int x = std::max(0, -dx); x < std::min(w, w - dx); ++x) {
-                        const std::size_t p = at(w, x, y), q = at(w, x + dx, qy);
-                        const float df = feature_distance(feat, p, q, dx, dy);
-                        const float wf = exp_neg(df);
-                        float wk[kCandidates];
-                        for (int k = 0; k < 2; ++k) {
-                            const float* hs = hsum[k].data();
-                            const float dc = (hs[static_cast<std::size_t>(ya) * w + x] + hs[static_cast<std::size_t>(yb) * w + x] +
-                                              hs[static_cast<std::size_t>(yc) * w + x]) * (1.0f / 9);
-                            wk[k] = exp_neg(std::max({0.0f, dc, df}));
-                        }
-                        wk[2] = wf;
-                        const Color cq = c[q];
-                        for (int k = 0; k < kCandidates; ++k) {
-                            Sums& s = sums[p][static_cast<std::size_t>(k)];
-                            s.r += wk[k] * cq.r, s.g += wk[k] * cq.g, s.b += wk[k] * cq.b, s.w += wk[k];
-                        }
+                    const std::size_t ra = static_cast<std::size_t>(std::max(ty0, y - 1) - ty0) * row_size,
+                                      rb = static_cast<std::size_t>(y - ty0) * row_size,
+                                      rc = static_cast<std::size_t>(std::min(ty1 - 1, y + 1) - ty0) * row_size;
+                    const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
+                    if (xa >= xb) continue;
+                    weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc], &h1[ra], &h1[rb], &h1[rc],
+                            dfr.data(), wk0.data(), wk1.data(), wk2.data());
+                    const std::size_t p0 = static_cast<std::size_t>(y - y0) * row_size, q0 = static_cast<std::size_t>(qy) * row_size;
+                    const float* wk[kCandidates] = {wk0.data(), wk1.data(), wk2.data()};
+                    const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
+                    for (int k = 0; k < kCandidates; ++k) {
+                        const std::size_t a = 4 * static_cast<std::size_t>(k);
+                        accumulate(plane(a) + p0 + xs, plane(a + 1) + p0 + xs, plane(a + 2) + p0 + xs,
+                                   plane(a + 3) + p0 + xs, wk[k] + xs, pl.c[0].data() + qs, pl.c[1].data() + qs,
+                                   pl.c[2].data() + qs, xb - xa);
                     }
                 }
             }
         }
+        for (int k = 0; k < kCandidates; ++k) {
+            const std::size_t a = 4 * static_cast<std::size_t>(k);
+            for (std::size_t i = 0; i < band_pixels; ++i) {
+                const std::size_t p = static_cast<std::size_t>(y0) * row_size + i;
+                // The pixel weighs itself by 1, so the sum of weights is at least 1.
+                const float sw = plane(a + 3)[i];
+                const Color f{plane(a)[i] / sw, plane(a + 1)[i] / sw, plane(a + 2)[i] / sw};
+                filtered[k][p] = f;
+                const Color d = f - c[p];
+                sure[k][p] = d.r * d.r + d.g * d.g + d.b * d.b + (var[p].r + var[p].g + var[p].b) * (2 / sw - 1);
+            }
+        }
     };
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& b) {
-            for (int band = b.begin(); band < b.end(); ++band) run_band(band);
-        });
+    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& b) {
+        for (int band = b.begin(); band < b.end(); ++band) run_band(band);
     });
 
-    // Each candidate's image and its SURE error map.
-    std::vector<Color> filtered[kCandidates];
-    std::vector<float> sure[kCandidates];
-    for (int k = 0; k < kCandidates; ++k) {
-        filtered[k].resize(n), sure[k].resize(n);
-        for (std::size_t p = 0; p < n; ++p) {
-            const Sums& s = sums[p][static_cast<std::size_t>(k)];
-            // The pixel weighs itself by 1, so the sum of weights is at least 1.
-            const Color f{s.r / s.w, s.g / s.w, s.b / s.w};
-            filtered[k][p] = f;
-            const Color d = f - c[p];
-            const float self = 2 / s.w - 1;
-            sure[k][p] = d.r * d.r + d.g * d.g + d.b * d.b + (var[p].r + var[p].g + var[p].b) * self;
-        }
-        sure[k] = box(sure[k], w, h, 3);
-    }
+    for (int k = 0; k < kCandidates; ++k) sure[k] = box(sure[k], w, h, 3);
     // The choice, one-hot, then blended over 5 x 5.
     std::vector<std::array<float, kCandidates>> choice(n);
     for (std::size_t p = 0; p < n; ++p) {
@@ -338,6 +461,15 @@ std::vector<Color> denoise(const DenoiseInput& in, const DenoiseOptions& options
         for (int k = 0; k < kCandidates; ++k) stats->chosen[k] = chosen[k] / static_cast<double>(n);
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    return out;
+}
+
+}  // namespace
+
+std::vector<Color> denoise(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    std::vector<Color> out;
+    arena.execute([&] { out = denoise_in_arena(in, options, stats); });
     return out;
 }
 

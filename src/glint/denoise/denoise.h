@@ -39,7 +39,7 @@ struct DenoiseInput {
 };
 
 struct DenoiseOptions {
-    int radius = 7;    ///< the window is (2 radius + 1)^2 pixels
+    int radius = 6;    ///< the window is (2 radius + 1)^2 pixels
     int threads = 0;   ///< 0: every core
 };
 

@@ -48,7 +48,7 @@ double rms(const std::vector<Color>& a, const std::vector<Color>& b) {
 
 // A grey of 0.5 with noise of standard deviation 0.1 in the image (0.1 sqrt 2 in each half): the
 // denoised image's mean is 0.5 within its standard error, and its error is a small share of the
-// noise (a 15 x 15 window averages up to 225 pixels: at best 1/15 of it).
+// noise (a 13 x 13 window averages up to 169 pixels: at best 1/13 of it).
 TEST(Denoise, ConstantColourWithNoiseGivesItsMean) {
     const int w = 64, h = 48;
     const float sigma = 0.1f;
@@ -60,7 +60,7 @@ TEST(Denoise, ConstantColourWithNoiseGivesItsMean) {
     for (const Color& c : out) mean += (c.r + c.g + c.b) / 3.0;
     mean /= static_cast<double>(out.size());
     // Neighbouring pixels share most of their windows, so the image mean's error is at most that
-    // of one window's mean: 0.1 / sqrt(225 * 3) = 0.004; five of them.
+    // of one window's mean: 0.1 / sqrt(169 * 3) = 0.0044; five of them.
     EXPECT_NEAR(mean, 0.5, 0.02);
     EXPECT_LT(rms(out, img.truth), 0.25 * sigma) << "candidates won: " << stats.chosen[0] << " " << stats.chosen[1]
                                                  << " " << stats.chosen[2];
@@ -125,7 +125,7 @@ TEST(Denoise, TheSameBitsForAnyThreadCount) {
     Noisy img(w, h, 0.1f, 4, t);
     for (std::size_t i = 0; i < t.size(); ++i) img.depth[i] = 2 + 0.01f * static_cast<float>(i % static_cast<std::size_t>(w));
     std::vector<std::vector<Color>> outs;
-    for (const int threads : {1, 2, 3}) outs.push_back(denoise(img.input(), {7, threads}));
+    for (const int threads : {1, 2, 3}) outs.push_back(denoise(img.input(), {6, threads}));
     for (std::size_t k = 1; k < outs.size(); ++k)
         EXPECT_EQ(std::memcmp(outs[0].data(), outs[k].data(), outs[0].size() * sizeof(Color)), 0) << "threads " << k + 1;
 }

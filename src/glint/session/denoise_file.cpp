@@ -22,7 +22,7 @@ const std::vector<std::string> kChannels = {"R", "G", "B", "even.R", "even.G", "
 
 }  // namespace
 
-double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads) {
+double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads, int radius) {
     if (image_format_for(in) != ImageFormat::kExr)
         throw IoError(fmt::format("{}: glint denoise reads OpenEXR files (.exr) with the half images "
                                   "even.R/G/B and odd.R/G/B, as `glint render --aovs` writes them",
@@ -73,7 +73,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
     DenoiseStats stats;
     std::vector<Color> result;
     try {
-        result = denoise(input, {7, threads}, &stats);
+        result = denoise(input, {radius, threads}, &stats);
     } catch (const std::invalid_argument& e) {
         throw IoError(fmt::format("{}: {}", in.string(), e.what()));
     }

@@ -149,7 +149,8 @@ private:
 /// Z), denoised, written to `out` (EXR: with the input's channels and noisy.R/G/B; PNG, JPEG ...:
 /// the image alone). `threads` 0: every core. Returns the seconds the filter took. Throws IoError
 /// naming the file, the channel or the pixel at fault; nothing is written then.
-double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads);
+/// `radius`: the filter window's half size in pixels (denoise/denoise.h).
+double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads, int radius = 6);
 
 /// The options that change the image, as text: part of a checkpoint's fingerprint.
 std::string image_settings(const SessionOptions& args, const RenderJob& job);
