@@ -105,3 +105,12 @@ rm -rf "$khronos_tmp"
 # glTF's material extensions as pbr keys: clear coat, sheen, specular.
 "$glint" render scenes/gltf-layers.yaml -q -o docs/images/gltf-layers.png
 echo docs/images/gltf-layers.png
+# The denoiser (docs/denoising.md): the Cornell box at 16 spp, the same denoised, and 1024 spp.
+denoise_tmp=$(mktemp -d)
+for spp in 16 1024; do
+  "$glint" render scenes/cornell-box.yaml --width 256 --height 256 --spp "$spp" -q -o "$denoise_tmp/$spp.png"
+done
+"$glint" render scenes/cornell-box.yaml --width 256 --height 256 --spp 16 --denoise -q -o "$denoise_tmp/16d.png"
+oiiotool "$denoise_tmp/16.png" "$denoise_tmp/16d.png" "$denoise_tmp/1024.png" --mosaic 3x1 -o docs/images/denoise-cornell.png
+rm -rf "$denoise_tmp"
+echo docs/images/denoise-cornell.png

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The denoiser against converged images (docs/benchmarks.md, "Denoising"):
+#
+#   bench/denoise.sh BUILD [WIDTH] [REF_SPP]      (SPPS="16 64 256" by default)
+#
+# For each scene: a reference at REF_SPP (default 4096), then renders at each of $SPPS with --aovs, each denoised by `glint denoise`; prints the relative MSE against the
+# reference (mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), by oiiotool) of the
+# raw and the denoised image, and the seconds the filter took. The film is WIDTH (default 320)
+# by 3/4 of it, whatever the scene's own size. Images are kept in $OUT (default /tmp/glint-denoise).
+set -euo pipefail
+build=$(cd "$1" && pwd)
+width=${2:-320}
+ref_spp=${3:-4096}
+read -r -a spps <<<"${SPPS:-16 64 256}"
+height=$(( width * 3 / 4 ))
+glint=$build/apps/glint/glint
+here=$(cd "$(dirname "$0")/.." && pwd)
+out=${OUT:-/tmp/glint-denoise}
+mkdir -p "$out"
+source "$here/bench/image_error.sh"
+
+scenes=(
+  "cornell scenes/cornell-box.yaml"
+  "bunny scenes/bunny.yaml"
+  "materials scenes/materials.yaml"
+  "fig14-soft scenes/seed/fig14-soft.yaml"
+  "textures scenes/textures.yaml"
+  "cloud scenes/volumes/cloud.yaml"
+)
+mse() { awk -v r="$1" 'BEGIN { printf "%.6f", r * r }'; }
+printf "%-11s %6s %12s %12s %8s %10s\n" scene spp "raw relMSE" "denoised" "ratio" "filter s"
+for entry in "${scenes[@]}"; do
+  read -r name file <<<"$entry"
+  ref=$out/$name-ref.exr
+  [[ -f $ref ]] || "$glint" render "$here/$file" --width "$width" --height "$height" --spp "$ref_spp" -q -o "$ref"
+  for spp in "${spps[@]}"; do
+    raw=$out/$name-$spp.exr
+    den=$out/$name-$spp-denoised.exr
+    "$glint" render "$here/$file" --width "$width" --height "$height" --spp "$spp" --aovs -q -o "$raw"
+    secs=$("$glint" denoise "$raw" -o "$den" 2>&1 | sed -n 's/denoised in \([0-9.]*\) s/\1/p')
+    r=$(mse "$(relative_rmse "$raw" "$ref")")
+    d=$(mse "$(relative_rmse "$den" "$ref")")
+    printf "%-11s %6s %12s %12s %8s %10s\n" "$name" "$spp" "$r" "$d" "$(awk -v a="$r" -v b="$d" 'BEGIN { printf "%.2f", a / b }')" "$secs"
+  done
+done
