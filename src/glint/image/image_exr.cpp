@@ -12,6 +12,7 @@
 #include <tbb/info.h>
 
 #include <mutex>
+#include <utility>
 
 #include "glint/image/image_formats.h"
 
@@ -27,6 +28,11 @@ void exr_threads() {
     std::call_once(once, [] { Imf::setGlobalThreadCount(std::max(1, tbb::info::default_concurrency())); });
 }
 
+// The data window's width and height, in 64 bits (a header may claim the whole int range).
+std::pair<long long, long long> window_size(const Imath::Box2i& dw) {
+    return {static_cast<long long>(dw.max.x) - dw.min.x + 1, static_cast<long long>(dw.max.y) - dw.min.y + 1};
+}
+
 }  // namespace
 
 RawImage read_exr(const fs::path& path, long long max_pixels) {
@@ -34,8 +40,7 @@ RawImage read_exr(const fs::path& path, long long max_pixels) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
-        const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+        const auto [w, h] = window_size(dw);
         admit_image(path, w, h, max_pixels, 3 * 4 * 2, kExrPixelsPerByte);
         const Imf::ChannelList& channels = file.header().channels();
         std::vector<std::string> names;
@@ -77,8 +82,7 @@ ExrChannels read_exr_planes(const fs::path& path, const std::vector<std::string>
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
-        const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+        const auto [w, h] = window_size(dw);
         const Imf::ChannelList& channels = file.header().channels();
         ExrChannels out;
         for (auto c = channels.begin(); c != channels.end(); ++c) out.names.emplace_back(c.name());
