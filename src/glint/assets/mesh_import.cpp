@@ -3,6 +3,7 @@
 #include "glint/base/diagnostics.h"
 #include "glint/base/limits.h"
 
+#include <climits>
 #include <cctype>
 #include <fstream>
 #include <string_view>
@@ -36,8 +37,10 @@ std::optional<MeshFormat> mesh_format(const std::filesystem::path& path) {
 }
 
 std::string mesh_size_error(long long vertices, long long triangles) {
-    if (vertices > limit(Limit::kVertices)) return over_limit(Limit::kVertices, vertices);
-    if (triangles > limit(Limit::kTriangles)) return over_limit(Limit::kTriangles, triangles);
+    // A count past long long's range arrives negative: over the limit too.
+    if (vertices < 0 || vertices > limit(Limit::kVertices)) return over_limit(Limit::kVertices, vertices < 0 ? LLONG_MAX : vertices);
+    if (triangles < 0 || triangles > limit(Limit::kTriangles))
+        return over_limit(Limit::kTriangles, triangles < 0 ? LLONG_MAX : triangles);
     // 44 bytes a vertex (position, normal, uv, colour), 80 a triangle (indices, material, the
     // BVH's share, the intersection kernels' copy).
     return charge_memory(44 * vertices + 80 * triangles, fmt::format("a mesh of {} vertices and {} triangles", vertices, triangles));

@@ -142,6 +142,14 @@ TEST(Ply, EveryFailureNamesTheFileAndThePlace) {
     EXPECT_EQ(err("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
                   "property float y\nproperty float z\nend_header\nabcd"),
               "bad.ply:3: element 'vertex' claims 4000000000 entries, more than the 4 bytes after the header can hold");
+    // Counts past every integer type (the fuzzer's finds, undefined behaviour before): a vertex
+    // count beyond long long is over the limit, an ASCII list count of 1e23 is compared as a number.
+    EXPECT_EQ(err("ply\nformat binary_little_endian 1.0\nelement vertex 13018374452099416065\nend_header\nab").rfind(
+                  "bad.ply:3: ", 0),
+              0u);
+    EXPECT_EQ(err("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty list uchar int junk\n"
+                  "property float y\nproperty float z\nend_header\n0 1e23 1 2 3\n"),
+              "bad.ply:9: vertex 0: list 'junk' claims 1e+23 entries past the end of the file");
     EXPECT_EQ(err("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                   "end_header\n0 0 zero\n"),
               "bad.ply:8: vertex 0: expected a number, got 'zero'");

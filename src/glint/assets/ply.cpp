@@ -260,10 +260,11 @@ private:
     std::uint64_t list_count(const Property& p) {
         const double c = value(p.count_type);
         if (!(c >= 0) || c != std::floor(c)) fail_body(fmt::format("list '{}' has a negative count", p.name));
-        const auto n = static_cast<std::uint64_t>(c);
         const std::uint64_t per = format_ == Format::kAscii ? 2 : static_cast<std::uint64_t>(type_size(p.type));
-        if (n > (b_.size() - pos_) / per + 1) fail_body(fmt::format("list '{}' claims {} entries past the end of the file", p.name, n));
-        return n;
+        // Compared as a double first: an ASCII count may be 1e23, beyond any integer type.
+        if (c > static_cast<double>((b_.size() - pos_) / per + 1))
+            fail_body(fmt::format("list '{}' claims {} entries past the end of the file", p.name, c));
+        return static_cast<std::uint64_t>(c);
     }
 
     void skip(const Property& p) {
