@@ -106,115 +106,91 @@ void check(const DenoiseInput& in) {
     }
 }
 
-// The features, prefiltered: each a 3 x 3 mean weighted by its own differences.
-struct Features {
-    bool albedo = false, normal = false, depth = false;
-    std::vector<Color> a;
-    std::vector<Vector3> nrm;
-    std::vector<float> z;      // finite; `hit` says where something was hit
-    std::vector<std::uint8_t> hit;
-    std::vector<float> gx, gy;  // depth gradient (the smaller one-sided difference)
+// The inputs as planes of floats, one per channel (what the loops below vectorise over), the
+// features prefiltered: each a 3 x 3 mean weighted by its own differences.
+struct Planes {
+    int width = 0;
+    std::vector<float> c[3], v[3];     // colour, its variance
+    std::vector<float> a[3], nrm[3];   // albedo, normal (zero when absent)
+    std::vector<float> z, inv_z, hit;  // depth (0 on a miss), 1 / its scale, 1 where hit (all 1 without depth)
+    std::vector<float> gx, gy;         // depth gradient (the smaller one-sided difference)
 };
 
-Features prefilter(const DenoiseInput& in) {
+Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
     const int w = in.width, h = in.height;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-    Features f;
-    f.albedo = in.albedo != nullptr, f.normal = in.normal != nullptr, f.depth = in.depth != nullptr;
-    if (f.albedo) f.a.resize(n);
-    if (f.normal) f.nrm.resize(n);
-    if (f.depth) f.z.resize(n), f.hit.resize(n), f.gx.assign(n, 0), f.gy.assign(n, 0);
+    Planes pl;
+    pl.width = w;
+    for (int ch = 0; ch < 3; ++ch) {
+        pl.c[ch].resize(n), pl.v[ch].resize(n), pl.a[ch].assign(n, 0.0f), pl.nrm[ch].assign(n, 0.0f);
+    }
+    pl.z.assign(n, 0.0f), pl.inv_z.assign(n, 0.0f), pl.hit.assign(n, 1.0f), pl.gx.assign(n, 0.0f), pl.gy.assign(n, 0.0f);
     const auto hit = [&](std::size_t i) { return std::isfinite(in.depth[i]); };
     for_rows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t p = at(w, x, y);
+            for (int ch = 0; ch < 3; ++ch) pl.c[ch][p] = in.color[p][ch], pl.v[ch][p] = var[p][ch];
             Color sa{0};
             Vector3 sn{0, 0, 0};
             float sz = 0, wa = 0, wn = 0, wz = 0;
             for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j) {
                 for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i) {
                     const std::size_t q = at(w, i, j);
-                    if (f.albedo) {
+                    if (in.albedo) {
                         const Color d = in.albedo[q] - in.albedo[p];
                         const float k = exp_neg((d.r * d.r + d.g * d.g + d.b * d.b) / (3 * kAlbedoScale * kAlbedoScale));
                         sa += in.albedo[q] * k, wa += k;
                     }
-                    if (f.normal) {
+                    if (in.normal) {
                         const Vector3 d = to_vector(in.normal[q]) - to_vector(in.normal[p]);
                         const float k = exp_neg(dot(d, d) / (kNormalScale * kNormalScale));
                         sn = sn + to_vector(in.normal[q]) * k, wn += k;
                     }
-                    if (f.depth && hit(p) && hit(q)) {
+                    if (in.depth && hit(p) && hit(q)) {
                         const float d = (in.depth[q] - in.depth[p]) / (kDepthScale * in.depth[p] + 1e-6f);
                         const float k = exp_neg(d * d);
                         sz += in.depth[q] * k, wz += k;
                     }
                 }
             }
-            if (f.albedo) f.a[p] = sa / wa;
-            if (f.normal) f.nrm[p] = sn / wn;
-            if (f.depth) {
-                f.hit[p] = hit(p) ? 1 : 0;
-                f.z[p] = hit(p) ? sz / wz : 0;
+            if (in.albedo) {
+                const Color a = sa / wa;
+                for (int ch = 0; ch < 3; ++ch) pl.a[ch][p] = a[ch];
+            }
+            if (in.normal) {
+                const Vector3 v = sn / wn;
+                pl.nrm[0][p] = v.x, pl.nrm[1][p] = v.y, pl.nrm[2][p] = v.z;
+            }
+            if (in.depth && hit(p)) {
+                pl.z[p] = sz / wz;
+                pl.inv_z[p] = 1 / (kDepthScale * pl.z[p] + 1e-6f);
+            } else if (in.depth) {
+                pl.hit[p] = 0;
             }
         }
     });
-    if (f.depth) {
+    if (in.depth) {
         // The gradient: of the two one-sided differences the smaller (an edge is not a slope).
         const auto slope = [](float left, float right) { return std::abs(left) < std::abs(right) ? left : right; };
         for_rows(h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 const std::size_t p = at(w, x, y);
-                if (!f.hit[p]) continue;
+                if (pl.hit[p] == 0) continue;
                 const float inf = std::numeric_limits<float>::infinity();
                 const auto diff = [&](int i, int j, bool forward) {
                     if (i < 0 || j < 0 || i >= w || j >= h) return inf;
                     const std::size_t q = at(w, i, j);
-                    if (!f.hit[q]) return inf;
-                    return forward ? f.z[q] - f.z[p] : f.z[p] - f.z[q];
+                    if (pl.hit[q] == 0) return inf;
+                    return forward ? pl.z[q] - pl.z[p] : pl.z[p] - pl.z[q];
                 };
                 const float gx = slope(diff(x - 1, y, false), diff(x + 1, y, true));
                 const float gy = slope(diff(x, y - 1, false), diff(x, y + 1, true));
-                f.gx[p] = std::isfinite(gx) ? gx : 0;
-                f.gy[p] = std::isfinite(gy) ? gy : 0;
+                pl.gx[p] = std::isfinite(gx) ? gx : 0;
+                pl.gy[p] = std::isfinite(gy) ? gy : 0;
             }
         });
     }
-    return f;
-}
-
-// The inputs as planes of floats, one per channel (what the loops below vectorise over).
-struct Planes {
-    int width = 0;
-    std::vector<float> c[3], v[3];     // colour, its variance
-    std::vector<float> a[3], nrm[3];   // albedo, normal (zero when absent)
-    std::vector<float> z, inv_z, hit;  // depth, 1 / its scale, 1 where hit (all 1 without depth)
-    std::vector<float> gx, gy;         // depth gradient
-};
-
-Planes planes(const DenoiseInput& in, const std::vector<Color>& var, const Features& f) {
-    const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
-    Planes p;
-    p.width = in.width;
-    for (int ch = 0; ch < 3; ++ch) {
-        p.c[ch].resize(n), p.v[ch].resize(n), p.a[ch].assign(n, 0.0f), p.nrm[ch].assign(n, 0.0f);
-    }
-    p.z.assign(n, 0.0f), p.inv_z.assign(n, 0.0f), p.hit.assign(n, 1.0f), p.gx.assign(n, 0.0f), p.gy.assign(n, 0.0f);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (int ch = 0; ch < 3; ++ch) {
-            p.c[ch][i] = in.color[i][ch];
-            p.v[ch][i] = var[i][ch];
-            if (f.albedo) p.a[ch][i] = f.a[i][ch];
-        }
-        if (f.normal) p.nrm[0][i] = f.nrm[i].x, p.nrm[1][i] = f.nrm[i].y, p.nrm[2][i] = f.nrm[i].z;
-        if (f.depth) {
-            p.hit[i] = f.hit[i] ? 1.0f : 0.0f;
-            p.z[i] = f.z[i];
-            p.inv_z[i] = f.hit[i] ? 1 / (kDepthScale * f.z[i] + 1e-6f) : 0.0f;
-            p.gx[i] = f.gx[i], p.gy[i] = f.gy[i];
-        }
-    }
-    return p;
+    return pl;
 }
 
 // A run of n pixels' colour terms of one channel, added to t0 and t1 (set by the first channel).
@@ -333,7 +309,6 @@ void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, co
     const std::size_t q = static_cast<std::size_t>(qy) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa + dx);
     const auto s = static_cast<std::size_t>(xa);
     const FeatureRows fp = feature_rows(pl, p), fq = feature_rows(pl, q);
-    // The feature distances go through w2, which then receives the weights.
     feature_run(fp.a[0], fp.a[1], fp.a[2], fq.a[0], fq.a[1], fq.a[2], fp.n[0], fp.n[1], fp.n[2], fq.n[0], fq.n[1], fq.n[2],
                 fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s,
                 xb - xa);
@@ -358,7 +333,7 @@ namespace {
 std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<Color> var = denoise_variance(in);  // checks `in`
-    const Planes pl = planes(in, var, prefilter(in));
+    const Planes pl = planes(in, var);
     const int w = in.width, h = in.height, r = std::max(0, options.radius);
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     const Color* c = in.color;
