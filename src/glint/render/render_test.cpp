@@ -189,7 +189,7 @@ TEST(Render, LowDiscrepancySamplesGiveLowerErrorThanIndependentOnes) {
     o.height = 36;
     RenderJob job = load("fig07-sphere.yaml", o);
     job.options.sampler = SamplerType::kStratified;
-    const Film reference = render_with(job, 2, 16, 1024);
+    const Film reference = render_with(job, 2, 16, 4096);
     auto rmse = [&](SamplerType type) {
         job.options.sampler = type;
         const Film f = render_with(job, 2, 16, 16);

@@ -61,6 +61,25 @@ TEST(Sobol, PowerOfTwoCountsFormA02Net) {
     }
 }
 
+// The half images (even- and odd-numbered samples) are stratified estimates too: each half of a
+// power-of-two count is a (0, m-1, 2)-net in every pair, so their difference measures the error
+// of a net, as the denoiser and adaptive sampling assume (sampler.cpp, sobol_index).
+TEST(Sobol, EvenAndOddSamplesAreEachANet) {
+    for (int m : {2, 4, 6, 8}) {
+        const auto spp = static_cast<std::uint32_t>(1 << m);
+        for (std::uint32_t pixel : {1u, 12345u, 987654321u}) {
+            const PixelSampler s(SamplerType::kSobol, spp, pixel);
+            for (std::uint32_t dim : {0u, 1u, 2u, 7u}) {
+                for (std::uint32_t parity : {0u, 1u}) {
+                    std::vector<Sample2> pts;
+                    for (std::uint32_t i = parity; i < spp; i += 2) pts.push_back(s.get_2d(i, dim));
+                    expect_net(pts, m - 1);
+                }
+            }
+        }
+    }
+}
+
 TEST(Sobol, IndependentSamplerIsNotANetButIsUniform) {
     // The baseline shows the net test can fail...
     const PixelSampler s(SamplerType::kIndependent, 64, 3);

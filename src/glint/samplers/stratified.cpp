@@ -1,6 +1,7 @@
 #include "glint/samplers/stratified.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "glint/samplers/hash.h"
@@ -9,25 +10,28 @@ namespace glint {
 
 std::uint32_t permute_index(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
     if (n <= 1) return 0;
-    std::uint32_t mask = n - 1;
-    mask |= mask >> 1;
-    mask |= mask >> 2;
-    mask |= mask >> 4;
-    mask |= mask >> 8;
-    mask |= mask >> 16;
-    const std::uint32_t s1 = mix32(seed), s2 = mix32(s1), s3 = mix32(s2);
-    // Each step is a bijection on [0, mask]: xor with a constant, multiplication by an odd
-    // number and addition modulo 2^bits, and x ^= x >> k.
+    // A four-round Feistel network on the bits of n - 1 (a pseudo-random permutation: Luby and
+    // Rackoff), the halves a and c bits wide, each round's function a keyed multiply-shift hash
+    // of the other half. The mix-and-multiply bijection used before was a weak family (over
+    // seeds, the images of 0 and 1 fixed that of 2: n^2 of the n(n-1)(n-2) triples occurred), so
+    // the dimension pairs the padded Sobol sampler permutes with it stayed correlated: a third
+    // more variance on Figure 14 soft at 64 spp (docs/denoising.md, "Half buffers").
+    const auto bits = static_cast<unsigned>(std::bit_width(n - 1));
+    const unsigned a = bits / 2, c = bits - a;
+    const std::uint32_t keys[2] = {seed, mix32(seed)};
     do {
-        i = (i ^ s1) & mask;
-        i = (i * 0x9e3779b1U) & mask;
-        i ^= i >> 3;
-        i = (i + s2) & mask;
-        i = (i * (s3 | 1U)) & mask;
-        i ^= i >> 5;
-        i = (i * 0x85ebca6bU) & mask;
-        i ^= i >> 1;
-    } while (i >= n);
+        std::uint32_t left = i >> c, right = i & ((1U << c) - 1U);
+        unsigned left_bits = a, right_bits = c;
+        for (unsigned round = 0; round < 4; ++round) {
+            const std::uint32_t k = std::rotl(keys[round & 1], static_cast<int>(round * 5));
+            const std::uint32_t f = (((right ^ k) * 0x9e3779b1U) ^ k) * 0x85ebca6bU;
+            const std::uint32_t t = left_bits == 0 ? left : left ^ (f >> (32 - left_bits));
+            left = right;
+            right = t;
+            std::swap(left_bits, right_bits);
+        }
+        i = (left << right_bits) | right;
+    } while (i >= n);  // walks the cycle until it lands below n: fewer than 2 steps on average
     return i;
 }
 

@@ -11,7 +11,7 @@ struct Sample2 {
     float x, y;
 };
 
-/// A pseudo-random permutation of [0, n): a bijective hash on the next power of two, walked
+/// A pseudo-random permutation of [0, n): a Feistel network on the next power of two, walked
 /// until it lands below n.
 std::uint32_t permute_index(std::uint32_t i, std::uint32_t n, std::uint32_t seed);
 
