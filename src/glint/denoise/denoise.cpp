@@ -18,11 +18,11 @@ namespace glint {
 namespace {
 
 constexpr int kCandidates = 3;
-constexpr float kColourK[2] = {0.45f, 1.0f};  // the colour candidates' bandwidths
+constexpr float kColourK[2] = {1.0f, 2.0f};  // the colour candidates' bandwidths
 constexpr float kEpsilon = 1e-10f;             // keeps a noise-free pixel's distances finite
 // Feature bandwidths: albedo per channel, normal (unit vectors), depth relative to itself after
 // the plane through the pixel (its gradient) is taken away.
-constexpr float kAlbedoScale = 0.05f, kNormalScale = 0.2f, kDepthScale = 0.02f;
+constexpr float kAlbedoScale = 0.1f, kNormalScale = 0.2f, kDepthScale = 0.02f;
 constexpr int kBand = 16;  // rows per task: fixed, so the work's split never depends on threads
 
 // Maximum and minimum by value, which the vectoriser turns into selects.
@@ -332,8 +332,9 @@ namespace {
 
 std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<Color> var = denoise_variance(in);  // checks `in`
-    const Planes pl = planes(in, var);
+    // The variance lives on in the planes (pl.v); the planes go once the candidates are computed:
+    // the working memory peaks at 116 bytes a pixel (docs/denoising.md, "Speed and memory").
+    Planes pl = planes(in, denoise_variance(in));  // checks `in`
     const int w = in.width, h = in.height, r = std::max(0, options.radius);
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     const Color* c = in.color;
@@ -393,7 +394,8 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
                 const Color f{plane(a)[i] / sw, plane(a + 1)[i] / sw, plane(a + 2)[i] / sw};
                 filtered[k][p] = f;
                 const Color d = f - c[p];
-                sure[k][p] = d.r * d.r + d.g * d.g + d.b * d.b + (var[p].r + var[p].g + var[p].b) * (2 / sw - 1);
+                const float v = pl.v[0][p] + pl.v[1][p] + pl.v[2][p];
+                sure[k][p] = d.r * d.r + d.g * d.g + d.b * d.b + v * (2 / sw - 1);
             }
         }
     };
@@ -401,35 +403,31 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
         for (int band = b.begin(); band < b.end(); ++band) run_band(band);
     });
 
+    pl = Planes{};
     for (int k = 0; k < kCandidates; ++k) sure[k] = box(sure[k], w, h, 3);
     // The choice, one-hot, then blended over 5 x 5.
-    std::vector<std::array<float, kCandidates>> choice(n);
-    for (std::size_t p = 0; p < n; ++p) {
-        int best = 0;
-        for (int k = 1; k < kCandidates; ++k)
-            if (sure[k][p] < sure[best][p]) best = k;
-        choice[p] = {0, 0, 0};
-        choice[p][static_cast<std::size_t>(best)] = 1;
-    }
     struct Triple {
         std::array<float, kCandidates> v{};
         Triple operator+(const Triple& o) const { return {{v[0] + o.v[0], v[1] + o.v[1], v[2] + o.v[2]}}; }
         Triple operator*(float s) const { return {{v[0] * s, v[1] * s, v[2] * s}}; }
     };
     std::vector<Triple> hot(n);
-    for (std::size_t p = 0; p < n; ++p) hot[p].v = choice[p];
+    double chosen[kCandidates] = {0, 0, 0};
+    for (std::size_t p = 0; p < n; ++p) {
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < kCandidates; ++k)
+            if (sure[k][p] < sure[best][p]) best = k;
+        hot[p].v[best] = 1;
+        chosen[best] += 1;
+    }
+    for (auto& s : sure) s = {};
     hot = box(hot, w, h, 2);
     std::vector<Color> out(n);
-    double chosen[kCandidates] = {0, 0, 0};
     for (std::size_t p = 0; p < n; ++p) {
         Color o{0};
         float total = 0;
         for (int k = 0; k < kCandidates; ++k) total += hot[p].v[static_cast<std::size_t>(k)];
-        for (int k = 0; k < kCandidates; ++k) {
-            const float s = hot[p].v[static_cast<std::size_t>(k)] / total;
-            o += filtered[k][p] * s;
-            chosen[k] += choice[p][static_cast<std::size_t>(k)];
-        }
+        for (int k = 0; k < kCandidates; ++k) o += filtered[k][p] * (hot[p].v[static_cast<std::size_t>(k)] / total);
         out[p] = o;
     }
     if (stats) {

@@ -10,8 +10,8 @@
 //    sample (depth of field, edges) weighs less noisily.
 //  - Candidates: three filters over a (2r+1)^2 window, each weighing a neighbour by the least of
 //    a colour weight (non-local means on 3 x 3 patches, distances normalised by the variance,
-//    Rousselle et al. 2012/2013) and the feature weights: strict colour (k = 0.45), loose colour
-//    (k = 1), and features alone.
+//    Rousselle et al. 2012/2013) and the feature weights: strict colour (k = 1), loose colour
+//    (k = 2), and features alone.
 //  - Selection: per pixel, the candidate with the least estimated error, by Stein's unbiased
 //    risk estimate (SURE, as Li et al. 2012 use it for rendering): |F(c) - c|^2 + sigma^2
 //    (2 dF/dc - 1) per channel, with dF_p/dc_p = w_pp / sum w. The error maps are smoothed over

@@ -31,7 +31,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
     std::error_code ec;
     if (std::filesystem::exists(out) && std::filesystem::equivalent(in, out, ec))
         throw IoError(fmt::format("{}: the output would replace the input; name another file with -o", out.string()));
-    const ExrChannels c = read_exr_channels(in, kChannels, limit(Limit::kFilmPixels));
+    ExrChannels c = read_exr_channels(in, kChannels, limit(Limit::kFilmPixels));
     for (std::size_t i = 0; i < 9; ++i) {
         if (c.planes[i].empty()) {
             throw IoError(fmt::format("{}: no channel {}: denoising needs R, G, B and the half images even.R/G/B "
@@ -62,6 +62,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
             film.depth(x, y) = depth ? c.planes[15][i] : 0.0f;
         }
     }
+    c = {};  // the film holds it now
     const DenoiseInput input{w,
                              h,
                              film.pixels().data(),
