@@ -8,6 +8,7 @@
 #include "glint/base/limits.h"
 
 #include <unistd.h>
+#include <string_view>
 
 #include <tbb/parallel_for.h>
 #include <fmt/core.h>
@@ -69,11 +70,66 @@ float srgb_decode(float v) {
 
 namespace {
 
+// The bytes OpenEXR 3.1 reads for the value of an attribute of a type it knows, whatever size the
+// attribute declares (0: it reads the declared size). Fixed-size types read their own size;
+// `chlist` and `preview` are handled by exr_value_end.
+std::uint64_t exr_fixed_size(std::string_view type) {
+    static constexpr std::pair<std::string_view, std::uint64_t> kSizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+        {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1},
+        {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9},
+        {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+    for (const auto& [name, size] : kSizes)
+        if (name == type) return size;
+    return 0;
+}
+
+std::uint32_t read_u32(const std::string& head, std::size_t at) {
+    std::uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(head[at + static_cast<std::size_t>(k)]);
+    return v;
+}
+
+// Where OpenEXR's reading of an attribute's value ends (an offset into head), or npos when that is
+// beyond what was read; `error` is set when the value asks for more than the file holds.
+std::size_t exr_value_end(const std::string& head, std::string_view type, std::size_t value_at, std::uint32_t size,
+                          std::uint64_t file_size, std::string& error) {
+    const std::uint64_t left = file_size - std::min<std::uint64_t>(file_size, value_at);
+    if (type == "chlist") {  // channels until an empty name, each a name and 16 bytes: not `size`
+        std::size_t at = value_at;
+        while (at < head.size() && head[at] != '\0') {
+            const std::size_t end = head.find('\0', at);
+            if (end == std::string::npos) return std::string::npos;
+            at = end + 17;
+        }
+        return at < head.size() ? at + 1 : std::string::npos;
+    }
+    if (type == "preview") {  // width, height, then 4 bytes a pixel, allocated before they are read
+        if (value_at + 8 > head.size()) return std::string::npos;
+        const std::uint64_t w = read_u32(head, value_at), h = read_u32(head, value_at + 4);
+        const std::uint64_t room = (left - std::min<std::uint64_t>(left, 8)) / 4;  // pixels the file can hold
+        if (w != 0 && h > room / w) {
+            error = fmt::format("is a preview image of {} x {} pixels, more than the {} bytes left in the file hold", w, h, left);
+            return std::string::npos;
+        }
+        return static_cast<std::size_t>(value_at + 8 + 4 * w * h);
+    }
+    if (const std::uint64_t fixed = exr_fixed_size(type)) return static_cast<std::size_t>(value_at + fixed);
+    if (size > left) {  // strings, vectors and types OpenEXR does not know: `size` bytes, allocated first
+        error = fmt::format("claims {} bytes, more than the {} bytes left in the file", size, left);
+        return std::string::npos;
+    }
+    return static_cast<std::size_t>(value_at + size);
+}
+
 // An OpenEXR file's header attributes, checked before OpenEXR reads them: OpenEXR 3.1 allocates
 // whatever size an attribute declares (found by fuzz_image: a 1.4 KB file asked for 1.9 GB).
-// Each attribute is a name, a type name (both NUL-terminated) and a 4-byte little-endian size;
-// a size beyond the file's end is refused at its byte offset. Files that are not EXR (by their
-// magic number) are left alone; only the first megabyte is looked at.
+// Each attribute is a name, a type name (both NUL-terminated) and a 4-byte little-endian size,
+// then the value. The walk follows OpenEXR's own reading, which does not always skip `size`
+// bytes (a channel list ends at its empty name; an int is 4 bytes whatever it declares), so an
+// attribute hidden where a lying size would have skipped is seen too (found by fuzz_image's
+// hour). A value that asks for more than the file holds is refused at its byte offset. Files that
+// are not EXR (by their magic number) are left alone; only the first megabyte is looked at.
 std::string exr_header_error(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string head(8, '\0');
@@ -99,14 +155,13 @@ std::string exr_header_error(const fs::path& path) {
         const std::size_t name_end = head.find('\0', at);
         const std::size_t type_end = name_end == std::string::npos ? name_end : head.find('\0', name_end + 1);
         if (type_end == std::string::npos || type_end + 4 >= head.size()) return {};
-        std::uint32_t size = 0;
-        for (int k = 3; k >= 0; --k) size = (size << 8) | static_cast<unsigned char>(head[type_end + 1 + static_cast<std::size_t>(k)]);
-        const std::uint64_t value_at = type_end + 5;
-        if (size > file_size - std::min(file_size, value_at))
-            return fmt::format("byte {}: OpenEXR header attribute '{}' claims {} bytes, more than the {} bytes left in the file",
-                               type_end + 1, head.substr(at, std::min<std::size_t>(name_end - at, 64)), size,
-                               file_size - std::min(file_size, value_at));
-        at = static_cast<std::size_t>(value_at) + size;
+        const std::string_view type(head.data() + name_end + 1, type_end - name_end - 1);
+        std::string error;
+        std::string name = head.substr(at, std::min<std::size_t>(name_end - at, 64));
+        for (char& ch : name) ch = ch >= ' ' && ch <= '~' ? ch : '?';  // a fuzzed name's bytes, printable
+        at = exr_value_end(head, type, type_end + 5, read_u32(head, type_end + 1), file_size, error);
+        if (!error.empty()) return fmt::format("byte {}: OpenEXR header attribute '{}' {}", type_end + 1, name, error);
+        if (at == std::string::npos) return {};
     }
 }
 

@@ -61,31 +61,64 @@ TEST(ImageRead, EveryFormatByItsExtension) {
 }
 
 // Found by fuzz_image: OpenEXR allocates what a header attribute declares, before glint could
-// check anything (1.9 GB for a 1.4 KB file). glint checks the sizes against the file first.
-TEST(ImageRead, AnExrAttributeLargerThanTheFileIsRefusedAtItsByte) {
-    testing::TempDir dir;
-    write_rgb(dir / "ok.exr", 2, 2, OIIO::TypeDesc::HALF, std::vector<float>(12, 0.5f));
-    std::string bytes;
-    {
-        std::ifstream in(dir / "ok.exr", std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
+// check anything (1.9 GB for a 1.4 KB file). glint checks the sizes against the file first,
+// walking the header as OpenEXR does.
+class ExrHeaderLies : public ::testing::Test {
+protected:
+    void SetUp() override {
+        write_rgb(dir_ / "ok.exr", 2, 2, OIIO::TypeDesc::HALF, std::vector<float>(12, 0.5f));
+        std::ifstream in(dir_ / "ok.exr", std::ios::binary);
+        ok_.assign(std::istreambuf_iterator<char>(in), {});
     }
-    // The first attribute starts at byte 8: its name, its type, then its 4-byte size.
-    const std::size_t name_end = bytes.find('\0', 8), type_end = bytes.find('\0', name_end + 1);
-    const std::string name = bytes.substr(8, name_end - 8);
-    const std::uint32_t huge = 0x70000000;
-    std::memcpy(bytes.data() + type_end + 1, &huge, 4);
-    std::ofstream(dir / "bad.exr", std::ios::binary) << bytes;
-    try {
-        read_image(dir / "bad.exr", ImageEncoding::kLinear);
-        ADD_FAILURE() << "no error";
-    } catch (const IoError& e) {
-        EXPECT_NE(std::string(e.what()).find(fmt::format("bad.exr': byte {}: OpenEXR header attribute '{}' claims 1879048192 bytes, "
-                                                         "more than the {} bytes left in the file",
-                                                         type_end + 1, name, bytes.size() - (type_end + 5))),
-                  std::string::npos) << e.what();
+    // An attribute of a type OpenEXR does not know: it allocates `size` bytes for the value.
+    static std::string opaque(const std::string& name, std::uint32_t size) {
+        std::string a = name + '\0' + "glintjunk" + '\0';
+        a.append(reinterpret_cast<const char*>(&size), 4);
+        return a;
     }
-    EXPECT_EQ(read_image(dir / "ok.exr", ImageEncoding::kLinear).width, 2);  // a good file is untouched
+    std::string refused(const std::string& bytes) {
+        std::ofstream(dir_ / "bad.exr", std::ios::binary) << bytes;
+        try {
+            read_image(dir_ / "bad.exr", ImageEncoding::kLinear);
+        } catch (const IoError& e) {
+            return e.what();
+        }
+        return "no error";
+    }
+    testing::TempDir dir_;
+    std::string ok_;
+};
+
+TEST_F(ExrHeaderLies, AnAttributeLargerThanTheFileIsRefusedAtItsByte) {
+    // Inserted before the first attribute (byte 8): the name, the type, then the 4-byte size at 8 + 4 + 10.
+    const std::string bytes = ok_.substr(0, 8) + opaque("big", 0x70000000) + ok_.substr(8);
+    EXPECT_NE(refused(bytes).find(fmt::format("bad.exr': byte 22: OpenEXR header attribute 'big' claims 1879048192 bytes, "
+                                              "more than the {} bytes left in the file",
+                                              bytes.size() - 26)),
+              std::string::npos)
+        << refused(bytes);
+    EXPECT_EQ(read_image(dir_ / "ok.exr", ImageEncoding::kLinear).width, 2);  // a good file is untouched
+}
+
+TEST_F(ExrHeaderLies, AnAttributeHiddenBehindAChannelListsLyingSizeIsSeen) {
+    // OpenEXR reads a channel list up to its empty name, whatever size it declares; the next
+    // attribute starts there. A list declaring 32 bytes more than it takes hides, from a walk by
+    // declared sizes, an attribute that OpenEXR reads (fuzz/regressions/image/exr-chlist-hides-attribute).
+    const std::size_t at = ok_.find(std::string("channels\0chlist\0", 16));
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t type_end = at + 15;
+    std::uint32_t size = 0;
+    std::memcpy(&size, ok_.data() + type_end + 1, 4);
+    const std::size_t value_end = type_end + 5 + size;
+    const std::string hidden = opaque("big", 0x70000000);
+    std::string padded = hidden + std::string(32 - hidden.size(), 'x');
+    std::string bytes = ok_.substr(0, value_end) + padded + ok_.substr(value_end);
+    const std::uint32_t lie = size + 32;
+    std::memcpy(bytes.data() + type_end + 1, &lie, 4);
+    EXPECT_NE(refused(bytes).find(fmt::format("bad.exr': byte {}: OpenEXR header attribute 'big' claims 1879048192 bytes",
+                                              value_end + 4 + 10)),
+              std::string::npos)
+        << refused(bytes);
 }
 
 TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
