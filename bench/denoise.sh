@@ -5,7 +5,10 @@
 #
 # For each scene: a reference at REF_SPP (default 4096), then renders at each of $SPPS with --aovs, each denoised by `glint denoise`; prints the relative MSE against the
 # reference (mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), by oiiotool) of the
-# raw and the denoised image, and the seconds the filter took. The film is WIDTH (default 320)
+# raw and the denoised image, and the seconds the filter took; then (bench/denoise_metrics.py,
+# needs python3-opencv: GLINT_BENCH_DEPS=1 scripts/install-deps.sh) the SSIM of both and a
+# classical baseline, OpenCV's non-local means on the raw image: its relative MSE, SSIM and
+# seconds. The film is WIDTH (default 320)
 # by 3/4 of it, whatever the scene's own size. Images are kept in $OUT (default /tmp/glint-denoise).
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -28,7 +31,11 @@ scenes=(
   "cloud scenes/volumes/cloud.yaml"
 )
 mse() { awk -v r="$1" 'BEGIN { printf "%.6f", r * r }'; }
-printf "%-11s %6s %12s %12s %8s %10s\n" scene spp "raw relMSE" "denoised" "ratio" "filter s"
+metrics() { "$here/bench/denoise_metrics.py" "$@" 2>/dev/null || echo "- - - - - -"; }
+/usr/bin/python3 -c "import cv2" 2>/dev/null ||
+  echo "denoise.sh: no python3-opencv (GLINT_BENCH_DEPS=1 scripts/install-deps.sh): no SSIM, no baseline" >&2
+printf "%-11s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" scene spp "raw relMSE" "denoised" "ratio" "filter s" \
+  "raw SSIM" "SSIM" "OpenCV relMSE" "SSIM" "s" "h"
 for entry in "${scenes[@]}"; do
   read -r name file <<<"$entry"
   ref=$out/$name-ref.exr
@@ -40,6 +47,8 @@ for entry in "${scenes[@]}"; do
     secs=$("$glint" denoise "$raw" -o "$den" 2>&1 | sed -n 's/denoised in \([0-9.]*\) s/\1/p')
     r=$(mse "$(relative_rmse "$raw" "$ref")")
     d=$(mse "$(relative_rmse "$den" "$ref")")
-    printf "%-11s %6s %12s %12s %8s %10s\n" "$name" "$spp" "$r" "$d" "$(awk -v a="$r" -v b="$d" 'BEGIN { printf "%.2f", a / b }')" "$secs"
+    read -r s_raw s_den cv_mse cv_ssim cv_secs cv_h <<<"$(metrics "$ref" "$raw" "$den")"
+    printf "%-11s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" "$name" "$spp" "$r" "$d" \
+      "$(awk -v a="$r" -v b="$d" 'BEGIN { printf "%.2f", a / b }')" "$secs" "$s_raw" "$s_den" "$cv_mse" "$cv_ssim" "$cv_secs" "$cv_h"
   done
 done

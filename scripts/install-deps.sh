@@ -30,9 +30,9 @@ packages=(
   clang libclang-rt-14-dev # libFuzzer and the sanitizers: `make fuzz`, run by `make test`
 )
 # Optional groups, not needed to build or test:
-# peers and timer for `make bench`,
+# peers and timer for `make bench`, OpenCV for the denoiser's classical baseline (bench/denoise.sh),
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
-  packages+=(povray hyperfine blender time)
+  packages+=(povray hyperfine blender time python3-opencv)
 fi
 
 missing=()
