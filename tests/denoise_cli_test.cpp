@@ -49,6 +49,11 @@ TEST_F(DenoiseCli, TheDenoisedImageIsCloserToTheConvergedOneAndTheExrKeepsTheRes
     const std::vector<float> plain = channel("plain.exr", "R"), before = channel("d.exr", "noisy.R");
     ASSERT_EQ(plain.size(), before.size());
     EXPECT_EQ(std::memcmp(plain.data(), before.data(), plain.size() * sizeof(float)), 0);
+    // A spp that is not a power of two is denoised, with a note saying why 2^k is better.
+    r = run("render " + cornell() + " --spp 12 --denoise -o d12.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("12 samples per pixel is not a power of two"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("power of two"), r.err.rfind("power of two")) << "once: " << r.err;
     // A PNG gets the denoised image alone.
     r = run("render " + cornell() + " --spp 8 --denoise -q -o d.png");
     EXPECT_EQ(r.status, 0) << r.err;

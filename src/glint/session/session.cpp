@@ -235,6 +235,12 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
         throw IoError(fmt::format("--denoise: the render has {} sample per pixel; the denoiser estimates the noise "
                                   "from two halves of the samples, so it needs at least 2",
                                   job.options.spp));
+    const auto spp = static_cast<unsigned>(job.options.spp);
+    if (job.denoise && job.options.sampler == SamplerType::kSobol && (spp & (spp - 1)) != 0) {
+        note(args, fmt::format("--denoise: {} samples per pixel is not a power of two, so the half images are not "
+                               "stratified and the noise is overestimated (more smoothing); 64, 128 or 256 denoise best",
+                               spp));
+    }
     const double budget = args.time.empty() ? -1 : parse_duration(args.time, "--time");
     const double every = parse_duration(args.checkpoint_every, "--checkpoint-every");
     // --resume FILE goes on writing FILE, unless --checkpoint names another.
