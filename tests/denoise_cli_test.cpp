@@ -4,6 +4,8 @@
 // bits on any thread count; what cannot be denoised is a clear error and writes nothing.
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "cli_fixture.h"
@@ -109,6 +111,44 @@ TEST_F(DenoiseCli, TheHalfImagesMeasureTheVarianceOfManyRenders) {
     // (at most 2x for an error falling as 1/N^2); below the truth it would under-filter.
     EXPECT_GT(estimate / truth, 0.8) << "estimate " << estimate << ", variance over renders " << truth;
     EXPECT_LT(estimate / truth, 1.6) << "estimate " << estimate << ", variance over renders " << truth;
+}
+
+// In fog the features are those of the first surface along the camera ray, wherever the path
+// scattered: Figure 14 in fog so dense that every sample scatters before the floor (density 3:
+// transmittance e^-30 across the box) has the albedo of the same fog so thin that none does, to
+// the bit, and the same depth; the sample positions are the same in both (docs/denoising.md).
+TEST_F(DenoiseCli, FeaturesInFogAreThoseOfTheSurfaceBehindIt) {
+    std::ifstream in(std::string(GLINT_SOURCE_DIR) + "/scenes/volumes/fig14-fog.yaml");
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t at = text.find("density: 0.06");
+    ASSERT_NE(at, std::string::npos);
+    for (const char* density : {"3", "1e-9"}) {
+        std::string scene = text;
+        scene.replace(at, 13, std::string("density: ") + density);
+        write(std::string("fog-") + density + ".yaml", scene);
+        const Result r = run(std::string("render fog-") + density + ".yaml --width 48 --height 27 --spp 4 --aovs -q -o fog-" +
+                             density + ".exr");
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    for (const char* c : {"albedo.R", "albedo.G", "N.Y"}) {
+        const std::vector<float> dense = channel("fog-3.exr", c), clear = channel("fog-1e-9.exr", c);
+        ASSERT_EQ(dense.size(), 48u * 27u);
+        ASSERT_EQ(dense.size(), clear.size());
+        EXPECT_EQ(std::memcmp(dense.data(), clear.data(), dense.size() * sizeof(float)), 0) << c;
+    }
+    const std::vector<float> dense = channel("fog-3.exr", "Z"), clear = channel("fog-1e-9.exr", "Z");
+    int floor = 0;
+    for (std::size_t i = 0; i < dense.size(); ++i) {
+        if (std::isinf(clear[i])) {
+            EXPECT_TRUE(std::isinf(dense[i])) << i;
+            continue;
+        }
+        EXPECT_NEAR(dense[i], clear[i], 1e-4f * clear[i]) << i;
+        ++floor;
+    }
+    EXPECT_GT(floor, 48 * 27 / 2);  // most pixels see the floor or a sphere
+    // The image itself is another: the dense fog hides the floor.
+    EXPECT_NE(channel("fog-3.exr", "R"), channel("fog-1e-9.exr", "R"));
 }
 
 TEST_F(DenoiseCli, WhatCannotBeDenoisedIsAnErrorAndNothingIsWritten) {
