@@ -114,3 +114,12 @@ done
 oiiotool "$denoise_tmp/16.png" "$denoise_tmp/16d.png" "$denoise_tmp/1024.png" --mosaic 3x1 -o docs/images/denoise-cornell.png
 rm -rf "$denoise_tmp"
 echo docs/images/denoise-cornell.png
+# The issue's scene: pbrt-v4's features at 64 spp, the same denoised, and 256 spp (its right half).
+denoise_tmp=$(mktemp -d)
+"$glint" render scenes/pbrt/features.pbrt --spp 64 --denoise -q -o "$denoise_tmp/64d.exr"
+"$glint" render scenes/pbrt/features.pbrt --spp 256 -q -o "$denoise_tmp/256.exr"
+oiiotool "$denoise_tmp/64d.exr" --ch noisy.R,noisy.G,noisy.B --chnames R,G,B --cut 400x400+200+0 \
+  "$denoise_tmp/64d.exr" --ch R,G,B --cut 400x400+200+0 "$denoise_tmp/256.exr" --ch R,G,B --cut 400x400+200+0 \
+  --mosaic 3x1 --colorconvert linear sRGB --resize 900x300 -o docs/images/denoise-features.png
+rm -rf "$denoise_tmp"
+echo docs/images/denoise-features.png
