@@ -193,41 +193,40 @@ Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
     return pl;
 }
 
-// A run of n pixels' colour terms of one channel, added to t0 and t1 (set by the first channel).
+// A run of n pixels' colour terms of one channel, added to t (set by the first channel), for the
+// strict bandwidth; the loose one's terms are these times (k0 / k1)^2 (weight_run).
 [[gnu::noinline]] void colour_term_run(const float* __restrict cp, const float* __restrict vp, const float* __restrict cq,
-                     const float* __restrict vq, float* __restrict t0, float* __restrict t1, int n, bool first) {
-    constexpr float k0 = kColourK[0] * kColourK[0], k1 = kColourK[1] * kColourK[1];
+                     const float* __restrict vq, float* __restrict t, int n, bool first) {
+    constexpr float k0 = kColourK[0] * kColourK[0];
     for (int x = 0; x < n; ++x) {
         const float a = vp[x], b = vq[x];
         const float d = cp[x] - cq[x];
         const float num = (d * d - (a + min2(a, b))) * (1.0f / 3);
-        const float sv = a + b;
-        const float u0 = num / (kEpsilon + k0 * sv), u1 = num / (kEpsilon + k1 * sv);
-        t0[x] = first ? u0 : t0[x] + u0;
-        t1[x] = first ? u1 : t1[x] + u1;
+        const float u = num / (kEpsilon + k0 * (a + b));
+        t[x] = first ? u : t[x] + u;
     }
 }
 
 // One row of colour terms for the offset (dx, qy - y): per pixel, the mean over channels of
 // ((c_p - c_q)^2 - (v_p + min(v_p, v_q))) / (eps + k^2 (v_p + v_q)), for both colour bandwidths.
-void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0, float* t1) {
+void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0) {
     const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(w),
                       q0 = static_cast<std::size_t>(qy) * static_cast<std::size_t>(w);
-    const auto term = [&](int x, int qx, float* o0, float* o1) {
-        *o0 = 0, *o1 = 0;
+    const auto term = [&](int x, int qx, float* o0) {
+        *o0 = 0;
         for (int ch = 0; ch < 3; ++ch) {
             const std::size_t i = p0 + static_cast<std::size_t>(x), j = q0 + static_cast<std::size_t>(qx);
-            colour_term_run(&pl.c[ch][i], &pl.v[ch][i], &pl.c[ch][j], &pl.v[ch][j], o0, o1, 1, ch == 0);
+            colour_term_run(&pl.c[ch][i], &pl.v[ch][i], &pl.c[ch][j], &pl.v[ch][j], o0, 1, ch == 0);
         }
     };
     const int xa = std::clamp(-dx, 0, w), xb = std::clamp(w - dx, xa, w);
-    for (int x = 0; x < xa; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x], &t1[x]);
+    for (int x = 0; x < xa; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x]);
     // The interior, where p + d is inside: straight loops over the planes.
     const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
     for (int ch = 0; ch < 3; ++ch)
         colour_term_run(pl.c[ch].data() + p0 + xs, pl.v[ch].data() + p0 + xs, pl.c[ch].data() + qs, pl.v[ch].data() + qs,
-                        t0 + xs, t1 + xs, xb - xa, ch == 0);
-    for (int x = xb; x < w; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x], &t1[x]);
+                        t0 + xs, xb - xa, ch == 0);
+    for (int x = xb; x < w; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x]);
 }
 
 // Adds n neighbours' colours with their weights to the sums.
@@ -288,14 +287,16 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
     }
 }
 
-// The weights from the feature distances and the colour terms' row sums.
+// The weights from the feature distances and the colour terms' row sums. The loose colour
+// distance is the strict one times (k0 / k1)^2: the terms differ only in k^2 beside the variance
+// (and in where the epsilon for a noise-free pair sits, which leaves such a pair's weight 0 or 1).
 [[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict h0a, const float* __restrict h0b,
-                                  const float* __restrict h0c, const float* __restrict h1a, const float* __restrict h1b,
-                                  const float* __restrict h1c, float* __restrict w0, float* __restrict w1,
+                                  const float* __restrict h0c, float* __restrict w0, float* __restrict w1,
                                   float* __restrict w2, int count) {
+    constexpr float kLoose = (kColourK[0] * kColourK[0]) / (kColourK[1] * kColourK[1]);
     for (int x = 0; x < count; ++x) {
         const float df = dfi[x];
-        const float dc0 = (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9), dc1 = (h1a[x] + h1b[x] + h1c[x]) * (1.0f / 9);
+        const float dc0 = (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9), dc1 = dc0 * kLoose;
         w0[x] = exp_neg(max2(max2(0.0f, dc0), df));
         w1[x] = exp_neg(max2(max2(0.0f, dc1), df));
         w2[x] = exp_neg(df);
@@ -303,8 +304,7 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
 }
 
 void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, const float* h0a, const float* h0b,
-             const float* h0c, const float* h1a, const float* h1b, const float* h1c, float* df, float* w0, float* w1,
-             float* w2) {
+             const float* h0c, float* df, float* w0, float* w1, float* w2) {
     const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa);
     const std::size_t q = static_cast<std::size_t>(qy) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa + dx);
     const auto s = static_cast<std::size_t>(xa);
@@ -312,7 +312,7 @@ void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, co
     feature_run(fp.a[0], fp.a[1], fp.a[2], fq.a[0], fq.a[1], fq.a[2], fp.n[0], fp.n[1], fp.n[2], fq.n[0], fq.n[1], fq.n[2],
                 fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s,
                 xb - xa);
-    weight_run(df + s, h0a + s, h0b + s, h0c + s, h1a + s, h1b + s, h1c + s, w0 + s, w1 + s, w2 + s, xb - xa);
+    weight_run(df + s, h0a + s, h0b + s, h0c + s, w0 + s, w1 + s, w2 + s, xb - xa);
 }
 
 }  // namespace
@@ -348,7 +348,7 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         const int ty0 = std::max(0, y0 - 1), ty1 = std::min(h, y1 + 1);  // with the patches' halo
         const auto row_size = static_cast<std::size_t>(w);
-        std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), t1(t0.size()), h0(t0.size()), h1(t0.size());
+        std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), h0(t0.size());
         std::vector<float> wk0(row_size), wk1(row_size), wk2(row_size), dfr(row_size);
         // The band's sums, plane by plane: (r, g, b, weight) of candidate k at planes 4k..4k+3.
         const std::size_t band_pixels = static_cast<std::size_t>(y1 - y0) * row_size;
@@ -359,9 +359,8 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
                 // Per-pixel colour terms of (p, p + d), neighbours clamped to the image.
                 for (int y = ty0; y < ty1; ++y) {
                     const std::size_t row = static_cast<std::size_t>(y - ty0) * row_size;
-                    colour_terms(pl, y, std::clamp(y + dy, 0, h - 1), dx, w, &t0[row], &t1[row]);
+                    colour_terms(pl, y, std::clamp(y + dy, 0, h - 1), dx, w, &t0[row]);
                     box3_row(&t0[row], &h0[row], w);
-                    box3_row(&t1[row], &h1[row], w);
                 }
                 for (int y = y0; y < y1; ++y) {
                     const int qy = y + dy;
@@ -371,7 +370,7 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
                                       rc = static_cast<std::size_t>(std::min(ty1 - 1, y + 1) - ty0) * row_size;
                     const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
                     if (xa >= xb) continue;
-                    weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc], &h1[ra], &h1[rb], &h1[rc],
+                    weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc],
                             dfr.data(), wk0.data(), wk1.data(), wk2.data());
                     const std::size_t p0 = static_cast<std::size_t>(y - y0) * row_size, q0 = static_cast<std::size_t>(qy) * row_size;
                     const float* wk[kCandidates] = {wk0.data(), wk1.data(), wk2.data()};
