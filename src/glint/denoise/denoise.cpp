@@ -293,13 +293,15 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
 [[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict h0a, const float* __restrict h0b,
                                   const float* __restrict h0c, float* __restrict w0, float* __restrict w1,
                                   float* __restrict w2, int count) {
-    constexpr float kLoose = (kColourK[0] * kColourK[0]) / (kColourK[1] * kColourK[1]);
+    // exp(-max(a, b)) = min(exp(-a), exp(-b)), and with k1 = 2 k0 the loose colour weight is the
+    // strict one's fourth root: two exponentials per neighbour, not three.
+    static_assert(kColourK[1] == 2 * kColourK[0], "the loose weight is the strict one's fourth root");
     for (int x = 0; x < count; ++x) {
-        const float df = dfi[x];
-        const float dc0 = (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9), dc1 = dc0 * kLoose;
-        w0[x] = exp_neg(max2(max2(0.0f, dc0), df));
-        w1[x] = exp_neg(max2(max2(0.0f, dc1), df));
-        w2[x] = exp_neg(df);
+        const float feature = exp_neg(dfi[x]);
+        const float colour = exp_neg(max2(0.0f, (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9)));
+        w0[x] = min2(colour, feature);
+        w1[x] = min2(std::sqrt(std::sqrt(colour)), feature);
+        w2[x] = feature;
     }
 }
 
