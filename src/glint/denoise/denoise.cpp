@@ -208,7 +208,7 @@ Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
 }
 
 // One row of colour terms for the offset (dx, qy - y): per pixel, the mean over channels of
-// ((c_p - c_q)^2 - (v_p + min(v_p, v_q))) / (eps + k^2 (v_p + v_q)), for both colour bandwidths.
+// ((c_p - c_q)^2 - (v_p + min(v_p, v_q))) / (eps + k0^2 (v_p + v_q)), the strict bandwidth.
 void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0) {
     const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(w),
                       q0 = static_cast<std::size_t>(qy) * static_cast<std::size_t>(w);
