@@ -317,7 +317,7 @@ int main(int argc, char** argv) {
                         "The image to write: .exr keeps the input's channels and the image before as "
                         "noisy.R/G/B; .png, .jpg ... the denoised image alone")->required();
     denoise->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
-    int denoise_radius = 6;
+    int denoise_radius = glint::DenoiseOptions{}.radius;
     denoise->add_option("--radius", denoise_radius, "The filter window's half size in pixels (default 6: 13 x 13)")
         ->check(CLI::Range(1, 20));
     denoise->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");

@@ -157,10 +157,13 @@ std::string exr_header_error(const fs::path& path) {
         if (type_end == std::string::npos || type_end + 4 >= head.size()) return {};
         const std::string_view type(head.data() + name_end + 1, type_end - name_end - 1);
         std::string error;
-        std::string name = head.substr(at, std::min<std::size_t>(name_end - at, 64));
-        for (char& ch : name) ch = ch >= ' ' && ch <= '~' ? ch : '?';  // a fuzzed name's bytes, printable
+        const std::size_t name_at = at;
         at = exr_value_end(head, type, type_end + 5, read_u32(head, type_end + 1), file_size, error);
-        if (!error.empty()) return fmt::format("byte {}: OpenEXR header attribute '{}' {}", type_end + 1, name, error);
+        if (!error.empty()) {
+            std::string name = head.substr(name_at, std::min<std::size_t>(name_end - name_at, 64));
+            for (char& ch : name) ch = ch >= ' ' && ch <= '~' ? ch : '?';  // a fuzzed name's bytes, printable
+            return fmt::format("byte {}: OpenEXR header attribute '{}' {}", type_end + 1, name, error);
+        }
         if (at == std::string::npos) return {};
     }
 }

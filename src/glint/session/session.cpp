@@ -211,7 +211,9 @@ double denoise_film(Film& film, int threads) {
                           film.even().data(),   film.odd().data(),    film.albedo().data(),
                           film.normal().data(), film.depth().data()};
     DenoiseStats stats;
-    std::vector<Color> out = denoise(in, {6, threads}, &stats);
+    DenoiseOptions options;
+    options.threads = threads;
+    std::vector<Color> out = denoise(in, options, &stats);
     BigVector<Color> noisy(film.pixels().begin(), film.pixels().end());
     std::copy(out.begin(), out.end(), film.pixels().begin());
     film.keep_noisy(std::move(noisy));

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "glint/builder/build.h"
+#include "glint/denoise/denoise.h"
 #include "glint/formats/scene_writer.h"
 #include "glint/render/distributed.h"
 #include "glint/render/progress.h"
@@ -150,7 +151,8 @@ private:
 /// the image alone). `threads` 0: every core. Returns the seconds the filter took. Throws IoError
 /// naming the file, the channel or the pixel at fault; nothing is written then.
 /// `radius`: the filter window's half size in pixels (denoise/denoise.h).
-double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads, int radius = 6);
+double denoise_file(const std::filesystem::path& in, const std::filesystem::path& out, int threads,
+                    int radius = DenoiseOptions{}.radius);
 
 /// The options that change the image, as text: part of a checkpoint's fingerprint.
 std::string image_settings(const SessionOptions& args, const RenderJob& job);
