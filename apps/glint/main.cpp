@@ -119,7 +119,11 @@ int run_info(const glint::SessionOptions& args) {
     fmt::print("triangles    {} rendered, {} stored\n", i.triangles, i.unique_triangles);
     fmt::print("meshes       {} ({} vertices), {} instances\n", i.meshes, i.vertices, i.instances);
     fmt::print("other shapes {}\n", i.analytic_shapes);
-    fmt::print("lights       {} (area lights included)\n", job.scene.light_sampler().count());
+    const glint::LightSampler& ls = job.scene.light_sampler();
+    fmt::print("lights       {} (area lights included)", ls.count());
+    if (ls.kind() == glint::LightSamplerKind::kBvh && !ls.bvh().empty())
+        fmt::print(", chosen by a light BVH of {} nodes", ls.bvh().node_count());
+    fmt::print("\n");
     for (std::size_t k = 0; k < job.file_cameras.size(); ++k) {
         const glint::GltfCamera& c = job.file_cameras[k];
         const std::string kind = c.orthographic ? fmt::format("orthographic, {:.4g} high", 2 * c.ymag)
@@ -240,6 +244,9 @@ int main(int argc, char** argv) {
         "Acceleration structure: bvh (glint's own), sbvh (the same with spatial splits) or embree "
         "(Embree 3, when built in)";
     render->add_option("--accel", args.accel, accel_help);
+    render->add_option("--light-sampler", args.light_sampler,
+                       "How the path tracer chooses a light to sample: bvh (by what each light can send to the "
+                       "shaded point; the default) or power (in proportion to power)");
     render->add_option("--time", args.time,
                        "Time budget for rendering (90s, 10m, 1h30m): stops after the last sample pass "
                        "that fits and writes the image with the spp reached");

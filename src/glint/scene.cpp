@@ -172,7 +172,7 @@ void Scene::commit() {
                              [](const auto& m) { return m.has_value(); });
 
     const float radius = bounds_.empty() ? 1.0f : 0.5f * length(bounds_.hi - bounds_.lo);
-    light_sampler_.build(*this, std::max(radius, 1e-3f));
+    light_sampler_.build(*this, std::max(radius, 1e-3f), light_sampling);
     // What each texture reads: uv (images), the vertex colour, or what its children read.
     // Children come before their parents (build adds them first), so one forward pass settles
     // every entry.

@@ -74,6 +74,7 @@ struct Scene {
     std::vector<std::optional<MediumInterface>> medium_interfaces;
     Background background = SkyBackground{};
     AccelKind accel = AccelKind::kBvh;  ///< read by commit()
+    LightSamplerKind light_sampling = LightSamplerKind::kBvh;  ///< read by commit()
     /// The mesh BVHs' traversal kernel, read by commit(); empty: default_simd_isa().
     std::optional<SimdIsa> mesh_isa;
 

@@ -568,6 +568,7 @@ void build_camera(const SceneDescription& d, RenderJob& job) {
 
 void build_integrator(const SceneDescription& d, const Overrides& overrides, RenderJob& job,
                       Diagnostics& diagnostics) {
+    job.scene.light_sampling = LightSamplerKind::kPower;  // the other integrators sample no light
     switch (d.integrator.kind) {
         case IntegratorKind::kFlat: job.integrator = std::make_unique<FlatIntegrator>(); break;
         case IntegratorKind::kNormals: job.integrator = std::make_unique<NormalsIntegrator>(); break;
@@ -585,6 +586,8 @@ void build_integrator(const SceneDescription& d, const Overrides& overrides, Ren
             PathSettings s = d.integrator.path;
             s.max_depth = pick(d.integrator.max_depth, overrides.max_depth, "max-depth", 0,
                                kMaxDepth, diagnostics);
+            if (overrides.light_sampler) s.light_sampler = *overrides.light_sampler;
+            job.scene.light_sampling = s.light_sampler;
             job.integrator = std::make_unique<PathIntegrator>(s);
             break;
         }

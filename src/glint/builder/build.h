@@ -24,6 +24,7 @@ struct Overrides {
     bool aovs = false;  ///< --aovs: write the AOVs even if the scene does not ask
     bool denoise = false;  ///< --denoise: denoise even if the scene does not ask
     std::optional<AccelKind> accel;  ///< --accel
+    std::optional<LightSamplerKind> light_sampler;  ///< --light-sampler
 };
 
 struct RenderJob {

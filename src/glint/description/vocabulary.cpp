@@ -46,10 +46,12 @@ const std::vector<VocabularyEntry>& table() {
         {"integrator", "flat", {"type"}},
         {"integrator", "normals", {"type"}},
         {"integrator", "whitted", {"type", "max_depth", "ambient", "shadows"}},
-        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy"}},
+        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy", "light_sampler"}},
         {"strategy", "mis", {}},
         {"strategy", "light", {}},
         {"strategy", "bsdf", {}},
+        {"light_sampler", "bvh", {}},
+        {"light_sampler", "power", {}},
         {"background", "sky", {"type", "horizon", "zenith"}},
         {"background", "constant", {"type", "color"}},
         {"background", "environment", {"type", "filename", "scale"}},
@@ -149,5 +151,6 @@ std::string_view vocabulary_name(FilterType t) { return nth("filter", static_cas
 std::string_view vocabulary_name(ToneCurve t) { return nth("tone_curve", static_cast<int>(t)); }
 std::string_view vocabulary_name(Encoding e) { return nth("encoding", static_cast<int>(e)); }
 std::string_view vocabulary_name(LightStrategy s) { return nth("strategy", static_cast<int>(s)); }
+std::string_view vocabulary_name(LightSamplerKind k) { return nth("light_sampler", static_cast<int>(k)); }
 
 }  // namespace glint

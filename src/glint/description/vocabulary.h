@@ -41,5 +41,6 @@ std::string_view vocabulary_name(FilterType t);
 std::string_view vocabulary_name(ToneCurve t);
 std::string_view vocabulary_name(Encoding e);
 std::string_view vocabulary_name(LightStrategy s);
+std::string_view vocabulary_name(LightSamplerKind k);
 
 }  // namespace glint

@@ -78,6 +78,8 @@ std::pair<std::string, std::string> with_bogus_value(const std::string& kind) {
     if (kind == "tone_curve") return {"film: {tonemap: bogus}\n", "unknown tonemap"};
     if (kind == "sampler_type") return {"sampler: {type: bogus}\n", "unknown sampler type"};
     if (kind == "strategy") return {"integrator: {type: path, strategy: bogus}\n", "unknown strategy"};
+    if (kind == "light_sampler")
+        return {"integrator: {type: path, light_sampler: bogus}\n", "unknown light_sampler"};
     if (kind == "metal") return {"materials: {m: {type: conductor, metal: bogus}}\n", "unknown metal"};
     if (kind == "texture_encoding")
         return {"materials: {m: {type: diffuse, albedo: {type: image, filename: x.png, encoding: bogus}}}\n",
@@ -151,6 +153,7 @@ TEST(Vocabulary, EveryTypeValueAndKeyIsDocumentedInItsSection) {
         {"camera", "## `camera`"},         {"film", "## `film`"},           {"encoding", "## `film`"},
         {"tone_curve", "## `film`"},       {"filter", "## `film`"},         {"sampler", "## `sampler`"},
         {"sampler_type", "## `sampler`"},  {"integrator", "## `integrator`"}, {"strategy", "## `integrator`"},
+        {"light_sampler", "## `integrator`"},
         {"background", "## `background`"}, {"light", "## `lights`"},       {"material", "## `materials`"},
         {"metal", "## `materials`"},       {"texture", "## `materials`"},   {"texture_encoding", "## `materials`"},
         {"wrap", "## `materials`"},        {"medium", "## `media`"},        {"object", "## `objects`"},

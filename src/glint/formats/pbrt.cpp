@@ -222,6 +222,17 @@ bool Parser::typed_directive(Stream& s, const Token& t, const std::string& name)
             }
             if (*type != "path" && *type != "volpath")
                 warn(t.loc(), fmt::format("integrator \"{}\" not supported; using path", *type));
+            if (const auto ls = get_string(pl, "lightsampler")) {  // pbrt-v4's default is bvh, as glint's
+                if (*ls == "power") {
+                    d_.integrator.path.light_sampler = LightSamplerKind::kPower;
+                } else if (*ls == "uniform") {
+                    d_.integrator.path.light_sampler = LightSamplerKind::kPower;
+                    warn(pl.find("lightsampler")->loc, "light sampler \"uniform\" not supported; using power");
+                } else if (*ls != "bvh") {
+                    diag_.error(pl.find("lightsampler")->loc,
+                                fmt::format("unknown light sampler \"{}\" (pbrt-v4 knows bvh, power, uniform)", *ls));
+                }
+            }
             ignore_rest(pl, "Integrator: parameter \"{}\" ignored");
         } else if (name == "PixelFilter") {
             get_floats(pl, "radius", "float", 1);  // pbrt-v3's; the filters below take x/yradius

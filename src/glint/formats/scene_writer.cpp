@@ -281,6 +281,8 @@ WrittenScene Writer::run() {
         if (p.rr_depth != PathSettings{}.rr_depth) y += fmt::format(", rr_depth: {}", p.rr_depth);
         if (std::isfinite(p.clamp)) y += ", clamp: " + num(p.clamp);
         if (p.strategy != LightStrategy::kMis) y += fmt::format(", strategy: {}", vocabulary_name(p.strategy));
+        if (p.light_sampler != LightSamplerKind::kBvh)
+            y += fmt::format(", light_sampler: {}", vocabulary_name(p.light_sampler));
         y += "}\n";
     } else if (d_.integrator.kind == IntegratorKind::kFlat || d_.integrator.kind == IntegratorKind::kNormals) {
         y += fmt::format("integrator: {{type: {}}}\n", d_.integrator.kind == IntegratorKind::kFlat ? "flat" : "normals");

@@ -387,6 +387,11 @@ void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
                                                  {"bsdf", LightStrategy::kBsdf}}))
                 d.path.strategy = *st;
         }
+        if (auto n = m.get("light_sampler")) {
+            if (auto k = choice<LightSamplerKind>(*n, "light_sampler",
+                                                  {{"bvh", LightSamplerKind::kBvh}, {"power", LightSamplerKind::kPower}}))
+                d.path.light_sampler = *k;
+        }
         return;
     }
     assign(m.get("ambient"), d.ambient,

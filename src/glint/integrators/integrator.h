@@ -94,6 +94,8 @@ struct PathSettings {
     /// kMis: light sampling and BSDF sampling combined by the power heuristic; kLight / kBsdf:
     /// one strategy only (for comparisons; kBsdf never sees point, spot or sharp sun lights).
     LightStrategy strategy = LightStrategy::kMis;
+    /// How the light to sample is chosen (lights/light_sampler.h); build copies it to the scene.
+    LightSamplerKind light_sampler = LightSamplerKind::kBvh;
 };
 
 /// Unidirectional path tracing with next-event estimation and multiple importance sampling

@@ -91,7 +91,12 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     Ray ray = camera_ray;
     bool specular = true;   // the camera ray counts as specular: emission seen directly is kept
     float bsdf_pdf = 0;     // of the direction that led here (BSDF or phase function)
+    // Where the previous light sample was chosen (for the light's pmf when the BSDF or phase
+    // sample then meets it): the point, its geometric normal (zero in a medium), and whether the
+    // choice was by power alone (a homogeneous medium's, made before its point).
     Point3 prev_p{0, 0, 0};
+    Normal3 prev_n{0, 0, 0};
+    bool prev_by_power = false;
     float eta_scale = 1;
     MediumId medium = scene.camera_medium;
     HashRng rng{media ? samples.stream_seed() : 0};
@@ -107,8 +112,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!use_bsdf_hits) return;  // light sampling alone counts this light
         float w = 1;
         if (use_light && light != kNoLight) {
-            const float light_pdf =
-                lights.pmf(light) * lights.pdf_li(scene, light, prev_p, ray.direction, on_light);
+            const float pick_pmf = prev_by_power ? lights.pmf(light) : lights.pmf(prev_p, prev_n, light);
+            const float light_pdf = pick_pmf * lights.pdf_li(scene, light, prev_p, ray.direction, on_light);
             w = power_heuristic(bsdf_pdf, light_pdf);
         }
         radiance += beta * le * w / average(r_u);
@@ -274,7 +279,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                             const auto f = [&](Vector3 wi) { return Color{phase.p(wo, wi)}; };
                             const auto pdf_of = [&](Vector3 wi) { return phase.pdf(wo, wi); };
                             float pmf = 0;
-                            const std::uint32_t l = lights.pick(choices.x, &pmf);
+                            const std::uint32_t l = lights.pick(p, Normal3{0, 0, 0}, choices.x, &pmf);
                             next_event(beta, r_u, p, nullptr, nullptr, f, pdf_of, l, pmf, u_light);
                         }
                         const PhaseSample ps = phase.sample(wo, u_phase);
@@ -282,6 +287,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                         specular = false;
                         bsdf_pdf = ps.pdf;
                         prev_p = p;
+                        prev_n = Normal3{0, 0, 0};
+                        prev_by_power = forced_nee;
                         ray = Ray{p, ps.wi};
                         scattered = true;
                         return false;
@@ -357,7 +364,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             };
             const auto pdf_of = [&](Vector3 wi) { return bsdf.pdf(wo, wi); };
             float pmf = 0;
-            const std::uint32_t l = lights.pick(choices.x, &pmf);
+            const std::uint32_t l = lights.pick(si.p, si.n, choices.x, &pmf);
             next_event(beta, r_u, si.p, &si.n, scene.medium_interface(si.material), f, pdf_of, l, pmf, u_light);
         }
 
@@ -372,6 +379,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         }
         bsdf_pdf = bs->pdf_is_proportional ? walk_pdf(bsdf, wo, bs->wi) : bs->pdf;
         prev_p = si.p;
+        prev_n = si.n;
+        prev_by_power = false;
         if (bs->eta != 1) eta_scale *= bs->eta * bs->eta;
         if (!is_finite(beta)) break;
         if (media) {

@@ -79,6 +79,57 @@ TEST(Path, WhiteFurnaceDiffuseTransmissionIsOne) {
     EXPECT_LT(worst, 0.1);
 }
 
+// A closed cube tiled by 6 x 6 emitting quads per face (216 lights), each of radiance 1 inwards
+// on a diffuse wall of albedo 0.5: radiance L = 1 + 0.5 L everywhere inside, so every pixel sees
+// 2, whichever light sampler chooses among the lights (a pmf that disagreed with the choices,
+// in next-event estimation or in the MIS weight of an emitter found by the BSDF, would show).
+std::string many_light_furnace(const std::string& light_sampler) {
+    std::string y = R"(
+camera: {type: look_at, from: [0.1, -0.2, 0.05], to: [0.5, 0.1, 1], fov: 100}
+film: {width: 16, height: 16}
+integrator: {type: path, max_depth: 64, light_sampler: )" + light_sampler + R"(}
+background: {type: constant, color: [0, 0, 0]}
+materials:
+  wall: {type: diffuse, albedo: 0.5, emission: [1, 1, 1]}
+objects:
+)";
+    constexpr int k = 6;
+    constexpr float h = 2.0f / k;
+    for (int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;  // e_b x e_c = e_a
+        for (const float side : {-1.0f, 1.0f}) {
+            for (int i = 0; i < k; ++i) {
+                for (int j = 0; j < k; ++j) {
+                    float corner[3], e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
+                    corner[a] = side;
+                    corner[b] = -1 + i * h;
+                    corner[c] = -1 + j * h;
+                    // Facing inwards, -side e_a: (e_b, e_c) on the low side, (e_c, e_b) on the high.
+                    (side < 0 ? e1 : e2)[b] = h;
+                    (side < 0 ? e2 : e1)[c] = h;
+                    y += "  - {type: quad, corner: [" + std::to_string(corner[0]) + ", " + std::to_string(corner[1]) + ", " +
+                         std::to_string(corner[2]) + "], edge1: [" + std::to_string(e1[0]) + ", " + std::to_string(e1[1]) +
+                         ", " + std::to_string(e1[2]) + "], edge2: [" + std::to_string(e2[0]) + ", " +
+                         std::to_string(e2[1]) + ", " + std::to_string(e2[2]) + "], material: wall}\n";
+                }
+            }
+        }
+    }
+    return y;
+}
+
+TEST(Path, FurnaceOfManyLightsIsTwoWithEitherLightSampler) {
+    for (const std::string sampler : {"bvh", "power"}) {
+        const RenderJob job = job_from(many_light_furnace(sampler));
+        ASSERT_EQ(job.scene.light_sampler().count(), 216u);
+        const Film film = render_job(job, 64);
+        double sum = 0, worst = 0;
+        for (const Color& c : film.pixels()) sum += c.g, worst = std::max(worst, std::abs(c.g - 2.0));
+        EXPECT_NEAR(sum / static_cast<double>(film.pixels().size()), 2, 0.02) << sampler;
+        EXPECT_LT(worst, 0.3) << sampler;
+    }
+}
+
 // A mix picks its second material with probability `amount` at each point: a sphere of
 // mix(white, black, 0.25) scatters each path once with probability 0.75, so its pixels average
 // 0.75 (64 spp per pixel at different points, ~200 pixels).

@@ -1,5 +1,7 @@
 #include "glint/lights/light_sampler.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <type_traits>
@@ -54,9 +56,80 @@ float env_power_density(const Background& bg) {
         bg);
 }
 
+// Where a light is and which way it shines, for the BVH (lights/light_bvh.h). Distant lights
+// have no place: phi 0 leaves them out.
+LightBounds light_bounds(const Scene& scene, const Light& light) {
+    return std::visit(
+        [&](const auto& l) -> LightBounds {
+            using T = std::decay_t<decltype(l)>;
+            LightBounds b;
+            if constexpr (std::is_same_v<T, PointLight>) {
+                b.box.extend(l.position);
+                b.phi = luminance(l.intensity);
+                b.cos_o = -1;  // every direction
+            } else if constexpr (std::is_same_v<T, SpotLight>) {
+                b.box.extend(l.position);
+                b.phi = luminance(l.intensity);
+                b.w = l.direction;
+                b.cos_o = l.cos_inner;
+                b.cos_e = std::cos(std::max(0.0f, std::acos(std::clamp(l.cos_outer, -1.0f, 1.0f)) -
+                                                      std::acos(std::clamp(l.cos_inner, -1.0f, 1.0f))));
+            } else if constexpr (std::is_same_v<T, AreaLight>) {
+                const auto flat = [&](auto points, Normal3 n, float area, MaterialId material) {
+                    for (const Point3& q : points) b.box.extend(q);
+                    const Emission& e = scene.emission_of(material);
+                    b.phi = luminance(e.radiance) * area;  // its intensity seen face on
+                    b.w = to_vector(n);
+                    b.two_sided = e.two_sided;
+                };
+                switch (l.kind) {
+                    case ShapeKind::kSphere: {
+                        const Sphere& s = scene.spheres[l.index];
+                        const Vector3 r{s.radius, s.radius, s.radius};
+                        b.box.extend(s.center - r);
+                        b.box.extend(s.center + r);
+                        b.phi = luminance(scene.emission_of(s.material).radiance) * kPi * s.radius * s.radius;
+                        b.cos_o = -1;
+                        break;
+                    }
+                    case ShapeKind::kQuad: {
+                        const Quad& q = scene.quads[l.index];
+                        flat(std::array{q.corner, q.corner + q.edge1, q.corner + q.edge2, q.corner + q.edge1 + q.edge2},
+                             q.normal(), q.area(), q.material);
+                        break;
+                    }
+                    case ShapeKind::kDisk: {
+                        const Disk& d = scene.disks[l.index];
+                        const Normal3 n = d.normal;
+                        const Vector3 e{d.radius * std::sqrt(std::max(0.0f, 1 - n.x * n.x)),
+                                        d.radius * std::sqrt(std::max(0.0f, 1 - n.y * n.y)),
+                                        d.radius * std::sqrt(std::max(0.0f, 1 - n.z * n.z))};
+                        flat(std::array{d.center - e, d.center + e}, n, d.area(), d.material);
+                        break;
+                    }
+                    case ShapeKind::kTriangle: {
+                        const Triangle& t = scene.triangles[l.index];
+                        flat(std::array{t.p0, t.p1, t.p2}, t.normal(), t.area(), t.material);
+                        break;
+                    }
+                    case ShapeKind::kMesh: {
+                        const Triangle t = scene.world_triangle(l.index, l.prim);
+                        flat(std::array{t.p0, t.p1, t.p2}, t.normal(), t.area(), t.material);
+                        break;
+                    }
+                    case ShapeKind::kPlane: break;
+                }
+            }
+            if (!is_finite(b.w) || !(dot(b.w, b.w) > 0)) b.w = {0, 0, 1}, b.cos_o = -1;
+            return b;
+        },
+        light);
+}
+
 }  // namespace
 
-void LightSampler::build(const Scene& scene, float radius) {
+void LightSampler::build(const Scene& scene, float radius, LightSamplerKind sampler_kind) {
+    kind_ = sampler_kind;
     lights_ = scene.lights;
     for (auto& v : shape_light_) v.clear();
     const auto add_area = [&](ShapeKind kind, const auto& shapes) {
@@ -133,12 +206,62 @@ void LightSampler::build(const Scene& scene, float radius) {
     }
     if (power.empty()) power.push_back(0);  // no lights: count() is 0 and nothing is picked
     distribution_ = Distribution1D(power);
+
+    bvh_ = LightBvh{};
+    distant_lights_.clear();
+    distant_slot_.assign(count(), kNoLight);
+    p_distant_ = 0;
+    if (kind_ != LightSamplerKind::kBvh) return;
+    std::vector<LightBounds> bounds(lights_.size());
+    std::vector<float> distant_power;
+    for (std::uint32_t i = 0; i < lights_.size(); ++i) {
+        if (std::holds_alternative<DirectionalLight>(lights_[i])) {
+            distant_slot_[i] = static_cast<std::uint32_t>(distant_lights_.size());
+            distant_lights_.push_back(i);
+            distant_power.push_back(power[i]);
+        } else {
+            bounds[i] = light_bounds(scene, lights_[i]);
+        }
+    }
+    if (env_) {
+        distant_slot_[lights_.size()] = static_cast<std::uint32_t>(distant_lights_.size());
+        distant_lights_.push_back(static_cast<std::uint32_t>(lights_.size()));
+        distant_power.push_back(power.back());
+    }
+    bvh_.build(bounds);
+    if (!distant_lights_.empty()) {
+        const auto n = static_cast<float>(distant_lights_.size());
+        p_distant_ = bvh_.empty() ? 1.0f : n / (n + 1);
+        distant_distribution_ = Distribution1D(distant_power);
+    }
 }
 
 std::uint32_t LightSampler::pick(float u, float* pmf) const {
     const std::uint32_t i = distribution_.sample(u);
     if (pmf) *pmf = distribution_.pmf(i);
     return i;
+}
+
+std::uint32_t LightSampler::pick(Point3 p, Normal3 n, float u, float* pmf) const {
+    if (kind_ == LightSamplerKind::kPower) return pick(u, pmf);
+    constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+    if (u < p_distant_) {
+        const std::uint32_t i = distant_distribution_.sample(std::min(u / p_distant_, kOneMinusEpsilon));
+        *pmf = p_distant_ * distant_distribution_.pmf(i);
+        return distant_lights_[i];
+    }
+    float bvh_pmf = 0;
+    const std::uint32_t l =
+        bvh_.sample(p, n, std::min((u - p_distant_) / (1 - p_distant_), kOneMinusEpsilon), &bvh_pmf);
+    *pmf = (1 - p_distant_) * bvh_pmf;
+    return l;
+}
+
+float LightSampler::pmf(Point3 p, Normal3 n, std::uint32_t light) const {
+    if (kind_ == LightSamplerKind::kPower) return pmf(light);
+    if (light < distant_slot_.size() && distant_slot_[light] != kNoLight)
+        return p_distant_ * distant_distribution_.pmf(distant_slot_[light]);
+    return (1 - p_distant_) * bvh_.pmf(p, n, light);
 }
 
 std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::uint32_t light,

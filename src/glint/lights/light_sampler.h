@@ -1,7 +1,8 @@
 #pragma once
 // Light sampling for the path tracer: every light of a committed scene (the file's lights, one
-// area light per emitting shape, and the environment) in one index space, chosen in proportion
-// to its power, and sampled by solid angle from a shaded point.
+// area light per emitting shape, and the environment) in one index space, chosen for a shaded
+// point by a light BVH (lights/light_bvh.h; the default) or in proportion to power, and sampled
+// by solid angle from the point.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -9,6 +10,7 @@
 
 #include "glint/interaction.h"
 #include "glint/lights/light.h"
+#include "glint/lights/light_bvh.h"
 #include "glint/samplers/distribution.h"
 
 namespace glint {
@@ -31,17 +33,34 @@ struct LightLiSample {
 };
 
 inline constexpr std::uint32_t kNoLight = 0xffffffffU;
+static_assert(kNoLight == kNoBvhLight);
+
+/// How the path tracer chooses the light to sample at a point. kBvh: distant lights (suns, the
+/// environment) share n / (n + 1) of the choices in proportion to their power, the rest go
+/// down the light BVH by importance at the point. kPower: every light in proportion to its power,
+/// wherever the point is (what glint did before the BVH; kept for comparison).
+enum class LightSamplerKind { kBvh, kPower };
 
 class LightSampler {
 public:
     /// Called by Scene::commit: gathers the lights and their powers; `radius` bounds the scene
     /// (distant lights' power is what crosses a disk of that radius).
-    void build(const Scene& scene, float radius);
+    void build(const Scene& scene, float radius, LightSamplerKind kind = LightSamplerKind::kBvh);
 
     std::uint32_t count() const { return static_cast<std::uint32_t>(lights_.size()) + (env_ ? 1 : 0); }
-    /// A light chosen with probability proportional to its power.
+    LightSamplerKind kind() const { return kind_; }
+    /// A light chosen with probability proportional to its power, wherever the point is (for
+    /// points in media, whose light is chosen before the point is known).
     std::uint32_t pick(float u, float* pmf) const;
     float pmf(std::uint32_t light) const { return distribution_.pmf(light); }
+    /// A light chosen for point p on a surface with geometric normal n (zero in a medium) by
+    /// the scene's light sampler; kNoLight with pmf 0 when no light can reach p.
+    std::uint32_t pick(Point3 p, Normal3 n, float u, float* pmf) const;
+    /// The probability with which pick(p, n, ...) chooses `light`.
+    float pmf(Point3 p, Normal3 n, std::uint32_t light) const;
+    const LightBvh& bvh() const { return bvh_; }
+    /// The share of choices the distant lights take (kBvh).
+    float distant_share() const { return p_distant_; }
 
     std::optional<LightLiSample> sample_li(const Scene& scene, std::uint32_t light, Point3 p,
                                            Sample2 u) const;
@@ -77,7 +96,14 @@ public:
 private:
     std::vector<Light> lights_;  ///< the file's lights, then the area lights; the environment is last
     bool env_ = false;
+    LightSamplerKind kind_ = LightSamplerKind::kBvh;
     Distribution1D distribution_;
+    /// kBvh: the distant lights (their share p_distant_, among them by power) and the BVH over
+    /// the others; distant_slot_[light]: the light's index in distant_distribution_, or kNoLight.
+    LightBvh bvh_;
+    float p_distant_ = 0;
+    std::vector<std::uint32_t> distant_lights_, distant_slot_;
+    Distribution1D distant_distribution_;
     std::array<std::vector<std::uint32_t>, 5> shape_light_;
     /// Mesh instances: where each emitting instance's per-triangle light ids start in
     /// mesh_light_ (kNoLight for instances that emit nothing).

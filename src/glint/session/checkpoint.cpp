@@ -138,6 +138,8 @@ std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings
     }
     const int accel = static_cast<int>(job.scene.accel);
     add(&accel, sizeof accel);
+    const int light_sampling = static_cast<int>(job.scene.light_sampling);
+    add(&light_sampling, sizeof light_sampling);
     return h;
 }
 

@@ -71,6 +71,13 @@ std::optional<AccelKind> parse_accel(const std::string& name) {
     throw IoError(fmt::format("--accel: unknown backend '{}' (known: bvh, sbvh, embree)", name));
 }
 
+std::optional<LightSamplerKind> parse_light_sampler(const std::string& name) {
+    if (name.empty()) return std::nullopt;
+    if (name == "bvh") return LightSamplerKind::kBvh;
+    if (name == "power") return LightSamplerKind::kPower;
+    throw IoError(fmt::format("--light-sampler: unknown light sampler '{}' (known: bvh, power)", name));
+}
+
 RenderJob load_job(const SessionOptions& args) {
     auto sources = std::make_shared<SourceFiles>();
     const bool mesh = !args.scene.empty() && scene_file_format(args.scene).mesh;
@@ -93,6 +100,7 @@ RenderJob load_job(const SessionOptions& args) {
     overrides.aovs = args.aovs;
     overrides.denoise = args.denoise;
     overrides.accel = parse_accel(args.accel);
+    overrides.light_sampler = parse_light_sampler(args.light_sampler);
     RenderJob job = build(description, overrides, sources);
     if (mesh) {
         if (job.file_camera) {  // the file's own camera

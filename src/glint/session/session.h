@@ -38,6 +38,7 @@ struct SessionOptions {
     bool denoise = false; ///< the written image is denoised (the scene's film.denoise also asks)
     bool strict = false;  ///< pbrt: what glint cannot render is an error
     std::string accel;    ///< bvh, sbvh, embree; empty: the scene's or the default
+    std::string light_sampler;  ///< bvh, power; empty: the scene's or the default
     std::string camera;   ///< a glTF file rendered directly: its camera by name
     // Long renders.
     std::string time, checkpoint, checkpoint_every = "5m", resume, display;
@@ -98,6 +99,8 @@ WrittenScene convert_scene(const std::string& scene, const std::filesystem::path
 
 /// The AccelKind for a --accel name; nullopt for "". Throws IoError naming the known ones.
 std::optional<AccelKind> parse_accel(const std::string& name);
+/// The LightSamplerKind for a --light-sampler name; nullopt for "". Throws IoError naming the known ones.
+std::optional<LightSamplerKind> parse_light_sampler(const std::string& name);
 
 class RenderSession {
 public:
