@@ -40,7 +40,7 @@ Bounds3 unite(const Bounds3& a, const Bounds3& b) {
     return r;
 }
 
-Point3 centre(const Bounds3& b) { return b.lo + (b.hi - b.lo) * 0.5f; }
+Point3 box_centre(const Bounds3& b) { return b.lo + (b.hi - b.lo) * 0.5f; }
 
 // Half the surface area of the box, each side widened by `pad` so that flat and point-like
 // clusters still compare by their extent in the other axes.
@@ -80,35 +80,48 @@ LightBounds unite(const LightBounds& a, const LightBounds& b) {
     return r;
 }
 
-float importance(const LightBounds& b, Point3 p, Normal3 n) {
-    const Point3 c = centre(b.box);
-    const Vector3 diag = b.box.hi - b.box.lo;
-    const float r2 = 0.25f * dot(diag, diag);
-    const Vector3 d = p - c;  // from the lights towards p
+PackedLightBounds PackedLightBounds::from(const LightBounds& b) {
+    PackedLightBounds r;
+    r.centre = box_centre(b.box);
+    r.radius = 0.5f * length(b.box.hi - b.box.lo);
+    r.w = b.w;
+    r.phi = b.phi;
+    r.cos_o = b.cos_o;
+    r.sin_o = sin_of(b.cos_o);
+    r.cos_e = b.cos_e;
+    r.two_sided = b.two_sided;
+    return r;
+}
+
+float importance(const LightBounds& b, Point3 p, Normal3 n) { return importance(PackedLightBounds::from(b), p, n); }
+
+float importance(const PackedLightBounds& b, Point3 p, Normal3 n) {
+    const Vector3 d = p - b.centre;  // from the lights towards p
     const float d2 = dot(d, d);
-    // The cone of directions from p that holds the box (its bounding sphere): everything when p
-    // is inside.
+    const float r2 = b.radius * b.radius;
+    const float inv_d = d2 > 0 ? 1 / std::sqrt(d2) : 0;
+    // The cone of directions from p that holds the box's bounding sphere: everything when p is
+    // inside.
     CosSin bound{-1, 0};
     if (d2 > r2) {
-        const float sin2 = r2 / d2;
-        bound = {std::sqrt(1 - sin2), std::sqrt(sin2)};
+        const float sin_b = std::min(b.radius * inv_d, 1.0f);
+        bound = {std::sqrt(1 - sin_b * sin_b), sin_b};
     }
-    const Vector3 wc = d2 > 0 ? d / std::sqrt(d2) : Vector3{0, 0, 1};
-    float cos_w = dot(b.w, wc);
-    if (b.two_sided) cos_w = std::abs(cos_w);
-    const CosSin w{cos_w, sin_of(cos_w)};
-    const CosSin o{b.cos_o, sin_of(b.cos_o)};
-    const CosSin emitted = minus_clamped(minus_clamped(w, o), bound);
-    if (emitted.c <= b.cos_e) return 0;
+    float emitted = 1;
+    if (b.cos_o > -1) {  // not every direction: how far outside the cone is p?
+        float cos_w = std::clamp(dot(b.w, d) * inv_d, -1.0f, 1.0f);
+        if (b.two_sided) cos_w = std::abs(cos_w);
+        emitted = minus_clamped(minus_clamped({cos_w, sin_of(cos_w)}, {b.cos_o, b.sin_o}), bound).c;
+        if (emitted < b.cos_e) return 0;
+    }
     float cos_i = 1;
     if (n.x != 0 || n.y != 0 || n.z != 0) {
-        const float ci = std::abs(dot(n, wc));
+        const float ci = std::min(std::abs(dot(n, d)) * inv_d, 1.0f);
         cos_i = minus_clamped({ci, sin_of(ci)}, bound).c;
     }
     // Nearer than the box's own size the inverse square says nothing: clamp, and keep finite.
     const float dist2 = std::max({d2, r2, std::numeric_limits<float>::min()});
-    const float value = b.phi * emitted.c * cos_i / dist2;
-    return std::min(value, std::numeric_limits<float>::max());
+    return std::min(b.phi * emitted * cos_i / dist2, std::numeric_limits<float>::max());
 }
 
 float orientation_measure(float cos_o, float cos_e) {
@@ -126,7 +139,7 @@ void LightBvh::build(const std::vector<LightBounds>& bounds) {
     std::vector<Item> items;
     for (std::uint32_t i = 0; i < bounds.size(); ++i) {
         if (bounds[i].phi > 0 && std::isfinite(bounds[i].phi) && !bounds[i].box.empty())
-            items.push_back({bounds[i], centre(bounds[i].box), i});
+            items.push_back({bounds[i], box_centre(bounds[i].box), i});
     }
     if (items.empty()) return;
     nodes_.reserve(2 * items.size() - 1);
@@ -146,7 +159,7 @@ void LightBvh::build_node(std::vector<Item>& items, std::size_t begin, std::size
         all = unite(all, items[i].bounds);
         centroids.extend(items[i].centroid);
     }
-    nodes_[me].bounds = all;
+    nodes_[me].bounds = PackedLightBounds::from(all);
     if (end - begin == 1) {
         nodes_[me].leaf = true;
         nodes_[me].index = items[begin].light;

@@ -33,13 +33,27 @@ struct LightBounds {
 /// Bounds of the union (the cone: the smallest that holds both cones).
 LightBounds unite(const LightBounds& a, const LightBounds& b);
 
+/// LightBounds as the traversal reads them: the box by its bounding sphere, the sine of
+/// theta_o kept beside its cosine.
+struct PackedLightBounds {
+    Point3 centre;
+    float radius = 0;
+    Vector3 w{0, 0, 1};
+    float phi = 0;
+    float cos_o = 1, sin_o = 0, cos_e = 0;
+    bool two_sided = false;
+    static PackedLightBounds from(const LightBounds& b);
+};
+
 /// The estimate of what lights within `b` send to point p on a surface with unit normal n (a zero
 /// normal: a point in a medium, which receives from every side): phi cos(theta') cos(theta_i') /
 /// d^2, with d the distance to the box's centre (at least the box's half diagonal), theta' the
 /// smallest angle between an emitted direction and the direction to p that the box allows, and
 /// theta_i' the smallest angle between n (either side) and a direction into the box. 0 when
-/// theta' is beyond theta_e.
+/// theta' is beyond theta_e (a hard-edged spot light, theta_e = 0, counts where theta' = 0).
 float importance(const LightBounds& b, Point3 p, Normal3 n);
+/// The same (the box by its bounding sphere, as importance(LightBounds) does too).
+float importance(const PackedLightBounds& b, Point3 p, Normal3 n);
 
 /// The orientation measure of a cone (the surface area orientation heuristic's M_Omega): the
 /// integral over directions of cos weighted by how far outside theta_o they are, 2 pi (1 - cos
@@ -54,7 +68,6 @@ public:
     void build(const std::vector<LightBounds>& bounds);
     bool empty() const { return nodes_.empty(); }
     std::size_t node_count() const { return nodes_.size(); }
-    const LightBounds& root() const { return nodes_.front().bounds; }
 
     /// A light for point p and normal n: `pmf` receives its probability. kNoBvhLight (pmf 0) when
     /// no light can reach p.
@@ -64,7 +77,7 @@ public:
 
 private:
     struct Node {
-        LightBounds bounds;
+        PackedLightBounds bounds;
         std::uint32_t index = 0;  ///< a leaf's light, an inner node's second child (the first follows it)
         bool leaf = false;
     };

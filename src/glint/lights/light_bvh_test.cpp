@@ -114,7 +114,11 @@ Scene many_lights(int count, bool distant) {
         const float power = 0.1f + 10 * rnd(14, u) * rnd(15, u);
         switch (i % 5) {
             case 0: s.lights.push_back(PointLight{c, Color{power}}); break;
-            case 1: s.lights.push_back(SpotLight{c, random_direction(16, u), Color{power}, std::cos(0.3f), std::cos(0.5f)}); break;
+            case 1: {  // every other one hard-edged
+                const float outer = i % 10 == 1 ? 0.3f : 0.5f;
+                s.lights.push_back(SpotLight{c, random_direction(16, u), Color{power}, std::cos(0.3f), std::cos(outer)});
+                break;
+            }
             case 2: s.quads.push_back(Quad::make(c, random_direction(17, u) * 0.3f, random_direction(18, u) * 0.3f, 1)); break;
             case 3: s.triangles.push_back({c, c + random_direction(19, u) * 0.4f, c + random_direction(20, u) * 0.4f, 2}); break;
             default: s.spheres.push_back({c, 0.2f, 1}); break;
