@@ -209,9 +209,8 @@ bool alpha_filter(const void* context, std::uint32_t prim, float b1, float b2) {
 
 }  // namespace
 
-bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, float b2, const Ray& ray) const {
+float Scene::mask_alpha(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const {
     const Instance& inst = instances[instance];
-    if (inst.alpha < 0) return true;
     const AlphaMask& mask = alpha_masks[static_cast<std::size_t>(inst.alpha)];
     const TriangleMesh& mesh = meshes[inst.mesh];
     const auto [p0, p1, p2] = mesh.vertices(prim);
@@ -222,7 +221,23 @@ bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, fl
     si.prim = prim;
     si.bary = {b1, b2};
     si.material = inst.material.value_or(mesh.material_of(prim));
-    const float a = average(texture(mask.texture, si));
+    return average(texture(mask.texture, si));
+}
+
+float Scene::alpha_coverage(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const {
+    const Instance& inst = instances[instance];
+    if (inst.alpha < 0) return 1;
+    const AlphaMask& mask = alpha_masks[static_cast<std::size_t>(inst.alpha)];
+    const float a = mask_alpha(instance, prim, b1, b2);
+    if (!mask.stochastic) return a >= mask.cutoff ? 1.0f : 0.0f;
+    return a > 0 ? std::min(a, 1.0f) : 0.0f;
+}
+
+bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, float b2, const Ray& ray) const {
+    const Instance& inst = instances[instance];
+    if (inst.alpha < 0) return true;
+    const AlphaMask& mask = alpha_masks[static_cast<std::size_t>(inst.alpha)];
+    const float a = mask_alpha(instance, prim, b1, b2);
     if (!mask.stochastic) return a >= mask.cutoff;
     if (a >= 1) return true;
     if (!(a > 0)) return false;
@@ -477,7 +492,8 @@ Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim) const {
 
 Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const {
     const Emission& e = emission_of(material);
-    if (!e.texture) return e.radiance;
+    const bool masked = l.kind == ShapeKind::kMesh && instances[l.index].alpha >= 0;
+    if (!e.texture && !masked) return e.radiance;
     SurfaceInteraction si{q, n, material, l.kind, l.index};
     si.ns = n;
     if (l.kind == ShapeKind::kMesh) {
@@ -487,7 +503,11 @@ Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, N
         si.prim = l.prim;
         si.bary = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
     }
-    return e.radiance * texture(*e.texture, si);
+    const Color radiance = e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
+    // Holes cut by an alpha mask emit nothing: a light sample there counts the mask's coverage
+    // (a cutoff mask's 0 or 1, a stochastic one's alpha: what rays that meet the point see on
+    // average).
+    return masked ? radiance * alpha_coverage(l.index, l.prim, si.bary.x, si.bary.y) : radiance;
 }
 
 std::size_t Scene::accel_memory_bytes() const {

@@ -144,6 +144,9 @@ struct Scene {
     /// Whether instance i's surface is there at triangle `prim`, barycentrics (b1, b2), for `ray`
     /// (world space): its alpha mask's verdict (true without one).
     bool alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, float b2, const Ray& ray) const;
+    /// The share of rays alpha_keeps lets meet that point: 1 or 0 for a cutoff mask, the alpha for
+    /// a stochastic one, 1 without a mask (light samples on emitting meshes are weighed by it).
+    float alpha_coverage(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const;
     /// The material of a hit without the full interaction.
     MaterialId material_of(const Hit& hit) const;
     /// The nearest hit that is not an interface surface, and whether one lies in the way: for
@@ -212,6 +215,8 @@ private:
     std::size_t committed_count_ = 0;
     bool has_media_ = false;
     bool has_interfaces_ = false;
+    /// An instance's alpha mask (which it must have) at barycentrics (b1, b2) of triangle prim.
+    float mask_alpha(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const;
     LightSampler light_sampler_;
 };
 

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "glint/samplers/hash.h"
+#include "glint/samplers/warp.h"
 #include "glint/scene.h"
 #include "sphere_chi2.h"
 
@@ -136,6 +137,51 @@ TEST(LightSampler, LightsArePickedInProportionToPower) {
     ASSERT_EQ(ls.count(), 2u);  // a black environment is no light
     EXPECT_NEAR(ls.pmf(0), 0.25f, 1e-6f);
     EXPECT_NEAR(ls.pmf(1), 0.75f, 1e-6f);
+}
+
+// An emitting mesh cut by an alpha mask emits nothing from its holes: light samples on it give
+// the irradiance that rays meeting the mesh find through the intersection's alpha test (the
+// independent path), for a cutoff mask (a checker cuts half) and a stochastic one (alpha 0.3).
+TEST(LightSampler, AlphaHolesInEmittersEmitNothing) {
+    for (const bool stochastic : {false, true}) {
+        Scene s;
+        s.materials = {DiffuseMaterial{0}};
+        s.textures = {ConstantTexture{Color{0}}};
+        s.textures.push_back(stochastic ? Texture{ConstantTexture{Color{0.3f}}}
+                                        : Texture{CheckerTexture{0.25f, Color{1}, Color{0}}});
+        s.emission = {Emission{Color{1}, false, std::nullopt}};
+        TriangleMesh mesh;  // a unit square at y = 1, facing down
+        mesh.positions = {{-0.5f, 1, -0.5f}, {0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}, {-0.5f, 1, 0.5f}};
+        mesh.indices = {0, 1, 2, 0, 2, 3};
+        s.meshes.push_back(mesh);
+        s.alpha_masks.push_back({1, 0.5f, stochastic});
+        s.instances.push_back({0, Transform{}, std::nullopt, 0});
+        s.background = ConstantBackground{Color{0}};
+        s.commit();
+        const LightSampler& ls = s.light_sampler();
+        ASSERT_EQ(ls.count(), 2u);
+        const Point3 p{0.1f, 0, 0.05f};
+        constexpr int kN = 400000;
+        double by_light = 0;
+        for (std::uint32_t t = 0; t < 2; ++t) {
+            const std::uint32_t l = ls.light_of(ShapeKind::kMesh, 0, t);
+            for (int i = 0; i < kN; ++i) {
+                const auto x = ls.sample_li(s, l, p, rnd2(60 + t, static_cast<std::uint32_t>(i)));
+                if (x && x->pdf > 0) by_light += x->L.g * std::max(0.0f, x->wi.y) / x->pdf;
+            }
+        }
+        by_light /= kN;
+        // Cosine-weighted directions: E = pi x the share of rays that meet the emitting mesh.
+        double met = 0;
+        for (int i = 0; i < 4 * kN; ++i) {
+            const Vector3 d = sample_cosine_hemisphere(rnd2(70, static_cast<std::uint32_t>(i)));
+            met += s.intersect(Ray{p, Vector3{d.x, d.z, d.y}}).has_value() ? 1 : 0;  // z up -> y up
+        }
+        const double by_rays = kPi * met / (4 * kN);
+        EXPECT_NEAR(by_light, by_rays, 0.01 * by_rays + 2e-3) << (stochastic ? "stochastic" : "cutoff");
+        // And the holes are really there: the whole square gives 0.74 here.
+        EXPECT_LT(by_light, stochastic ? 0.3 : 0.5);
+    }
 }
 
 TEST(SpotLight, FullInsideNoneOutsideSmoothBetween) {
