@@ -95,7 +95,11 @@ PackedLightBounds PackedLightBounds::from(const LightBounds& b) {
 
 float importance(const LightBounds& b, Point3 p, Normal3 n) { return importance(PackedLightBounds::from(b), p, n); }
 
-float importance(const PackedLightBounds& b, Point3 p, Normal3 n) {
+namespace {
+
+// importance(PackedLightBounds), inlined into the traversal so that the two children's
+// computations interleave.
+[[gnu::always_inline]] inline float importance_inline(const PackedLightBounds& b, Point3 p, Normal3 n) {
     const Vector3 d = p - b.centre;  // from the lights towards p
     const float d2 = dot(d, d);
     const float r2 = b.radius * b.radius;
@@ -123,6 +127,10 @@ float importance(const PackedLightBounds& b, Point3 p, Normal3 n) {
     const float dist2 = std::max({d2, r2, std::numeric_limits<float>::min()});
     return std::min(b.phi * emitted * cos_i / dist2, std::numeric_limits<float>::max());
 }
+
+}  // namespace
+
+float importance(const PackedLightBounds& b, Point3 p, Normal3 n) { return importance_inline(b, p, n); }
 
 float orientation_measure(float cos_o, float cos_e) {
     const float theta_o = safe_acos(cos_o);
@@ -234,7 +242,7 @@ std::uint32_t LightBvh::sample(Point3 p, Normal3 n, float u, float* pmf) const {
     std::uint32_t i = 0;
     while (!nodes_[i].leaf) {
         const std::uint32_t a = i + 1, b = nodes_[i].index;
-        const float ia = importance(nodes_[a].bounds, p, n), ib = importance(nodes_[b].bounds, p, n);
+        const float ia = importance_inline(nodes_[a].bounds, p, n), ib = importance_inline(nodes_[b].bounds, p, n);
         if (!(ia > 0 || ib > 0)) return kNoBvhLight;
         const float pa = static_cast<float>(first_share(ia, ib));
         if (u < pa) {
@@ -258,7 +266,7 @@ float LightBvh::pmf(Point3 p, Normal3 n, std::uint32_t light) const {
     std::uint32_t i = 0;
     for (int k = 0; k < depth_[light]; ++k) {
         const std::uint32_t a = i + 1, b = nodes_[i].index;
-        const float ia = importance(nodes_[a].bounds, p, n), ib = importance(nodes_[b].bounds, p, n);
+        const float ia = importance_inline(nodes_[a].bounds, p, n), ib = importance_inline(nodes_[b].bounds, p, n);
         if (!(ia > 0 || ib > 0)) return 0;
         const float pa = static_cast<float>(first_share(ia, ib));
         if ((trail >> k) & 1) {
