@@ -123,3 +123,23 @@ oiiotool "$denoise_tmp/64d.exr" --ch noisy.R,noisy.G,noisy.B --chnames R,G,B --c
   --mosaic 3x1 --colorconvert linear sRGB --resize 900x300 -o docs/images/denoise-features.png
 rm -rf "$denoise_tmp"
 echo docs/images/denoise-features.png
+# Many lights (docs/lights.md): the town square of bench/many_lights.py at equal time (8 s each,
+# 2 threads): the power sampler, the light BVH, and the BVH's 4096-spp reference.
+lights_tmp=$(mktemp -d)
+RUNS=1 OUT="$lights_tmp" bench/many_lights.sh "${1:-build}" > /dev/null
+for f in power-1 bvh-1 ref-bvh; do
+  oiiotool "$lights_tmp/$f.exr" --ch R,G,B --mulc 3 --colorconvert linear sRGB -o "$lights_tmp/$f.png"
+done
+oiiotool "$lights_tmp/power-1.png" "$lights_tmp/bvh-1.png" "$lights_tmp/ref-bvh.png" --mosaic 3x1 \
+  -o docs/images/many-lights-equal-time.png
+echo docs/images/many-lights-equal-time.png
+# pbrt-v4's features at 256 spp, around the lamp: the power sampler, then the light BVH.
+for s in power bvh; do
+  "$glint" render scenes/pbrt/features.pbrt --spp 256 --light-sampler "$s" -q -o "$lights_tmp/features-$s.exr"
+  oiiotool "$lights_tmp/features-$s.exr" --ch R,G,B --cut 380x200+80+160 --colorconvert linear sRGB \
+    -o "$lights_tmp/features-$s.png"
+done
+oiiotool "$lights_tmp/features-power.png" "$lights_tmp/features-bvh.png" --mosaic 2x1 --resize 600x158 \
+  -o docs/images/features-light-sampler.png
+rm -rf "$lights_tmp"
+echo docs/images/features-light-sampler.png
