@@ -4,8 +4,6 @@
 
 namespace glint {
 
-namespace {
-
 int wrap_index(int i, int n, WrapMode wrap) {
     if (wrap == WrapMode::kClamp) return std::clamp(i, 0, n - 1);
     if (wrap == WrapMode::kMirror) {  // ... 1 0 | 0 1 ... n-1 | n-1 ... 0 | 0 ...
@@ -17,8 +15,8 @@ int wrap_index(int i, int n, WrapMode wrap) {
     return m < 0 ? m + n : m;
 }
 
-// Texel coordinates of u scaled to n texels; guards huge or non-finite u (repeat: only the
-// fractional part matters; clamp: anything past the edge is the edge).
+// Guards huge or non-finite u (repeat: only the fractional part matters; clamp: anything past
+// the edge is the edge).
 float to_texels(Float u, int n, WrapMode wrap) {
     if (!std::isfinite(u)) return 0;
     if (wrap == WrapMode::kRepeat) u -= std::floor(u);
@@ -26,6 +24,8 @@ float to_texels(Float u, int n, WrapMode wrap) {
     else u = std::clamp(u, Float(-1), Float(2));
     return u * static_cast<float>(n) - 0.5f;
 }
+
+namespace {
 
 template <typename... F>
 struct Overloaded : F... {

@@ -41,6 +41,12 @@ struct Image {
 
 enum class WrapMode { kRepeat, kClamp, kMirror };
 
+/// Texel i of an axis of n texels, wrapped.
+int wrap_index(int i, int n, WrapMode wrap);
+/// u in texel coordinates of an axis of n texels (texel centres at integers): repeat and
+/// mirror bring it into one period first, clamp limits it; non-finite u gives 0.
+float to_texels(Float u, int n, WrapMode wrap);
+
 /// Bilinear interpolation of the four texels around uv (texel centres at u = (i + 1/2)/width
 /// and v = 1 - (j + 1/2)/height for column i, row j), with repeat or clamp addressing.
 Color bilinear(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wrap_v);
