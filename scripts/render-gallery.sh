@@ -143,3 +143,13 @@ oiiotool "$lights_tmp/features-power.png" "$lights_tmp/features-bvh.png" --mosai
   -o docs/images/features-light-sampler.png
 rm -rf "$lights_tmp"
 echo docs/images/features-light-sampler.png
+# Texture filtering (docs/textures.md): the receding floor at 1 spp unfiltered, 1 spp with EWA,
+# and the pixels' means (1024 spp, unfiltered), stacked.
+filter_tmp=$(mktemp -d)
+"$glint" render scenes/texture-filtering.yaml --texture-filter none -q -o "$filter_tmp/none.png"
+"$glint" render scenes/texture-filtering.yaml -q -o "$filter_tmp/ewa.png"
+"$glint" render scenes/texture-filtering.yaml --texture-filter none --spp 1024 -q -o "$filter_tmp/ref.png"
+oiiotool "$filter_tmp/none.png" "$filter_tmp/ewa.png" "$filter_tmp/ref.png" --mosaic 1x3 --resize 360x608 \
+  -o docs/images/texture-filtering.png
+rm -rf "$filter_tmp"
+echo docs/images/texture-filtering.png

@@ -247,6 +247,9 @@ int main(int argc, char** argv) {
     render->add_option("--light-sampler", args.light_sampler,
                        "How the path tracer chooses a light to sample: bvh (by what each light can send to the "
                        "shaded point; the default) or power (in proportion to power)");
+    render->add_option("--texture-filter", args.texture_filter,
+                       "How the path tracer reads textures over a pixel's footprint: ewa (the default), "
+                       "trilinear, or none (one point per sample, as before filtering)");
     render->add_option("--time", args.time,
                        "Time budget for rendering (90s, 10m, 1h30m): stops after the last sample pass "
                        "that fits and writes the image with the spp reached");

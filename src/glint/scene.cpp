@@ -181,8 +181,11 @@ void Scene::commit() {
         texture_reads_[i] = std::visit(
             [&](const auto& t) -> std::uint8_t {
                 using T = std::decay_t<decltype(t)>;
-                if constexpr (std::is_same_v<T, ImageTexture>)
-                    return t.uv_set == 0 ? kReadsUv : std::uint8_t(kReadsUv | kReadsMoreUvs);
+                if constexpr (std::is_same_v<T, ImageTexture>) {
+                    const std::uint8_t filtered = t.filtered() ? kReadsFootprint : 0;
+                    return std::uint8_t((t.uv_set == 0 ? kReadsUv : kReadsUv | kReadsMoreUvs) | filtered);
+                }
+                if constexpr (std::is_same_v<T, CheckerTexture>) return kReadsFootprint;
                 if constexpr (std::is_same_v<T, VertexColorTexture>) return kReadsVertexColor;
                 if constexpr (std::is_same_v<T, ScaleTexture>)
                     return texture_reads_[t.texture] | texture_reads_[t.factor];
@@ -191,6 +194,14 @@ void Scene::commit() {
                 return 0;
             },
             textures[i]);
+    }
+    // The pyramids of the images that filtered textures read (a third more texels each).
+    pyramids_.assign(images.size(), MipPyramid{});
+    for (const Texture& t : textures) {
+        const auto* image = std::get_if<ImageTexture>(&t);
+        if (!image || !image->filtered() || image->image >= images.size()) continue;
+        MipPyramid& p = pyramids_[image->image];
+        if (p.levels.empty()) p = MipPyramid::build(images[image->image]);
     }
 }
 
@@ -658,6 +669,19 @@ Color Scene::texture_general(TextureId id, const SurfaceInteraction& si) const {
         ctx.uv_set = &Scene::uv_set_of;
         ctx.uv_set_arg = &arg;
     }
+    if ((reads & kReadsFootprint) && footprint && footprint->at(si.p, si.n, ctx.dpdx, ctx.dpdy)) {
+        ctx.pyramids = &pyramids_;
+        if (reads & kReadsUv) {
+            const auto diff = [&](Vector3 dp) {
+                const Point2 q = uv_near(si, si.p + dp);
+                Point2 d{q.x - ctx.uv.x, q.y - ctx.uv.y};
+                if (si.shape == ShapeKind::kSphere) d.x -= std::round(d.x);  // u wraps around
+                return std::isfinite(d.x) && std::isfinite(d.y) ? d : Point2{};
+            };
+            ctx.duvdx = diff(ctx.dpdx);
+            ctx.duvdy = diff(ctx.dpdy);
+        }
+    }
     return evaluate(textures, images, id, ctx);
 }
 
@@ -676,6 +700,20 @@ Point2 Scene::uv(const SurfaceInteraction& si, int set) const {
             return m.interpolate(m.more_uvs[k], si.prim, si.bary.x, si.bary.y);
     }
     return uv(si);
+}
+
+Point2 Scene::uv_near(const SurfaceInteraction& si, Point3 q) const {
+    if (si.shape != ShapeKind::kMesh) {
+        SurfaceInteraction moved = si;
+        moved.p = q;
+        return uv(moved);
+    }
+    // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
+    const Instance& in = instances[si.shape_index];
+    const TriangleMesh& m = meshes[in.mesh];
+    const auto [p0, p1, p2] = m.vertices(si.prim);
+    const Point2 b = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+    return m.uvs.empty() ? b : m.interpolate(m.uvs, si.prim, b.x, b.y);
 }
 
 Point2 Scene::uv(const SurfaceInteraction& si) const {

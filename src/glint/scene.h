@@ -18,6 +18,7 @@
 #include "glint/accel/sphere_set.h"
 
 #include "glint/background.h"
+#include "glint/cameras/camera.h"
 #include "glint/math/bounds.h"
 #include "glint/interaction.h"
 #include "glint/lights/light.h"
@@ -30,6 +31,7 @@
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
 #include "glint/shapes/triangle.h"
+#include "glint/textures/mipmap.h"
 #include "glint/textures/texture.h"
 
 namespace glint {
@@ -75,6 +77,9 @@ struct Scene {
     Background background = SkyBackground{};
     AccelKind accel = AccelKind::kBvh;  ///< read by commit()
     LightSamplerKind light_sampling = LightSamplerKind::kBvh;  ///< read by commit()
+    /// The camera's pixel footprint: set (by build, for the path tracer), textures are filtered
+    /// over it (MIP maps for image textures, a box for checkers); unset, each reads one point.
+    std::optional<PixelFootprint> footprint;
     /// The mesh BVHs' traversal kernel, read by commit(); empty: default_simd_isa().
     std::optional<SimdIsa> mesh_isa;
 
@@ -111,7 +116,7 @@ struct Scene {
         // The article's textures inline; the rest go through the general (recursive) evaluate.
         const Texture& t = textures[id];
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
-        if (const auto* k = std::get_if<CheckerTexture>(&t)) return k->eval(si.p);
+        if (const auto* k = std::get_if<CheckerTexture>(&t); k && !footprint) return k->eval(si.p);
         return texture_general(id, si);
     }
     const Emission& emission_of(MaterialId m) const {
@@ -202,7 +207,7 @@ private:
     /// texture() for the textures that are neither constants nor checkers (out of line, so that
     /// the two common cases stay small enough to inline).
     Color texture_general(TextureId id, const SurfaceInteraction& si) const;
-    static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2, kReadsMoreUvs = 4;
+    static constexpr std::uint8_t kReadsUv = 1, kReadsVertexColor = 2, kReadsMoreUvs = 4, kReadsFootprint = 8;
     struct UvSetArg {
         const Scene* scene;
         const SurfaceInteraction* si;
@@ -215,6 +220,10 @@ private:
     std::size_t committed_count_ = 0;
     bool has_media_ = false;
     bool has_interfaces_ = false;
+    /// Per image: its MIP pyramid, for the images filtered textures read (built by commit()).
+    std::vector<MipPyramid> pyramids_;
+    /// uv (set 0) at point q of si's surface (q near si.p, on its tangent plane).
+    Point2 uv_near(const SurfaceInteraction& si, Point3 q) const;
     /// An instance's alpha mask (which it must have) at barycentrics (b1, b2) of triangle prim.
     float mask_alpha(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const;
     LightSampler light_sampler_;

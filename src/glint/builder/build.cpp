@@ -588,6 +588,9 @@ void build_integrator(const SceneDescription& d, const Overrides& overrides, Ren
                                kMaxDepth, diagnostics);
             if (overrides.light_sampler) s.light_sampler = *overrides.light_sampler;
             job.scene.light_sampling = s.light_sampler;
+            if (overrides.texture_filter) s.texture_filter = *overrides.texture_filter;
+            job.filter_textures = s.texture_filter != TextureFilter::kBilinear;
+            job.texture_filter = s.texture_filter;
             job.integrator = std::make_unique<PathIntegrator>(s);
             break;
         }
@@ -831,8 +834,23 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     if (overrides.accel) job.scene.accel = *overrides.accel;
 
     diagnostics.throw_if_errors();
+    if (job.filter_textures) {
+        for (Texture& t : job.scene.textures)
+            if (auto* image = std::get_if<ImageTexture>(&t)) image->filter = job.texture_filter;
+    }
     job.scene.commit();
+    set_texture_footprint(job);
     return job;
+}
+
+void set_texture_footprint(RenderJob& job) {
+    // The Whitted integrator reproduces the article's figures, which read one point per sample.
+    if (!job.filter_textures) {
+        job.scene.footprint.reset();
+        return;
+    }
+    const double spp = std::max(1, job.options.spp);
+    job.scene.footprint = job.camera.footprint(static_cast<Float>(std::max(0.125, 1 / std::sqrt(spp))));
 }
 
 }  // namespace glint

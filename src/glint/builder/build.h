@@ -25,6 +25,7 @@ struct Overrides {
     bool denoise = false;  ///< --denoise: denoise even if the scene does not ask
     std::optional<AccelKind> accel;  ///< --accel
     std::optional<LightSamplerKind> light_sampler;  ///< --light-sampler
+    std::optional<TextureFilter> texture_filter;     ///< --texture-filter
 };
 
 struct RenderJob {
@@ -38,6 +39,9 @@ struct RenderJob {
     DisplaySettings display;
     bool aovs = false;
     bool denoise = false;  ///< the written image is denoised (the features are rendered for it)
+    /// The path tracer's textures are filtered over the pixel footprint (set_texture_footprint).
+    bool filter_textures = false;
+    TextureFilter texture_filter = TextureFilter::kBilinear;
     /// Whether the render keeps the AOVs and the half images: to write them, or to denoise.
     bool features() const { return aovs || denoise; }
     std::string filename;  ///< the scene's film.filename, or empty
@@ -56,5 +60,9 @@ std::vector<std::filesystem::path> model_folders(const std::filesystem::path& sc
 
 RenderJob build(const SceneDescription& description, const Overrides& overrides,
                 std::shared_ptr<SourceFiles> sources);
+
+/// Gives the path tracer's scene the camera's pixel footprint (scaled by max(1/8, 1/sqrt(spp))),
+/// over which its textures are filtered; build calls it, and whoever replaces the camera after.
+void set_texture_footprint(RenderJob& job);
 
 }  // namespace glint

@@ -39,6 +39,42 @@ struct CameraBasis {
 /// H and U for a unit view direction v and a world up vector, with the fallback above.
 CameraBasis camera_basis(Vector3 v, Vector3 up);
 
+/// What one pixel covers around a point, for texture filtering (pbrt-v4's approximation, used at
+/// every hit, not only the camera's own): the ray from the camera through p and the rays through
+/// the neighbouring pixels (one right, one up) meet p's tangent plane at p, p + dpdx and p + dpdy;
+/// both are then scaled by `scale` (max(1/8, 1/sqrt(spp)): the pixel's samples already spread over
+/// it). A thin lens is taken as its pinhole.
+struct PixelFootprint {
+    Point3 position;
+    Vector3 view{0, 0, 1};
+    Vector3 h_step, u_step;  ///< one pixel right and up, on the plane at `near` along view
+    Float near = 1;
+    bool orthographic = false;
+    Float scale = 1;
+    /// False (and nothing written) where p is behind the camera or the plane is edge-on.
+    bool at(Point3 p, Normal3 n, Vector3& dpdx, Vector3& dpdy) const {
+        const Vector3 to_p = p - position;
+        const Float depth = dot(to_p, view);
+        if (!orthographic && !(depth > 0)) return false;
+        const Vector3 d = orthographic ? view : to_p * (near / depth);
+        const auto along = [&](Vector3 step, Vector3& out) {
+            // Perspective: the ray from the camera along d + step; orthographic: along d from p + step.
+            const Vector3 dir = orthographic ? d : d + step;
+            const Float denom = dot(dir, n);
+            if (!(std::abs(denom) > 1e-8f * length(dir))) return false;
+            const Vector3 from_p = orthographic ? step : -to_p;  // the ray's origin, relative to p
+            const Float t = -dot(from_p, n) / denom;
+            out = (from_p + dir * t) * scale;
+            return is_finite(out);
+        };
+        Vector3 x, y;
+        if (!along(h_step, x) || !along(u_step, y)) return false;
+        dpdx = x;
+        dpdy = y;
+        return true;
+    }
+};
+
 class Camera {
 public:
     Camera() = default;
@@ -100,6 +136,10 @@ public:
 
     const CameraBasis& basis() const { return basis_; }
     Vector3 view_direction() const { return v_; }
+    /// The pixel footprint model of this camera, scaled by `scale`.
+    PixelFootprint footprint(Float scale) const {
+        return {position_, v_, h_step_, u_step_, near_, orthographic_, scale};
+    }
 
 private:
     Point3 position_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 namespace glint {
 namespace {
@@ -186,6 +187,51 @@ TEST(ThinLens, LensSamplesCoverTheAperture) {
     }
     EXPECT_NEAR(mean_x / 1000, 0, 0.05);
     EXPECT_GT(max_r, 0.95);  // reaches the rim
+}
+
+// The footprint model against the rays of the neighbouring pixels themselves: where the ray
+// through pixel (x + 1, y) and through (x, y - 1) meet the plane of the point (for a pinhole and
+// an orthographic camera, a floor and a tilted wall).
+TEST(Camera, PixelFootprintIsWhereTheNeighbouringRaysMeetThePlane) {
+    const int w = 320, h = 200;
+    const Camera cams[] = {Camera::look_at({0, 2, -5}, {0.5f, 0, 3}, {0, 1, 0}, 45, w, h),
+                           Camera::orthographic({0, 2, -5}, Vector3{0.1f, -0.4f, 1}, {0, 1, 0}, 6, w, h)};
+    const std::pair<Normal3, float> planes[] = {{Normal3{0, 1, 0}, 0}, {normalize(Normal3{0.3f, 0.2f, -1}), -8}};
+    for (const Camera& cam : cams) {
+        const PixelFootprint fp = cam.footprint(1);
+        for (const auto& [n, offset] : planes) {
+            const auto meet = [&](float fx, float fy) -> std::optional<Point3> {
+                const Ray r = cam.generate_ray(fx, fy);
+                const float denom = dot(r.direction, n);
+                if (std::abs(denom) < 1e-6f) return std::nullopt;
+                const float t = (offset - dot(to_vector(r.origin), to_vector(n))) / denom;
+                if (!(t > 0)) return std::nullopt;
+                return r.at(t);
+            };
+            int checked = 0;
+            for (int k = 0; k < 40; ++k) {
+                const float fx = 20.0f + 7 * k, fy = 10.0f + 4.5f * k;
+                const auto p = meet(fx, fy), px = meet(fx + 1, fy), py = meet(fx, fy - 1);
+                if (!p || !px || !py) continue;
+                Vector3 dpdx, dpdy;
+                ASSERT_TRUE(fp.at(*p, n, dpdx, dpdy));
+                const float tol = 2e-3f * (length(*px - *p) + length(*py - *p));
+                EXPECT_NEAR(dpdx.x, (*px - *p).x, tol) << k;
+                EXPECT_NEAR(dpdx.y, (*px - *p).y, tol) << k;
+                EXPECT_NEAR(dpdx.z, (*px - *p).z, tol) << k;
+                EXPECT_NEAR(dpdy.x, (*py - *p).x, tol) << k;
+                EXPECT_NEAR(dpdy.y, (*py - *p).y, tol) << k;
+                EXPECT_NEAR(dpdy.z, (*py - *p).z, tol) << k;
+                ++checked;
+            }
+            EXPECT_GT(checked, 10);
+        }
+        // Scaled as asked.
+        Vector3 a, b, c, d;
+        ASSERT_TRUE(fp.at({0, 0, 3}, Normal3{0, 1, 0}, a, b));
+        ASSERT_TRUE(cam.footprint(0.25f).at({0, 0, 3}, Normal3{0, 1, 0}, c, d));
+        EXPECT_NEAR(c.z, 0.25f * a.z, 1e-6f);
+    }
 }
 
 }  // namespace

@@ -46,12 +46,15 @@ const std::vector<VocabularyEntry>& table() {
         {"integrator", "flat", {"type"}},
         {"integrator", "normals", {"type"}},
         {"integrator", "whitted", {"type", "max_depth", "ambient", "shadows"}},
-        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy", "light_sampler"}},
+        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy", "light_sampler", "texture_filter"}},
         {"strategy", "mis", {}},
         {"strategy", "light", {}},
         {"strategy", "bsdf", {}},
         {"light_sampler", "bvh", {}},
         {"light_sampler", "power", {}},
+        {"texture_filter", "ewa", {}},
+        {"texture_filter", "trilinear", {}},
+        {"texture_filter", "none", {}},
         {"background", "sky", {"type", "horizon", "zenith"}},
         {"background", "constant", {"type", "color"}},
         {"background", "environment", {"type", "filename", "scale"}},
@@ -152,5 +155,6 @@ std::string_view vocabulary_name(ToneCurve t) { return nth("tone_curve", static_
 std::string_view vocabulary_name(Encoding e) { return nth("encoding", static_cast<int>(e)); }
 std::string_view vocabulary_name(LightStrategy s) { return nth("strategy", static_cast<int>(s)); }
 std::string_view vocabulary_name(LightSamplerKind k) { return nth("light_sampler", static_cast<int>(k)); }
+std::string_view vocabulary_name(TextureFilter f) { return nth("texture_filter", static_cast<int>(f)); }
 
 }  // namespace glint

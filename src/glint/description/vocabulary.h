@@ -42,5 +42,6 @@ std::string_view vocabulary_name(ToneCurve t);
 std::string_view vocabulary_name(Encoding e);
 std::string_view vocabulary_name(LightStrategy s);
 std::string_view vocabulary_name(LightSamplerKind k);
+std::string_view vocabulary_name(TextureFilter f);
 
 }  // namespace glint

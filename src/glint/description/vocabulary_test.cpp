@@ -80,6 +80,8 @@ std::pair<std::string, std::string> with_bogus_value(const std::string& kind) {
     if (kind == "strategy") return {"integrator: {type: path, strategy: bogus}\n", "unknown strategy"};
     if (kind == "light_sampler")
         return {"integrator: {type: path, light_sampler: bogus}\n", "unknown light_sampler"};
+    if (kind == "texture_filter")
+        return {"integrator: {type: path, texture_filter: bogus}\n", "unknown texture_filter"};
     if (kind == "metal") return {"materials: {m: {type: conductor, metal: bogus}}\n", "unknown metal"};
     if (kind == "texture_encoding")
         return {"materials: {m: {type: diffuse, albedo: {type: image, filename: x.png, encoding: bogus}}}\n",
@@ -153,7 +155,7 @@ TEST(Vocabulary, EveryTypeValueAndKeyIsDocumentedInItsSection) {
         {"camera", "## `camera`"},         {"film", "## `film`"},           {"encoding", "## `film`"},
         {"tone_curve", "## `film`"},       {"filter", "## `film`"},         {"sampler", "## `sampler`"},
         {"sampler_type", "## `sampler`"},  {"integrator", "## `integrator`"}, {"strategy", "## `integrator`"},
-        {"light_sampler", "## `integrator`"},
+        {"light_sampler", "## `integrator`"}, {"texture_filter", "## `integrator`"},
         {"background", "## `background`"}, {"light", "## `lights`"},       {"material", "## `materials`"},
         {"metal", "## `materials`"},       {"texture", "## `materials`"},   {"texture_encoding", "## `materials`"},
         {"wrap", "## `materials`"},        {"medium", "## `media`"},        {"object", "## `objects`"},

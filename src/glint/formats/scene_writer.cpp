@@ -283,6 +283,8 @@ WrittenScene Writer::run() {
         if (p.strategy != LightStrategy::kMis) y += fmt::format(", strategy: {}", vocabulary_name(p.strategy));
         if (p.light_sampler != LightSamplerKind::kBvh)
             y += fmt::format(", light_sampler: {}", vocabulary_name(p.light_sampler));
+        if (p.texture_filter != TextureFilter::kEwa)
+            y += fmt::format(", texture_filter: {}", vocabulary_name(p.texture_filter));
         y += "}\n";
     } else if (d_.integrator.kind == IntegratorKind::kFlat || d_.integrator.kind == IntegratorKind::kNormals) {
         y += fmt::format("integrator: {{type: {}}}\n", d_.integrator.kind == IntegratorKind::kFlat ? "flat" : "normals");

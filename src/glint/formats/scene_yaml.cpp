@@ -392,6 +392,13 @@ void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
                                                   {{"bvh", LightSamplerKind::kBvh}, {"power", LightSamplerKind::kPower}}))
                 d.path.light_sampler = *k;
         }
+        if (auto n = m.get("texture_filter")) {
+            if (auto f = choice<TextureFilter>(*n, "texture_filter",
+                                               {{"ewa", TextureFilter::kEwa},
+                                                {"trilinear", TextureFilter::kTrilinear},
+                                                {"none", TextureFilter::kBilinear}}))
+                d.path.texture_filter = *f;
+        }
         return;
     }
     assign(m.get("ambient"), d.ambient,

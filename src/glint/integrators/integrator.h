@@ -96,6 +96,9 @@ struct PathSettings {
     LightStrategy strategy = LightStrategy::kMis;
     /// How the light to sample is chosen (lights/light_sampler.h); build copies it to the scene.
     LightSamplerKind light_sampler = LightSamplerKind::kBvh;
+    /// How image textures are read over a pixel's footprint (kBilinear: no filtering at all,
+    /// checkers included).
+    TextureFilter texture_filter = TextureFilter::kEwa;
 };
 
 /// Unidirectional path tracing with next-event estimation and multiple importance sampling

@@ -78,6 +78,14 @@ std::optional<LightSamplerKind> parse_light_sampler(const std::string& name) {
     throw IoError(fmt::format("--light-sampler: unknown light sampler '{}' (known: bvh, power)", name));
 }
 
+std::optional<TextureFilter> parse_texture_filter(const std::string& name) {
+    if (name.empty()) return std::nullopt;
+    if (name == "ewa") return TextureFilter::kEwa;
+    if (name == "trilinear") return TextureFilter::kTrilinear;
+    if (name == "none") return TextureFilter::kBilinear;
+    throw IoError(fmt::format("--texture-filter: unknown texture filter '{}' (known: ewa, trilinear, none)", name));
+}
+
 RenderJob load_job(const SessionOptions& args) {
     auto sources = std::make_shared<SourceFiles>();
     const bool mesh = !args.scene.empty() && scene_file_format(args.scene).mesh;
@@ -101,6 +109,7 @@ RenderJob load_job(const SessionOptions& args) {
     overrides.denoise = args.denoise;
     overrides.accel = parse_accel(args.accel);
     overrides.light_sampler = parse_light_sampler(args.light_sampler);
+    overrides.texture_filter = parse_texture_filter(args.texture_filter);
     RenderJob job = build(description, overrides, sources);
     if (mesh) {
         if (job.file_camera) {  // the file's own camera
@@ -114,6 +123,7 @@ RenderJob load_job(const SessionOptions& args) {
         } else {
             frame_bounds(job);
         }
+        set_texture_footprint(job);  // the camera changed
     }
     if (!args.camera.empty() && !mesh)
         throw IoError("--camera chooses a camera of a glTF file rendered directly; a scene file has its own");

@@ -39,6 +39,7 @@ struct SessionOptions {
     bool strict = false;  ///< pbrt: what glint cannot render is an error
     std::string accel;    ///< bvh, sbvh, embree; empty: the scene's or the default
     std::string light_sampler;  ///< bvh, power; empty: the scene's or the default
+    std::string texture_filter;  ///< ewa, trilinear, none; empty: the scene's or the default
     std::string camera;   ///< a glTF file rendered directly: its camera by name
     // Long renders.
     std::string time, checkpoint, checkpoint_every = "5m", resume, display;
@@ -101,6 +102,8 @@ WrittenScene convert_scene(const std::string& scene, const std::filesystem::path
 std::optional<AccelKind> parse_accel(const std::string& name);
 /// The LightSamplerKind for a --light-sampler name; nullopt for "". Throws IoError naming the known ones.
 std::optional<LightSamplerKind> parse_light_sampler(const std::string& name);
+/// The TextureFilter for a --texture-filter name; nullopt for "". Throws IoError naming the known ones.
+std::optional<TextureFilter> parse_texture_filter(const std::string& name);
 
 class RenderSession {
 public:

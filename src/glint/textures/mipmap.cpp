@@ -1,6 +1,7 @@
 #include "glint/textures/mipmap.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace glint {
@@ -89,6 +90,20 @@ Color between_levels(const Image& base, const MipPyramid& pyramid, float texels,
 
 }  // namespace
 
+float ewa_gaussian(double r2) {
+    constexpr int kEntries = 64;
+    static const auto table = [] {
+        std::array<float, kEntries> t{};
+        for (int i = 0; i < kEntries; ++i) {
+            const double r = static_cast<double>(i) / (kEntries - 1);
+            t[static_cast<std::size_t>(i)] = static_cast<float>(std::exp(-2 * r) - std::exp(-2.0));
+        }
+        return t;
+    }();
+    const int i = std::clamp(static_cast<int>(r2 * (kEntries - 1)), 0, kEntries - 1);
+    return table[static_cast<std::size_t>(i)];
+}
+
 MipPyramid MipPyramid::build(const Image& image) {
     MipPyramid p;
     if (image.width <= 0 || image.height <= 0) return p;
@@ -132,6 +147,7 @@ Color ewa(const Image& base, const MipPyramid& pyramid, Point2 uv, Point2 d0, Po
     if (!(shorter > 0)) return bilinear(base, uv, wrap_u, wrap_v);
     const float texels = shorter * static_cast<float>(std::max(base.width, base.height));
     return between_levels(base, pyramid, texels, [&](int, const Image& image) {
+        if (image.width == 1 && image.height == 1) return image.texel(0, 0);
         // Texel space of this level: v = 0 is the bottom row, so the t axis runs against v.
         const float s = to_texels(uv.x, image.width, wrap_u), t = to_texels(1 - uv.y, image.height, wrap_v);
         const float w = static_cast<float>(image.width), h = static_cast<float>(image.height);

@@ -3,6 +3,7 @@
 // downsample of the one before, and lookups over a footprint in uv: trilinear (isotropic,
 // Williams 1983) and EWA (an elliptical Gaussian, Heckbert 1989, with pbrt's anisotropy clamp).
 // A lookup whose footprint is below a texel reads level 0 bilinearly, as an unfiltered one does.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -37,10 +38,15 @@ Color trilinear(const Image& base, const MipPyramid& pyramid, Point2 uv, Float w
 Color ewa(const Image& base, const MipPyramid& pyramid, Point2 uv, Point2 d0, Point2 d1, WrapMode wrap_u,
           WrapMode wrap_v);
 
+/// exp(-2 r^2) - exp(-2) for r^2 in [0, 1), from a table of 64 entries (pbrt's Gaussian for EWA).
+float ewa_gaussian(double r2);
+
 /// The elliptical filter's weights at one level: for texel coordinates (s, t) (texel centres at
 /// integers) and the texel-space differentials d0, d1, calls `each(x, y, w)` for every texel
 /// inside the ellipse they span (widened by a texel, so that it always holds one) with its weight
-/// exp(-2 r^2) - exp(-2), r^2 the texel's squared radius in the ellipse; returns their sum.
+/// ewa_gaussian(r^2), r^2 the texel's squared radius in the ellipse; returns their sum. The
+/// ellipse is cut to 32 texels either side of the centre (a lookup on its proper level never
+/// reaches that).
 template <typename Each>
 double ewa_weights(Float s, Float t, Point2 d0, Point2 d1, Each each) {
     double a = double(d0.y) * d0.y + double(d1.y) * d1.y + 1;
@@ -49,10 +55,10 @@ double ewa_weights(Float s, Float t, Point2 d0, Point2 d1, Each each) {
     const double inv_f = 1 / (a * c - b * b * 0.25);
     a *= inv_f, b *= inv_f, c *= inv_f;
     const double det = 4 * a * c - b * b;
-    const double half_s = 2 * std::sqrt(det * c) / det, half_t = 2 * std::sqrt(a * det) / det;
+    const double half_s = std::min(2 * std::sqrt(det * c) / det, 32.0), half_t = std::min(2 * std::sqrt(a * det) / det, 32.0);
+    if (!(half_s >= 0 && half_t >= 0)) return 0;
     const int s0 = static_cast<int>(std::ceil(s - half_s)), s1 = static_cast<int>(std::floor(s + half_s));
     const int t0 = static_cast<int>(std::ceil(t - half_t)), t1 = static_cast<int>(std::floor(t + half_t));
-    const double edge = std::exp(-2.0);
     double sum = 0;
     for (int y = t0; y <= t1; ++y) {
         const double dt = y - double(t);
@@ -60,7 +66,7 @@ double ewa_weights(Float s, Float t, Point2 d0, Point2 d1, Each each) {
             const double ds = x - double(s);
             const double r2 = a * ds * ds + b * ds * dt + c * dt * dt;
             if (r2 >= 1) continue;
-            const double w = std::exp(-2 * r2) - edge;
+            const double w = ewa_gaussian(r2);
             sum += w;
             each(x, y, w);
         }

@@ -1,6 +1,9 @@
 #include "glint/textures/texture.h"
 
 #include <algorithm>
+#include <cstdint>
+
+#include "glint/textures/mipmap.h"
 
 namespace glint {
 
@@ -23,6 +26,28 @@ float to_texels(Float u, int n, WrapMode wrap) {
     else if (wrap == WrapMode::kMirror) u -= 2 * std::floor(u / 2);  // one period of the mirror
     else u = std::clamp(u, Float(-1), Float(2));
     return u * static_cast<float>(n) - 0.5f;
+}
+
+Color CheckerTexture::eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const {
+    // The square wave (-1)^floor(x) and its integral from 0, a triangle wave of period 2.
+    const auto wave = [](double x) { return (static_cast<std::int64_t>(std::floor(x)) & 1) == 0 ? 1.0 : -1.0; };
+    const auto integral = [](double x) { return 1 - std::abs(x - 2 * std::floor(x / 2) - 1); };
+    double h[3], widest = 0;
+    for (int a = 0; a < 3; ++a) {
+        h[a] = 0.5 * (std::abs(dpdx[a]) + std::abs(dpdy[a])) / size;
+        widest = std::max(widest, h[a]);
+    }
+    if (!(widest > 0)) return eval(p);
+    double product = 1;
+    for (int a = 0; a < 3; ++a) {
+        const double x = static_cast<double>(p[a]) / size;
+        if (!std::isfinite(x) || !std::isfinite(h[a]) || std::abs(x) > 0x1p52) return eval(p);
+        // An axis the footprint hardly spans (a plane's normal axis, up to rounding) is read at the
+        // point: a plane lying on a cell boundary would otherwise average both sides to grey.
+        product *= h[a] > 1e-3 * widest ? (integral(x + h[a]) - integral(x - h[a])) / (2 * h[a]) : wave(x);
+    }
+    const float k = static_cast<float>(product);
+    return (even + odd) * 0.5f + (even - odd) * (0.5f * k);
 }
 
 namespace {
@@ -69,13 +94,31 @@ Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& i
         Overloaded{
             [](const ConstantTexture& t) { return t.value; },
             [&](const VertexColorTexture& t) { return t.alpha ? Color{ctx.vertex_alpha} : ctx.vertex_color; },
-            [&](const CheckerTexture& t) { return t.eval(ctx.p); },
+            [&](const CheckerTexture& t) {
+                const bool footprint = dot(ctx.dpdx, ctx.dpdx) > 0 || dot(ctx.dpdy, ctx.dpdy) > 0;
+                return footprint ? t.eval_filtered(ctx.p, ctx.dpdx, ctx.dpdy) : t.eval(ctx.p);
+            },
             [&](const ImageTexture& t) {
                 const auto& m = t.uv_transform;
                 const Point2 st = t.uv_set == 0 || !ctx.uv_set ? ctx.uv : ctx.uv_set(ctx.uv_set_arg, t.uv_set);
                 const Point2 uv{m[0] * st.x + m[1] * st.y + m[2], m[3] * st.x + m[4] * st.y + m[5]};
                 const Point2 at{uv.x / t.size, uv.y / t.size};
                 if (t.alpha) return Color{bilinear_alpha(images[t.image], at, t.wrap, t.wrap_v)};
+                const bool footprint = ctx.duvdx.x != 0 || ctx.duvdx.y != 0 || ctx.duvdy.x != 0 || ctx.duvdy.y != 0;
+                if (footprint && t.filtered() && ctx.pyramids && t.image < ctx.pyramids->size() &&
+                    !(*ctx.pyramids)[t.image].levels.empty()) {
+                    // The differentials through the texture's own linear map.
+                    const auto map = [&](Point2 d) {
+                        return Point2{(m[0] * d.x + m[1] * d.y) / t.size, (m[3] * d.x + m[4] * d.y) / t.size};
+                    };
+                    const Point2 d0 = map(ctx.duvdx), d1 = map(ctx.duvdy);
+                    const MipPyramid& pyramid = (*ctx.pyramids)[t.image];
+                    if (t.filter == TextureFilter::kTrilinear) {
+                        const float width = 2 * std::max({std::abs(d0.x), std::abs(d0.y), std::abs(d1.x), std::abs(d1.y)});
+                        return trilinear(images[t.image], pyramid, at, width, t.wrap, t.wrap_v);
+                    }
+                    return ewa(images[t.image], pyramid, at, d0, d1, t.wrap, t.wrap_v);
+                }
                 return bilinear(images[t.image], at, t.wrap, t.wrap_v);
             },
             [&](const ScaleTexture& t) {

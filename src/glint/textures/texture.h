@@ -15,6 +15,7 @@ namespace glint {
 
 using TextureId = std::uint32_t;
 using ImageId = std::uint32_t;
+struct MipPyramid;  // textures/mipmap.h
 
 struct TextureContext {
     Point3 p;
@@ -25,6 +26,12 @@ struct TextureContext {
     /// asks for one; null or returning set 0's where the surface has no such set.
     Point2 (*uv_set)(const void* arg, int set) = nullptr;
     const void* uv_set_arg = nullptr;
+    /// The pixel's footprint (cameras/camera.h, PixelFootprint): how p and uv (set 0) change from
+    /// one pixel to the next; zero where textures are not filtered. `pyramids`: the MIP pyramid of
+    /// each image (empty for images no filtered texture reads).
+    Vector3 dpdx{}, dpdy{};
+    Point2 duvdx{}, duvdy{};
+    const std::vector<MipPyramid>* pyramids = nullptr;
 };
 
 /// Linear RGB texels, row 0 at the top of the image. Texture coordinates follow the OBJ, pbrt and
@@ -40,6 +47,10 @@ struct Image {
 };
 
 enum class WrapMode { kRepeat, kClamp, kMirror };
+
+/// How an image texture is read over a pixel's footprint: an elliptically weighted average (EWA,
+/// the default), trilinear MIP mapping, or one bilinear lookup at the point (no filtering).
+enum class TextureFilter { kEwa, kTrilinear, kBilinear };
 
 /// Texel i of an axis of n texels, wrapped.
 int wrap_index(int i, int n, WrapMode wrap);
@@ -76,6 +87,11 @@ struct CheckerTexture {
         const std::int64_t sum = cell(p.x) + cell(p.y) + cell(p.z);
         return (sum & 1) == 0 ? even : odd;
     }
+    /// The mean over the box around p that holds the pixel's footprint (half-widths
+    /// (|dpdx| + |dpdy|) / 2 per axis), in closed form: the checker is (even + odd) / 2 +
+    /// (even - odd) / 2 times a product of square waves, one per axis, and a box average of a
+    /// product of one-axis functions is the product of their averages.
+    Color eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const;
 };
 
 /// An image over uv, covering `size` x `size` units of uv space, after an optional affine map
@@ -88,6 +104,8 @@ struct ImageTexture {
     std::array<Float, 6> uv_transform{1, 0, 0, 0, 1, 0};
     std::uint8_t uv_set = 0;  ///< which texture coordinate set (glTF texCoord)
     bool alpha = false;       ///< the alpha channel (as grey) instead of the colour
+    TextureFilter filter = TextureFilter::kEwa;  ///< over the footprint of set 0's uv; others: bilinear
+    bool filtered() const { return filter != TextureFilter::kBilinear && uv_set == 0 && !alpha; }
 };
 
 /// texture * factor, per channel.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -80,6 +81,29 @@ TEST(Textures, ScaleMultipliesAndMixInterpolates) {
     EXPECT_EQ(evaluate(t, {}, 2, ctx), (Color{1, 2, 0.5f}));
     // Per channel: r all a (0.5), g halfway (1.5), b all b (0.25).
     EXPECT_EQ(evaluate(t, {}, 4, ctx), (Color{0.5f, 1.5f, 0.25f}));
+}
+
+// The closed-form box-filtered checker against the mean of point lookups over the same box.
+TEST(Checker, FilteredIsTheBoxMeanOfThePointLookups) {
+    const CheckerTexture c{0.5f, Color{0.9f}, Color{0.1f}};
+    for (int k = 0; k < 60; ++k) {
+        const Point3 p{0.37f * k - 7, 0.11f * k - 2, 0.23f * k - 5};
+        const Vector3 dpdx{0.05f * (k % 7), 0.02f * (k % 3), 0.1f * (k % 5) + 0.01f};
+        const Vector3 dpdy{0.03f * (k % 4), 0.07f * (k % 2), 0.02f * (k % 6)};
+        const float hx = 0.5f * (std::abs(dpdx.x) + std::abs(dpdy.x));
+        const float hy = 0.5f * (std::abs(dpdx.y) + std::abs(dpdy.y));
+        const float hz = 0.5f * (std::abs(dpdx.z) + std::abs(dpdy.z));
+        constexpr int kN = 40;
+        double sum = 0;
+        for (int i = 0; i < kN; ++i)
+            for (int j = 0; j < kN; ++j)
+                for (int l = 0; l < kN; ++l)
+                    sum += c.eval({p.x + hx * (2 * (i + 0.5f) / kN - 1), p.y + hy * (2 * (j + 0.5f) / kN - 1),
+                                   p.z + hz * (2 * (l + 0.5f) / kN - 1)}).g;
+        EXPECT_NEAR(c.eval_filtered(p, dpdx, dpdy).g, sum / (kN * kN * kN), 0.03) << k;
+    }
+    // No footprint: the point lookup itself.
+    EXPECT_EQ(c.eval_filtered({0.1f, 0.2f, 0.7f}, {}, {}).g, c.eval({0.1f, 0.2f, 0.7f}).g);
 }
 
 }  // namespace
