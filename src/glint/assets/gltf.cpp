@@ -666,7 +666,8 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
 
 ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name, double time) {
     const std::string file = path.string();
-    if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: cannot open: no such file", file));
+    if (std::error_code ec; !std::filesystem::exists(path, ec))
+        throw IoError(fmt::format("{}: cannot open: no such file", file));
     tinygltf::TinyGLTF loader;
     // External buffers and images go through tinygltf's own reader, but only from regular files:
     // a uri naming a FIFO would block for ever, a device never end.

@@ -53,7 +53,8 @@ public:
         };
         if (const std::string why = why_not_readable(mtl); !why.empty()) return refuse("cannot read: it " + why);
         std::ifstream in(mtl, std::ios::binary);
-        if (!in) return refuse(std::filesystem::exists(mtl) ? "cannot open" : "no such file");
+        std::error_code ec;  // (a name too long to check is no such file, not an exception)
+        if (!in) return refuse(std::filesystem::exists(mtl, ec) ? "cannot open" : "no such file");
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         if (in.bad()) return refuse("cannot read");
         std::istringstream stream(text);
@@ -118,7 +119,7 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     d.color.value = kd;
     if (!m.diffuse_texname.empty()) {
         const std::filesystem::path tex = dir / m.diffuse_texname;
-        if (!std::filesystem::exists(tex))
+        if (std::error_code ec; !std::filesystem::exists(tex, ec))
             throw IoError(fmt::format("{}: material '{}': texture map_Kd '{}' not found (looked for {})",
                                       mtl.locate(m.name, m.diffuse_texname), m.name, m.diffuse_texname, tex.string()));
         d.color.kind = TextureDesc::Kind::kImage;
@@ -148,7 +149,7 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     const std::string normal_name = !m.normal_texname.empty() ? m.normal_texname : bump_is_normal ? m.bump_texname : "";
     if (!normal_name.empty()) {
         const std::filesystem::path tex = dir / normal_name;
-        if (!std::filesystem::exists(tex))
+        if (std::error_code ec; !std::filesystem::exists(tex, ec))
             throw IoError(fmt::format("{}: material '{}': normal map '{}' not found (looked for {})",
                                       mtl.locate(m.name, normal_name), m.name, normal_name, tex.string()));
         TextureDesc n;

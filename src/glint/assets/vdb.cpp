@@ -22,7 +22,7 @@ const VdbModule& vdb() {
 void check_readable(const std::filesystem::path& path) {
     if (const std::string why = why_not_readable(path); !why.empty())
         throw IoError(fmt::format("{}: cannot read: it {}", path.string(), why));
-    if (!std::filesystem::exists(path)) throw IoError(fmt::format("{}: no such file", path.string()));
+    if (std::error_code ec; !std::filesystem::exists(path, ec)) throw IoError(fmt::format("{}: no such file", path.string()));
 }
 
 // Runs a module call, turning its errors (std::runtime_error with the whole message) into IoError.

@@ -49,12 +49,13 @@ struct FoundModel {
 };
 FoundModel find_model(const std::string& name, const std::filesystem::path& scene_dir) {
     const std::filesystem::path p = name;
-    if (p.is_absolute()) return {std::filesystem::exists(p) ? std::optional(p) : std::nullopt, p.string()};
+    std::error_code ec;  // a name the system cannot check (too long) is not found
+    if (p.is_absolute()) return {std::filesystem::exists(p, ec) ? std::optional(p) : std::nullopt, p.string()};
     const std::vector<std::filesystem::path> dirs = model_folders(scene_dir);
     FoundModel f;
     for (const auto& d : dirs) {
         f.looked += (f.looked.empty() ? "" : ", ") + d.string();
-        if (std::filesystem::exists(d / p)) {
+        if (std::filesystem::exists(d / p, ec)) {
             f.path = d / p;
             return f;
         }

@@ -51,8 +51,8 @@ private:
         const std::filesystem::path p(name);
         if (p.is_absolute()) return name;
         const std::filesystem::path at = source_dir_ / p;
-        if (!std::filesystem::exists(at)) return name;
         std::error_code ec;
+        if (!std::filesystem::exists(at, ec)) return name;
         const auto base = std::filesystem::absolute(out_dir_.empty() ? "." : out_dir_, ec);
         const auto rel = std::filesystem::relative(std::filesystem::absolute(at, ec), base, ec);
         return ec || rel.empty() ? std::filesystem::absolute(at).string() : rel.string();

@@ -239,7 +239,8 @@ const char* format_by_content(const fs::path& path) {
 }
 
 ExrChannels read_exr_channels(const fs::path& path, const std::vector<std::string>& wanted, long long max_pixels) {
-    if (!fs::is_regular_file(path)) throw IoError(fmt::format("cannot read image '{}': not found", path.string()));
+    if (std::error_code ec; !fs::is_regular_file(path, ec))
+        throw IoError(fmt::format("cannot read image '{}': not found", path.string()));
     if (const std::string why = exr_header_error(path); !why.empty())
         throw IoError(fmt::format("cannot read image '{}': {}", path.string(), why));
     return read_exr_planes(path, wanted, max_pixels);

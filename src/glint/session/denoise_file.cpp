@@ -29,7 +29,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
                                   in.string()));
     check_writable(out);
     std::error_code ec;
-    if (std::filesystem::exists(out) && std::filesystem::equivalent(in, out, ec))
+    if (std::filesystem::exists(out, ec) && std::filesystem::equivalent(in, out, ec))
         throw IoError(fmt::format("{}: the output would replace the input; name another file with -o", out.string()));
     ExrChannels c = read_exr_channels(in, kChannels, limit(Limit::kFilmPixels));
     for (std::size_t i = 0; i < 9; ++i) {

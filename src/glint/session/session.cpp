@@ -266,10 +266,11 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     // --resume FILE goes on writing FILE, unless --checkpoint names another.
     const std::filesystem::path checkpoint = !args.checkpoint.empty() ? args.checkpoint : args.resume;
     if (!checkpoint.empty()) {
-        if (std::filesystem::weakly_canonical(checkpoint) == std::filesystem::weakly_canonical(out))
+        std::error_code ec, ec2;
+        if (std::filesystem::weakly_canonical(checkpoint, ec) == std::filesystem::weakly_canonical(out, ec2) && !ec && !ec2)
             throw IoError(fmt::format("{}: the checkpoint and the image cannot be one file", out.string()));
         const auto dir = checkpoint.parent_path().empty() ? std::filesystem::path(".") : checkpoint.parent_path();
-        if (!std::filesystem::is_directory(dir))
+        if (!std::filesystem::is_directory(dir, ec))
             throw IoError(fmt::format("{}: cannot write: folder '{}' does not exist", checkpoint.string(), dir.string()));
     }
 
