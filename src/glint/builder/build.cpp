@@ -835,10 +835,10 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     if (overrides.accel) job.scene.accel = *overrides.accel;
 
     diagnostics.throw_if_errors();
-    if (job.filter_textures) {
-        for (Texture& t : job.scene.textures)
-            if (auto* image = std::get_if<ImageTexture>(&t)) image->filter = job.texture_filter;
-    }
+    // Unfiltered (the Whitted integrator, or `none`), no image needs a pyramid.
+    for (Texture& t : job.scene.textures)
+        if (auto* image = std::get_if<ImageTexture>(&t))
+            image->filter = job.filter_textures ? job.texture_filter : TextureFilter::kBilinear;
     job.scene.commit();
     set_texture_footprint(job);
     return job;
