@@ -199,7 +199,9 @@ TEST(Camera, PixelFootprintIsWhereTheNeighbouringRaysMeetThePlane) {
     const std::pair<Normal3, float> planes[] = {{Normal3{0, 1, 0}, 0}, {normalize(Normal3{0.3f, 0.2f, -1}), -8}};
     for (const Camera& cam : cams) {
         const PixelFootprint fp = cam.footprint(1);
-        for (const auto& [n, offset] : planes) {
+        for (const auto& plane : planes) {
+            const Normal3 n = plane.first;  // (not a structured binding: clang 14's lambdas cannot capture one)
+            const float offset = plane.second;
             const auto meet = [&](float fx, float fy) -> std::optional<Point3> {
                 const Ray r = cam.generate_ray(fx, fy);
                 const float denom = dot(r.direction, n);

@@ -47,7 +47,7 @@ double brute_force_texel(const Image& base, const Image& level, int x, int y) {
 }
 
 TEST(MipMap, EveryLevelIsTheAreaMeanOfTheImage) {
-    for (const auto [w, h] : {std::pair{8, 8}, {13, 7}, {5, 17}, {1, 6}}) {
+    for (const auto& [w, h] : {std::pair{8, 8}, {13, 7}, {5, 17}, {1, 6}}) {
         const Image base = random_image(w, h, static_cast<std::uint32_t>(w * 31 + h));
         const MipPyramid p = MipPyramid::build(base);
         const Image& top = p.level(base, p.count() - 1);
