@@ -508,11 +508,8 @@ Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, N
     SurfaceInteraction si{q, n, material, l.kind, l.index};
     si.ns = n;
     if (l.kind == ShapeKind::kMesh) {
-        // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
-        const Instance& in = instances[l.index];
-        const auto [p0, p1, p2] = meshes[in.mesh].vertices(l.prim);
         si.prim = l.prim;
-        si.bary = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+        si.bary = mesh_barycentrics(l.index, l.prim, q);
     }
     const Color radiance = e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
     // Holes cut by an alpha mask emit nothing: a light sample there counts the mask's coverage
@@ -708,12 +705,16 @@ Point2 Scene::uv_near(const SurfaceInteraction& si, Point3 q) const {
         moved.p = q;
         return uv(moved);
     }
-    // Barycentrics of q in the mesh's own vertex order (world_triangle may rewind).
-    const Instance& in = instances[si.shape_index];
-    const TriangleMesh& m = meshes[in.mesh];
-    const auto [p0, p1, p2] = m.vertices(si.prim);
-    const Point2 b = Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+    const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+    const Point2 b = mesh_barycentrics(si.shape_index, si.prim, q);
     return m.uvs.empty() ? b : m.interpolate(m.uvs, si.prim, b.x, b.y);
+}
+
+Point2 Scene::mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q) const {
+    // In the mesh's own vertex order (world_triangle may rewind).
+    const Instance& in = instances[inst];
+    const auto [p0, p1, p2] = meshes[in.mesh].vertices(prim);
+    return Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
 }
 
 Point2 Scene::uv(const SurfaceInteraction& si) const {

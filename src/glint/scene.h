@@ -224,6 +224,8 @@ private:
     std::vector<MipPyramid> pyramids_;
     /// uv (set 0) at point q of si's surface (q near si.p, on its tangent plane).
     Point2 uv_near(const SurfaceInteraction& si, Point3 q) const;
+    /// Barycentrics (b1, b2) of point q in the plane of instance inst's triangle prim.
+    Point2 mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q) const;
     /// An instance's alpha mask (which it must have) at barycentrics (b1, b2) of triangle prim.
     float mask_alpha(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const;
     LightSampler light_sampler_;

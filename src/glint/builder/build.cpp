@@ -590,7 +590,6 @@ void build_integrator(const SceneDescription& d, const Overrides& overrides, Ren
             if (overrides.light_sampler) s.light_sampler = *overrides.light_sampler;
             job.scene.light_sampling = s.light_sampler;
             if (overrides.texture_filter) s.texture_filter = *overrides.texture_filter;
-            job.filter_textures = s.texture_filter != TextureFilter::kBilinear;
             job.texture_filter = s.texture_filter;
             job.integrator = std::make_unique<PathIntegrator>(s);
             break;
@@ -838,7 +837,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     // Unfiltered (the Whitted integrator, or `none`), no image needs a pyramid.
     for (Texture& t : job.scene.textures)
         if (auto* image = std::get_if<ImageTexture>(&t))
-            image->filter = job.filter_textures ? job.texture_filter : TextureFilter::kBilinear;
+            image->filter = job.texture_filter;
     job.scene.commit();
     set_texture_footprint(job);
     return job;
@@ -846,7 +845,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
 
 void set_texture_footprint(RenderJob& job) {
     // The Whitted integrator reproduces the article's figures, which read one point per sample.
-    if (!job.filter_textures) {
+    if (!job.filter_textures()) {
         job.scene.footprint.reset();
         return;
     }

@@ -39,9 +39,10 @@ struct RenderJob {
     DisplaySettings display;
     bool aovs = false;
     bool denoise = false;  ///< the written image is denoised (the features are rendered for it)
-    /// The path tracer's textures are filtered over the pixel footprint (set_texture_footprint).
-    bool filter_textures = false;
+    /// How the path tracer's textures are read over the pixel footprint (set_texture_footprint);
+    /// kBilinear (the other integrators, or `none`): one point per sample.
     TextureFilter texture_filter = TextureFilter::kBilinear;
+    bool filter_textures() const { return texture_filter != TextureFilter::kBilinear; }
     /// Whether the render keeps the AOVs and the half images: to write them, or to denoise.
     bool features() const { return aovs || denoise; }
     std::string filename;  ///< the scene's film.filename, or empty

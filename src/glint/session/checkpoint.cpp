@@ -140,7 +140,7 @@ std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings
     add(&accel, sizeof accel);
     const int light_sampling = static_cast<int>(job.scene.light_sampling);
     add(&light_sampling, sizeof light_sampling);
-    const int texture_filter = job.filter_textures ? static_cast<int>(job.texture_filter) : -1;
+    const int texture_filter = static_cast<int>(job.texture_filter);
     add(&texture_filter, sizeof texture_filter);
     return h;
 }
