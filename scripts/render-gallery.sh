@@ -153,3 +153,11 @@ oiiotool "$filter_tmp/none.png" "$filter_tmp/ewa.png" "$filter_tmp/ref.png" --mo
   -o docs/images/texture-filtering.png
 rm -rf "$filter_tmp"
 echo docs/images/texture-filtering.png
+# Motion blur (docs/motion.md): the scene with its shutter closed and open, side by side.
+motion_tmp=$(mktemp -d)
+sed 's/  shutter: \[0, 1\]/  shutter: [0, 0]/' scenes/motion-blur.yaml > "$motion_tmp/still.yaml"
+"$glint" render "$motion_tmp/still.yaml" -q -o "$motion_tmp/still.png"
+"$glint" render scenes/motion-blur.yaml -q -o "$motion_tmp/blur.png"
+oiiotool "$motion_tmp/still.png" "$motion_tmp/blur.png" --mosaic 2x1 --resize 723x203 -o docs/images/motion-blur.png
+rm -rf "$motion_tmp"
+echo docs/images/motion-blur.png

@@ -28,6 +28,7 @@ struct SurfaceInteraction {
     Normal3 ns{0, 0, 0};        ///< unit shading normal (interpolated on meshes; n elsewhere)
     std::uint32_t prim = 0;     ///< kMesh: the triangle
     Point2 bary{};              ///< kMesh: (b1, b2)
+    Float time = 0;             ///< the ray's time (moving shapes are placed at it)
 };
 
 }  // namespace glint

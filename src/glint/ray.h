@@ -14,6 +14,9 @@ struct Ray {
     Point3 origin;
     Vector3 direction;
     Float t_max = std::numeric_limits<Float>::infinity();
+    /// When the ray is traced, in [0, 1] across the camera's shutter (math/motion.h): moving
+    /// shapes are met where they are at that time. Rays spawned from a hit keep their path's.
+    Float time = 0;
 
     constexpr Point3 at(Float t) const { return origin + direction * t; }
 };
@@ -21,7 +24,7 @@ struct Ray {
 /// A world ray in the object space of `t`, its direction not renormalised, so that t means the
 /// same point in both spaces.
 inline Ray object_ray(const Transform& t, const Ray& r) {
-    return {t.to_object.apply(r.origin), t.to_object.apply(r.direction), r.t_max};
+    return {t.to_object.apply(r.origin), t.to_object.apply(r.direction), r.t_max, r.time};
 }
 
 /// Hits closer than this are ignored, the "small epsilon" of every intersection test. Secondary
@@ -48,6 +51,7 @@ inline Ray spawn_ray(Point3 p, Normal3 n, Vector3 d,
 /// could end inside the light, which then blocked its own shadow ray.)
 inline Ray continue_ray(const Ray& ray, Point3 p, Normal3 n) {
     Ray next = spawn_ray(p, n, ray.direction, ray.t_max);
+    next.time = ray.time;
     if (std::isinf(ray.t_max)) return next;
     const Vector3 to_end = ray.at(ray.t_max) - next.origin;
     const Float dist = length(to_end);

@@ -58,6 +58,8 @@ bool any_hit_triangles(const std::vector<Triangle>& triangles, const Ray& ray) {
 // Top-level primitive references: the kind in the top 3 bits, the index below.
 constexpr int kRefShift = 29;
 constexpr std::uint32_t kRefMask = (1u << kRefShift) - 1;
+// The kind bits of a moving analytic shape's reference (its index is into Scene::moving_shapes).
+constexpr std::uint32_t kMovingRef = 7;
 std::uint32_t make_ref(ShapeKind k, std::uint32_t i) { return static_cast<std::uint32_t>(k) << kRefShift | i; }
 
 template <typename Shape>
@@ -88,6 +90,7 @@ const char* accel_name(AccelKind kind) {
 
 void Scene::commit() {
     if (bounded_count() > kRefMask) throw std::length_error("too many shapes and instances for one scene");
+    index_motion();
     // Bottom level: one BVH per mesh (not built when Embree replaces both levels, so that what
     // the Embree backend's build costs is Embree's alone).
     const bool ours = accel != AccelKind::kEmbree;
@@ -100,7 +103,7 @@ void Scene::commit() {
     // lanes, no traversal (accel/sphere_set.h).
     sphere_set_ = SphereSet{};
     if (ours && !spheres.empty() && spheres.size() <= SphereSet::kMaxSpheres && quads.empty() && disks.empty() &&
-        triangles.empty() && instances.empty())
+        triangles.empty() && instances.empty() && moving_shapes.empty())
         sphere_set_.build(spheres, isa);
     const auto mesh_bounds = [&](std::uint32_t m) {
         if (ours) return mesh_bvhs_[m].bounds();
@@ -116,7 +119,9 @@ void Scene::commit() {
     std::vector<std::uint32_t> refs;
     boxes.reserve(bounded_count());
     refs.reserve(bounded_count());
+    // A moving shape enters once, as a moving reference bounded over the whole shutter.
     const auto add = [&](ShapeKind k, std::uint32_t i, const Bounds3& b) {
+        if (k != ShapeKind::kMesh && motion_of(k, i)) return;
         boxes.push_back(b);
         refs.push_back(make_ref(k, i));
     };
@@ -144,7 +149,13 @@ void Scene::commit() {
         const Instance& inst = instances[i];
         if (inst.mesh >= meshes.size()) throw std::out_of_range("instance of a mesh that does not exist");
         const Bounds3 local = mesh_bounds(inst.mesh);
-        add(ShapeKind::kMesh, i, local.empty() ? Bounds3{} : inst.transform.bounds(local));
+        const Motion* moving = motion_of(ShapeKind::kMesh, i);
+        add(ShapeKind::kMesh, i,
+            local.empty() ? Bounds3{} : moving ? moving->swept_bounds(local) : inst.transform.bounds(local));
+    }
+    for (std::uint32_t m = 0; m < moving_shapes.size(); ++m) {
+        boxes.push_back(moving_bounds(m));
+        refs.push_back(kMovingRef << kRefShift | m);
     }
     BvhBuildOptions top_options;
     // An instance costs far more to enter than a node test: one per leaf, so that its box is
@@ -260,27 +271,30 @@ bool Scene::alpha_keeps(std::uint32_t instance, std::uint32_t prim, float b1, fl
 
 std::optional<MeshHit> Scene::closest_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
+    const Ray local = inst.motion < 0 ? object_ray(inst.transform, ray) : object_ray(placement(i, ray.time), ray);
     if (inst.alpha >= 0) {
         const AlphaContext context{this, i, &ray};
         const HitFilter filter{alpha_filter, &context};
-        return mesh_bvhs_[inst.mesh].closest(object_ray(inst.transform, ray), &filter);
+        return mesh_bvhs_[inst.mesh].closest(local, &filter);
     }
-    return mesh_bvhs_[inst.mesh].closest(object_ray(inst.transform, ray));
+    return mesh_bvhs_[inst.mesh].closest(local);
 }
 
 bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
     const Instance& inst = instances[i];
+    const Ray local = inst.motion < 0 ? object_ray(inst.transform, ray) : object_ray(placement(i, ray.time), ray);
     if (inst.alpha >= 0) {
         const AlphaContext context{this, i, &ray};
         const HitFilter filter{alpha_filter, &context};
-        return mesh_bvhs_[inst.mesh].any(object_ray(inst.transform, ray), &filter);
+        return mesh_bvhs_[inst.mesh].any(local, &filter);
     }
-    return mesh_bvhs_[inst.mesh].any(object_ray(inst.transform, ray));
+    return mesh_bvhs_[inst.mesh].any(local);
 }
 
 void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
                         std::optional<Hit>& best) const {
     const std::uint32_t i = ref & kRefMask;
+    if ((ref >> kRefShift) == kMovingRef) return closest_moving(i, ray, best);
     switch (static_cast<ShapeKind>(ref >> kRefShift)) {
         case ShapeKind::kSphere: closest_one(spheres[i], ShapeKind::kSphere, i, ray, best); break;
         case ShapeKind::kQuad: closest_one(quads[i], ShapeKind::kQuad, i, ray, best); break;
@@ -306,6 +320,7 @@ void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
 
 bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const {
     const std::uint32_t i = ref & kRefMask;
+    if ((ref >> kRefShift) == kMovingRef) return any_moving(i, ray);
     switch (static_cast<ShapeKind>(ref >> kRefShift)) {
         case ShapeKind::kSphere: return spheres[i].intersect(ray).has_value();
         case ShapeKind::kQuad: return quads[i].intersect(ray).has_value();
@@ -365,14 +380,31 @@ std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
     Ray ray = ray_in;
     std::optional<Hit> best;
     closest_hit<ShapeKind::kPlane>(planes, ray, best);
-    closest_hit<ShapeKind::kSphere>(spheres, ray, best);
-    closest_hit<ShapeKind::kQuad>(quads, ray, best);
-    closest_hit<ShapeKind::kDisk>(disks, ray, best);
-    closest_hit_triangles(triangles, ray, best);
+    if (moving_shapes.empty()) {
+        closest_hit<ShapeKind::kSphere>(spheres, ray, best);
+        closest_hit<ShapeKind::kQuad>(quads, ray, best);
+        closest_hit<ShapeKind::kDisk>(disks, ray, best);
+        closest_hit_triangles(triangles, ray, best);
+    } else {  // the still shapes, then each moving one where it is at the ray's time
+        const auto each = [&](ShapeKind kind, const auto& shapes) {
+            for (std::uint32_t i = 0; i < shapes.size(); ++i) {
+                if (motion_of(kind, i)) continue;
+                if (const auto t = shapes[i].intersect(ray)) {
+                    ray.t_max = *t;
+                    best = Hit{*t, kind, i};
+                }
+            }
+        };
+        each(ShapeKind::kSphere, spheres);
+        each(ShapeKind::kQuad, quads);
+        each(ShapeKind::kDisk, disks);
+        each(ShapeKind::kTriangle, triangles);
+        for (std::uint32_t m = 0; m < moving_shapes.size(); ++m) closest_moving(m, ray, best);
+    }
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
-        WatertightRay wr(object_ray(inst.transform, ray));
+        WatertightRay wr(object_ray(placement(i, ray.time), ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray_in)) {
@@ -385,13 +417,18 @@ std::optional<Hit> Scene::intersect_brute_force(const Ray& ray_in) const {
 }
 
 bool Scene::occluded_brute_force(const Ray& ray) const {
+    if (!moving_shapes.empty()) {
+        // The closest hit's answer, each shape where it is at the ray's time (a reference only).
+        const auto h = intersect_brute_force(ray);
+        return h.has_value();
+    }
     if (any_hit(planes, ray) || any_hit(spheres, ray) || any_hit(quads, ray) || any_hit(disks, ray) ||
         any_hit_triangles(triangles, ray))
         return true;
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
         const Instance& inst = instances[i];
         const TriangleMesh& m = meshes[inst.mesh];
-        const WatertightRay wr(object_ray(inst.transform, ray));
+        const WatertightRay wr(object_ray(placement(i, ray.time), ray));
         for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
             const auto [p0, p1, p2] = m.vertices(t);
             if (const auto h = intersect_triangle(p0, p1, p2, wr); h && alpha_keeps(i, t, h->b1, h->b2, ray))
@@ -489,27 +526,28 @@ bool Scene::flip_mesh_normal(const TriangleMesh& m, std::uint32_t prim, Vector3 
     return dot(sum, ng) < 0;
 }
 
-Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim) const {
+Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim, Float time) const {
     const Instance& in = instances[inst];
     const TriangleMesh& m = meshes[in.mesh];
     const auto [p0, p1, p2] = m.vertices(prim);
-    Triangle t{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2),
-               instance_material(inst, prim)};
+    const Transform x = placement(inst, time);
+    Triangle t{x.point(p0), x.point(p1), x.point(p2), instance_material(inst, prim)};
     // The object-space normal carried by the inverse transpose keeps the front side; the
     // winding of the transformed vertices flips under a mirror. Rewind to match.
-    if (in.transform.flips() != flip_mesh_normal(m, prim, cross(p1 - p0, p2 - p0))) std::swap(t.p1, t.p2);
+    if (x.flips() != flip_mesh_normal(m, prim, cross(p1 - p0, p2 - p0))) std::swap(t.p1, t.p2);
     return t;
 }
 
-Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const {
+Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n, Float time) const {
     const Emission& e = emission_of(material);
     const bool masked = l.kind == ShapeKind::kMesh && instances[l.index].alpha >= 0;
     if (!e.texture && !masked) return e.radiance;
     SurfaceInteraction si{q, n, material, l.kind, l.index};
     si.ns = n;
+    si.time = time;
     if (l.kind == ShapeKind::kMesh) {
         si.prim = l.prim;
-        si.bary = mesh_barycentrics(l.index, l.prim, q);
+        si.bary = mesh_barycentrics(l.index, l.prim, q, time);
     }
     const Color radiance = e.texture ? e.radiance * texture(*e.texture, si) : e.radiance;
     // Holes cut by an alpha mask emit nothing: a light sample there counts the mask's coverage
@@ -542,7 +580,9 @@ MaterialId Scene::surface_material(const SurfaceInteraction& si) const {
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
-    SurfaceInteraction si = base_interaction(ray, hit);
+    const Motion* moving = has_motion_ && hit.kind != ShapeKind::kMesh ? motion_of(hit.kind, hit.index) : nullptr;
+    SurfaceInteraction si = moving ? moving_interaction(*moving, ray, hit) : base_interaction(ray, hit);
+    si.time = ray.time;
     if (hit.kind != ShapeKind::kMesh) si.ns = si.n;
     else if (si.material < normal_maps.size() && normal_maps[si.material]) apply_normal_map(si, ray);
     return si;
@@ -550,6 +590,7 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
 
 void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     const Instance& inst = instances[si.shape_index];
+    const Transform place = placement(si.shape_index, si.time);
     const TriangleMesh& m = meshes[inst.mesh];
     if (m.uvs.empty()) return;  // no texture space to read the map in
     const NormalMap& map = *normal_maps[si.material];
@@ -565,10 +606,10 @@ void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     const Float det = du1 * dv2 - dv1 * du2;
     if (!(std::abs(det) > 0)) return;
     const Vector3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
-    Vector3 t = inst.transform.vector(dpdu);
+    Vector3 t = place.vector(dpdu);
     if (!m.tangents.empty()) {
         const auto tan = m.interpolate(m.tangents, si.prim, si.bary.x, si.bary.y);
-        t = inst.transform.vector(Vector3{tan[0], tan[1], tan[2]});
+        t = place.vector(Vector3{tan[0], tan[1], tan[2]});
     }
     const Vector3 n = to_vector(si.ns);
     t = t - n * dot(n, t);  // Gram-Schmidt against the shading normal
@@ -576,7 +617,7 @@ void Scene::apply_normal_map(SurfaceInteraction& si, const Ray& ray) const {
     if (!(len > 0) || !std::isfinite(len)) return;
     t = t / len;
     Vector3 b = cross(n, t);
-    if (dot(b, inst.transform.vector(dpdv)) < 0) b = -b;
+    if (dot(b, place.vector(dpdv)) < 0) b = -b;
     const Color c = texture(map.texture, si);
     const Vector3 local{(2 * c.r - 1) * map.scale, (2 * c.g - 1) * map.scale, 2 * c.b - 1};
     const Vector3 bent = t * local.x + b * local.y + n * local.z;
@@ -617,21 +658,22 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
             const Instance& inst = instances[hit.index];
             const TriangleMesh& m = meshes[inst.mesh];
             const std::uint32_t tri = hit.prim;
+            const Transform place = inst.motion < 0 ? inst.transform : placement(hit.index, ray.time);
             const auto [p0, p1, p2] = m.vertices(tri);
             // The point from the barycentrics (on the triangle, whatever the ray's round-off),
             // in object space, then carried to the world.
             const Point3 po = m.interpolate(m.positions, tri, hit.b1, hit.b2);
-            SurfaceInteraction si{inst.transform.point(po), Normal3{0, 0, 1},
+            SurfaceInteraction si{place.point(po), Normal3{0, 0, 1},
                                   instance_material(hit.index, tri), hit.kind, hit.index};
             si.prim = tri;
             si.bary = {hit.b1, hit.b2};
             const Vector3 face = cross(p1 - p0, p2 - p0);
-            Normal3 ng = normalize(inst.transform.normal(Normal3(face)));
+            Normal3 ng = normalize(place.normal(Normal3(face)));
             if (flip_mesh_normal(m, tri, face)) ng = -ng;
             si.n = ng;
             si.ns = ng;
             if (!m.normals.empty()) {
-                const Normal3 ns = inst.transform.normal(m.interpolate(m.normals, tri, hit.b1, hit.b2));
+                const Normal3 ns = place.normal(m.interpolate(m.normals, tri, hit.b1, hit.b2));
                 const Float len = length(ns);
                 // The shading normal is used only where the viewer is on the same side of it as
                 // of the true surface; elsewhere (grazing views of a coarse mesh) the geometric
@@ -706,18 +748,30 @@ Point2 Scene::uv_near(const SurfaceInteraction& si, Point3 q) const {
         return uv(moved);
     }
     const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
-    const Point2 b = mesh_barycentrics(si.shape_index, si.prim, q);
+    const Point2 b = mesh_barycentrics(si.shape_index, si.prim, q, si.time);
     return m.uvs.empty() ? b : m.interpolate(m.uvs, si.prim, b.x, b.y);
 }
 
-Point2 Scene::mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q) const {
+Point2 Scene::mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q, Float time) const {
     // In the mesh's own vertex order (world_triangle may rewind).
-    const Instance& in = instances[inst];
-    const auto [p0, p1, p2] = meshes[in.mesh].vertices(prim);
-    return Triangle{in.transform.point(p0), in.transform.point(p1), in.transform.point(p2)}.uv_at(q);
+    const auto [p0, p1, p2] = meshes[instances[inst].mesh].vertices(prim);
+    const Transform x = placement(inst, time);
+    return Triangle{x.point(p0), x.point(p1), x.point(p2)}.uv_at(q);
 }
 
 Point2 Scene::uv(const SurfaceInteraction& si) const {
+    if (has_motion_ && si.shape != ShapeKind::kMesh) {
+        if (const Motion* m = motion_of(si.shape, si.shape_index)) {
+            // Where the point is on the shape as stored: the texture moves with the shape.
+            SurfaceInteraction stored = si;
+            stored.p = m->at(si.time).to_object.apply(si.p);
+            return uv_static(stored);
+        }
+    }
+    return uv_static(si);
+}
+
+Point2 Scene::uv_static(const SurfaceInteraction& si) const {
     switch (si.shape) {
         case ShapeKind::kSphere: return spheres[si.shape_index].uv_at(si.p);
         case ShapeKind::kPlane: return planes[si.shape_index].uv_at(si.p);

@@ -9,6 +9,7 @@
 //
 // After filling or changing the arrays, call commit() before tracing (as with Embree's
 // rtcCommitScene): it builds the acceleration structures and the light sampler.
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "glint/background.h"
 #include "glint/cameras/camera.h"
 #include "glint/math/bounds.h"
+#include "glint/math/motion.h"
 #include "glint/interaction.h"
 #include "glint/lights/light.h"
 #include "glint/lights/light_sampler.h"
@@ -61,6 +63,19 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<TriangleMesh> meshes;
     std::vector<Instance> instances;
+    /// Motion over the shutter (math/motion.h), referenced by moving instances and shapes.
+    std::vector<Motion> motions;
+    /// An analytic shape (sphere, quad, disk or triangle; not a plane) that moves: stored in its
+    /// array in object space, placed in the world by motions[motion] (object-to-world keys), whose
+    /// keys must be similarities (rotation, translation, uniform scale: what keeps the shape a
+    /// sphere or a disk, and its light samples' solid-angle densities what they are). Instances
+    /// move by Instance::motion.
+    struct MovingShape {
+        ShapeKind kind;
+        std::uint32_t index;
+        std::uint32_t motion;
+    };
+    std::vector<MovingShape> moving_shapes;
     std::vector<AlphaMask> alpha_masks;
     std::vector<Material> materials;
     std::vector<Emission> emission;  ///< per material; missing entries emit nothing
@@ -97,9 +112,25 @@ struct Scene {
     std::optional<Hit> intersect_brute_force(const Ray& ray) const;
     bool occluded_brute_force(const Ray& ray) const;
 
-    /// Triangle `prim` of instance `inst` in world space, wound so that its normal() is the
-    /// geometric normal the interaction reports (area lights on meshes use it).
-    Triangle world_triangle(std::uint32_t inst, std::uint32_t prim) const;
+    /// Triangle `prim` of instance `inst` in world space at `time`, wound so that its normal()
+    /// is the geometric normal the interaction reports (area lights on meshes use it).
+    Triangle world_triangle(std::uint32_t inst, std::uint32_t prim, Float time = 0) const;
+    /// Whether anything moves over the shutter (set by commit()): only then do camera samples
+    /// draw a time.
+    bool has_motion() const { return has_motion_; }
+    /// The motion of a shape (kMesh: of instance `index`), or null when it is still.
+    const Motion* motion_of(ShapeKind kind, std::uint32_t index) const;
+    /// Moving shape m (an index into moving_shapes) against the ray at its time: lowers ray.t_max
+    /// and sets best for a hit nearer than it (scene_motion.cpp; both backends use it).
+    void closest_moving(std::uint32_t m, Ray& ray, std::optional<Hit>& best) const;
+    bool any_moving(std::uint32_t m, const Ray& ray) const;
+    /// Moving shape m's box over the whole shutter.
+    Bounds3 moving_bounds(std::uint32_t m) const;
+    /// Instance i's object-to-world transform at `time`.
+    Transform placement(std::uint32_t i, Float time) const {
+        const Instance& in = instances[i];
+        return in.motion < 0 ? in.transform : motions[static_cast<std::size_t>(in.motion)].at(time);
+    }
     MaterialId instance_material(std::uint32_t inst, std::uint32_t prim) const {
         const Instance& i = instances[inst];
         return i.material ? *i.material : meshes[i.mesh].material_of(prim);
@@ -132,7 +163,7 @@ struct Scene {
     }
     /// The radiance area light `l` (of `material`) emits at its point q (normal n): the
     /// material's emission, times its emission texture there, if any.
-    Color light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n) const;
+    Color light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n, Float time = 0) const;
     /// Whether the path tracer must track media: some medium or interface-only surface exists
     /// (set by commit()). Without, it runs the surface-only loop it always ran.
     bool has_media() const { return has_media_; }
@@ -189,6 +220,10 @@ private:
     /// Tests top-level primitive `ref` (kind in the top bits, index below) against the ray.
     void closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr, std::optional<Hit>& best) const;
     bool any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const;
+    /// The interaction of a hit on a moving analytic shape: found where the shape is stored, moved.
+    SurfaceInteraction moving_interaction(const Motion& motion, const Ray& ray, const Hit& hit) const;
+    /// Fills shape_motion_ and tells which shapes move (for commit()).
+    void index_motion();
     std::optional<MeshHit> closest_instance(std::uint32_t inst, const Ray& ray) const;
     bool any_instance(std::uint32_t inst, const Ray& ray) const;
     SurfaceInteraction base_interaction(const Ray& ray, const Hit& hit) const;
@@ -224,8 +259,13 @@ private:
     std::vector<MipPyramid> pyramids_;
     /// uv (set 0) at point q of si's surface (q near si.p, on its tangent plane).
     Point2 uv_near(const SurfaceInteraction& si, Point3 q) const;
+    /// uv(si) for a shape where it is stored.
+    Point2 uv_static(const SurfaceInteraction& si) const;
     /// Barycentrics (b1, b2) of point q in the plane of instance inst's triangle prim.
-    Point2 mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q) const;
+    Point2 mesh_barycentrics(std::uint32_t inst, std::uint32_t prim, Point3 q, Float time) const;
+    /// Per shape kind (not kMesh): each shape's index into motions, or -1; empty when none moves.
+    std::array<std::vector<std::int32_t>, 5> shape_motion_;
+    bool has_motion_ = false;
     /// An instance's alpha mask (which it must have) at barycentrics (b1, b2) of triangle prim.
     float mask_alpha(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const;
     LightSampler light_sampler_;

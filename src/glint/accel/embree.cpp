@@ -41,7 +41,9 @@ namespace {
     X(rtcSetGeometryIntersectFunction) \
     X(rtcSetGeometryOccludedFilterFunction) \
     X(rtcSetGeometryOccludedFunction) \
+    X(rtcSetGeometryTimeStepCount) \
     X(rtcSetGeometryTransform) \
+    X(rtcSetGeometryTransformQuaternion) \
     X(rtcSetGeometryUserData) \
     X(rtcSetGeometryUserPrimitiveCount) \
     X(rtcSetNewGeometryBuffer) \
@@ -72,12 +74,18 @@ const EmbreeLibrary& embree() {
     return library;
 }
 
-// Top-level geometry ids: fixed slots for the shape arrays, then one per instance.
-constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3, kFirstInstanceId = 4;
+// Top-level geometry ids: fixed slots for the shape arrays and the moving shapes, then one per
+// instance.
+constexpr unsigned kTrianglesId = 0, kSpheresId = 1, kQuadsId = 2, kDisksId = 3, kMovingId = 4, kFirstInstanceId = 5;
 
+// A shape array, whose moving members (Scene::moving_shapes) the callbacks pass over: those are
+// the moving geometry's.
 template <typename Shape>
 struct UserShapes {
     const std::vector<Shape>* shapes;
+    const Scene* scene = nullptr;
+    ShapeKind kind = ShapeKind::kSphere;
+    bool still(unsigned i) const { return !scene->has_motion() || !scene->motion_of(kind, i); }
 };
 
 // Spheres and disks: the box of the ball (a disk lies in its ball).
@@ -110,6 +118,7 @@ template <typename Shape>
 void shape_intersect(const RTCIntersectFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
+    if (!u->still(args->primID)) return;
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     const Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
                   {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z},
@@ -127,9 +136,43 @@ template <typename Shape>
 void shape_occluded(const RTCOccludedFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
+    if (!u->still(args->primID)) return;
     auto* r = reinterpret_cast<RTCRay*>(args->ray);
     const Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tfar};
     if ((*u->shapes)[args->primID].intersect(ray)) r->tfar = -std::numeric_limits<float>::infinity();
+}
+
+// The moving shapes: bounded over the shutter, tested at the ray's time by glint.
+void moving_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* scene = static_cast<const Scene*>(args->geometryUserPtr);
+    const Bounds3 bb = scene->moving_bounds(args->primID);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = bb.lo.x, b->lower_y = bb.lo.y, b->lower_z = bb.lo.z;
+    b->upper_x = bb.hi.x, b->upper_y = bb.hi.y, b->upper_z = bb.hi.z;
+}
+
+void moving_intersect(const RTCIntersectFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto* scene = static_cast<const Scene*>(args->geometryUserPtr);
+    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z}, {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}, rh->ray.tfar,
+            rh->ray.time};
+    std::optional<Hit> hit;
+    scene->closest_moving(args->primID, ray, hit);
+    if (!hit) return;
+    rh->ray.tfar = hit->t;
+    rh->hit.geomID = args->geomID;
+    rh->hit.primID = args->primID;
+    rh->hit.instID[0] = args->context->instID[0];
+    rh->hit.u = rh->hit.v = 0;
+}
+
+void moving_occluded(const RTCOccludedFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto* scene = static_cast<const Scene*>(args->geometryUserPtr);
+    auto* r = reinterpret_cast<RTCRay*>(args->ray);
+    const Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tfar, r->time};
+    if (scene->any_moving(args->primID, ray)) r->tfar = -std::numeric_limits<float>::infinity();
 }
 
 std::string error_name(RTCError e) {
@@ -154,6 +197,7 @@ struct EmbreeAccel::Impl {
     UserShapes<Sphere> spheres;
     UserShapes<Quad> quads;
     UserShapes<Disk> disks;
+    std::vector<std::uint32_t> triangle_ids;  ///< per primitive of the lone triangles: its index
 
     void check(const char* what) const {
         // Reading the error clears it: read once.
@@ -213,6 +257,38 @@ RTCGeometry triangle_geometry(RTCDevice device, const std::vector<Point3>& posit
     return g;
 }
 
+// A moving instance's keys as Embree's time steps: each as its decomposition T R S, which
+// Embree interpolates as glint does (slerp, lerp), where the stretch S has no shear; with shear
+// (Embree wants it upper triangular, glint's is symmetric) as matrices, which Embree blends
+// linearly (docs/motion.md).
+void set_motion(RTCGeometry g, const Motion& motion) {
+    const auto n = static_cast<unsigned>(motion.key_count());
+    embree().rtcSetGeometryTimeStepCount(g, n);
+    bool sheared = false;
+    for (unsigned k = 0; k < n; ++k) {
+        const auto s = motion.stretch(k);
+        sheared = sheared || s[0][1] != 0 || s[0][2] != 0 || s[1][2] != 0 || s[1][0] != 0 || s[2][0] != 0 || s[2][1] != 0;
+    }
+    for (unsigned k = 0; k < n; ++k) {
+        if (sheared) {
+            float xfm[12];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) xfm[4 * r + c] = motion.key(k).to_world.m[r][c];
+            embree().rtcSetGeometryTransform(g, k, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+            continue;
+        }
+        RTCQuaternionDecomposition q;
+        rtcInitQuaternionDecomposition(&q);
+        const auto s = motion.stretch(k);
+        rtcQuaternionDecompositionSetScale(&q, float(s[0][0]), float(s[1][1]), float(s[2][2]));
+        const auto r = motion.rotation(k);
+        rtcQuaternionDecompositionSetQuaternion(&q, float(r[0]), float(r[1]), float(r[2]), float(r[3]));
+        const Vector3 t = motion.translation(k);
+        rtcQuaternionDecompositionSetTranslation(&q, t.x, t.y, t.z);
+        embree().rtcSetGeometryTransformQuaternion(g, k, &q);
+    }
+}
+
 template <typename Shape>
 void attach_user(RTCDevice device, RTCScene scene, UserShapes<Shape>& user, unsigned id) {
     if (user.shapes->empty()) return;
@@ -259,10 +335,13 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
         }
         m.check("building the meshes");
         m.top = embree().rtcNewScene(m.device);
-        if (!scene.triangles.empty()) {
+        for (std::uint32_t i = 0; i < scene.triangles.size(); ++i)
+            if (!scene.has_motion() || !scene.motion_of(ShapeKind::kTriangle, i)) m.triangle_ids.push_back(i);
+        if (!m.triangle_ids.empty()) {
             std::vector<Point3> p;
             std::vector<std::uint32_t> ix;
-            for (const Triangle& t : scene.triangles) {
+            for (const std::uint32_t i : m.triangle_ids) {
+                const Triangle& t = scene.triangles[i];
                 ix.insert(ix.end(), {static_cast<std::uint32_t>(p.size()), static_cast<std::uint32_t>(p.size() + 1),
                                      static_cast<std::uint32_t>(p.size() + 2)});
                 p.insert(p.end(), {t.p0, t.p1, t.p2});
@@ -271,20 +350,35 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : impl_(new Impl) {
             embree().rtcAttachGeometryByID(m.top, g, kTrianglesId);
             embree().rtcReleaseGeometry(g);
         }
-        m.spheres = {&scene.spheres};
-        m.quads = {&scene.quads};
-        m.disks = {&scene.disks};
+        m.spheres = {&scene.spheres, &scene, ShapeKind::kSphere};
+        m.quads = {&scene.quads, &scene, ShapeKind::kQuad};
+        m.disks = {&scene.disks, &scene, ShapeKind::kDisk};
         attach_user(m.device, m.top, m.spheres, kSpheresId);
         attach_user(m.device, m.top, m.quads, kQuadsId);
         attach_user(m.device, m.top, m.disks, kDisksId);
+        if (!scene.moving_shapes.empty()) {
+            RTCGeometry g = embree().rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_USER);
+            embree().rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(scene.moving_shapes.size()));
+            embree().rtcSetGeometryUserData(g, const_cast<Scene*>(&scene));
+            embree().rtcSetGeometryBoundsFunction(g, moving_bounds, nullptr);
+            embree().rtcSetGeometryIntersectFunction(g, moving_intersect);
+            embree().rtcSetGeometryOccludedFunction(g, moving_occluded);
+            embree().rtcCommitGeometry(g);
+            embree().rtcAttachGeometryByID(m.top, g, kMovingId);
+            embree().rtcReleaseGeometry(g);
+        }
         for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
             const Instance& inst = scene.instances[i];
             RTCGeometry g = embree().rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
             embree().rtcSetGeometryInstancedScene(g, m.mesh_scenes[inst.mesh]);
-            float xfm[12];
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 4; ++c) xfm[4 * r + c] = inst.transform.to_world.m[r][c];
-            embree().rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+            if (const Motion* motion = scene.motion_of(ShapeKind::kMesh, i)) {
+                set_motion(g, *motion);
+            } else {
+                float xfm[12];
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 4; ++c) xfm[4 * r + c] = inst.transform.to_world.m[r][c];
+                embree().rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+            }
             embree().rtcCommitGeometry(g);
             embree().rtcAttachGeometryByID(m.top, g, kFirstInstanceId + i);
             embree().rtcReleaseGeometry(g);
@@ -313,6 +407,7 @@ void EmbreeAccel::closest(const Scene& scene, Ray& ray, std::optional<Hit>& best
     rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y, rh.ray.dir_z = ray.direction.z;
     rh.ray.tnear = kRayTMin;
     rh.ray.tfar = ray.t_max;
+    rh.ray.time = ray.time;
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -327,7 +422,12 @@ void EmbreeAccel::closest(const Scene& scene, Ray& ray, std::optional<Hit>& best
         return;
     }
     switch (rh.hit.geomID) {
-        case kTrianglesId: best = Hit{rh.ray.tfar, ShapeKind::kTriangle, rh.hit.primID}; break;
+        case kTrianglesId: best = Hit{rh.ray.tfar, ShapeKind::kTriangle, impl_->triangle_ids[rh.hit.primID]}; break;
+        case kMovingId: {
+            const auto& moving = scene.moving_shapes[rh.hit.primID];
+            best = Hit{rh.ray.tfar, moving.kind, moving.index};
+            break;
+        }
         case kSpheresId: best = Hit{rh.ray.tfar, ShapeKind::kSphere, rh.hit.primID}; break;
         case kQuadsId: best = Hit{rh.ray.tfar, ShapeKind::kQuad, rh.hit.primID}; break;
         case kDisksId: best = Hit{rh.ray.tfar, ShapeKind::kDisk, rh.hit.primID}; break;
@@ -345,6 +445,7 @@ bool EmbreeAccel::occluded(const Scene& scene, const Ray& ray) const {
     r.tnear = kRayTMin;
     // Embree's interval is closed at tfar; glint's excludes t_max: shrink by one ulp.
     r.tfar = std::nextafter(ray.t_max, 0.0f);
+    r.time = ray.time;
     r.mask = 0xffffffffu;
     embree().rtcOccluded1(impl_->top, &context, &r);
     return r.tfar < 0;

@@ -39,6 +39,10 @@ std::vector<Plane>& shapes_of(Scene& s, const Plane&) { return s.planes; }
 std::vector<Quad>& shapes_of(Scene& s, const Quad&) { return s.quads; }
 std::vector<Disk>& shapes_of(Scene& s, const Disk&) { return s.disks; }
 std::vector<Triangle>& shapes_of(Scene& s, const Triangle&) { return s.triangles; }
+ShapeKind kind_of(const Sphere&) { return ShapeKind::kSphere; }
+ShapeKind kind_of(const Quad&) { return ShapeKind::kQuad; }
+ShapeKind kind_of(const Disk&) { return ShapeKind::kDisk; }
+ShapeKind kind_of(const Triangle&) { return ShapeKind::kTriangle; }
 
 // A mesh file named in a scene: an absolute path as is; a relative one in the scene file's
 // folder, then in each folder of $GLINT_MODEL_PATH (colon-separated), then in the models folder
@@ -541,30 +545,46 @@ void build_film(const SceneDescription& d, const Overrides& overrides, RenderJob
 
 }
 
-void build_camera(const SceneDescription& d, RenderJob& job) {
-    if (const auto* a = std::get_if<ArticleCameraDesc>(&d.camera)) {
-        const Float vw = a->viewport_width.value_or(a->viewport_height *
-                                                    static_cast<Float>(job.width) /
-                                                    static_cast<Float>(job.height));
-        job.camera = Camera(a->position, a->direction, a->up, vw, a->viewport_height, a->near,
-                            job.width, job.height);
-        job.camera.set_lens(a->aperture_radius, a->focus_distance.value_or(a->near));
-        if (a->right_handed) job.camera.make_right_handed(job.width);
+Camera make_camera(const CameraDesc& desc, int width, int height) {
+    Camera camera;
+    if (const auto* a = std::get_if<ArticleCameraDesc>(&desc)) {
+        const Float vw = a->viewport_width.value_or(a->viewport_height * static_cast<Float>(width) /
+                                                    static_cast<Float>(height));
+        camera = Camera(a->position, a->direction, a->up, vw, a->viewport_height, a->near, width, height);
+        camera.set_lens(a->aperture_radius, a->focus_distance.value_or(a->near));
+        if (a->right_handed) camera.make_right_handed(width);
     } else {
-        const auto& l = std::get<LookAtCameraDesc>(d.camera);
+        const auto& l = std::get<LookAtCameraDesc>(desc);
         if (l.orthographic) {
-            job.camera = Camera::orthographic(l.from, l.to - l.from, l.up, l.height, job.width, job.height);
+            camera = Camera::orthographic(l.from, l.to - l.from, l.up, l.height, width, height);
         } else {
-            job.camera = Camera::look_at(l.from, l.to, l.up, l.fov, job.width, job.height);
+            camera = Camera::look_at(l.from, l.to, l.up, l.fov, width, height);
         }
         if (l.window) {
             const auto& w = *l.window;
-            job.camera.set_window(w[0], w[1], w[2], w[3], job.width);
+            camera.set_window(w[0], w[1], w[2], w[3], width);
         }
-        job.camera.set_lens(l.aperture_radius, l.focus_distance.value_or(length(l.to - l.from)));
-        if (l.right_handed) job.camera.make_right_handed(job.width);
+        camera.set_lens(l.aperture_radius, l.focus_distance.value_or(length(l.to - l.from)));
+        if (l.right_handed) camera.make_right_handed(width);
     }
+    return camera;
+}
 
+void build_camera(const SceneDescription& d, RenderJob& job, Diagnostics& diagnostics) {
+    job.camera = make_camera(d.camera, job.width, job.height);
+    if (d.camera_motion.size() < 2) return;
+    // A moving camera: its frame (right, up, view, position) at each key; what else changes
+    // (the field of view, the lens) is the first key's.
+    std::vector<Transform> frames;
+    for (const CameraDesc& c : d.camera_motion) {
+        const auto frame = make_camera(c, job.width, job.height).frame();
+        if (!frame) {
+            diagnostics.error(d.shutter_loc, "the camera's frame is degenerate at some time of the shutter");
+            return;
+        }
+        frames.push_back(*frame);
+    }
+    job.camera.set_motion(Motion(std::move(frames)));
 }
 
 void build_integrator(const SceneDescription& d, const Overrides& overrides, RenderJob& job,
@@ -627,6 +647,35 @@ public:
 
     void add_object(const ObjectDesc& o);
     void add_mesh_file(const ObjectDesc& o, const MeshFileDesc& file, MaterialId id);
+    std::optional<std::int32_t> add_motion(std::vector<Transform> keys, const ObjectDesc& o);
+    /// Makes `inst` move by `keys` (its transform the first); false after an error.
+    bool place_moving(Instance& inst, std::vector<Transform> keys, const ObjectDesc& o);
+    /// A moving analytic shape: kept in object space, placed by the object's motion.
+    template <typename S>
+    void add_moving_shape(const S& shape, const ObjectDesc& o) {
+        if constexpr (std::is_same_v<S, Plane>) {
+            diagnostics_.error(o.transform_loc, "a plane cannot move (it has no bounds to sweep); use a quad");
+        } else {
+            for (const Transform& k : o.motion)
+                if (!similarity_scale(k)) {
+                    diagnostics_.error(o.transform_loc, "a moving sphere, quad, disk or triangle may only rotate, "
+                                                        "translate and scale uniformly at every time of the shutter");
+                    return;
+                }
+            const auto m = add_motion(o.motion, o);
+            if (!m) return;
+            if (*m < 0) {  // keys alike: still after all
+                S placed = shape;
+                transform_shape(placed, o.motion.front());
+                shapes_of(scene_, placed).push_back(placed);
+                return;
+            }
+            auto& array = shapes_of(scene_, shape);
+            array.push_back(shape);
+            scene_.moving_shapes.push_back({kind_of(shape), static_cast<std::uint32_t>(array.size() - 1),
+                                            static_cast<std::uint32_t>(*m)});
+        }
+    }
 
 private:
     std::optional<MediumId> medium_id(const Located<std::string>& name) {
@@ -663,6 +712,29 @@ private:
     std::map<std::string, LoadedFile> loaded_;
     std::map<const TriangleMesh*, std::uint32_t> inline_meshes_;
 };
+
+// A motion's index in the scene, or -1 for keys that do not move (an error, located at the
+// object's transform, for a key that cannot be inverted).
+std::optional<std::int32_t> ContentsBuilder::add_motion(std::vector<Transform> keys, const ObjectDesc& o) {
+    try {
+        Motion m(std::move(keys));
+        if (!m.moves()) return -1;
+        scene_.motions.push_back(std::move(m));
+        return static_cast<std::int32_t>(scene_.motions.size() - 1);
+    } catch (const std::invalid_argument&) {
+        diagnostics_.error(o.transform_loc, "the object's transform is singular at some time of the shutter");
+        return std::nullopt;
+    }
+}
+
+bool ContentsBuilder::place_moving(Instance& inst, std::vector<Transform> keys, const ObjectDesc& o) {
+    const Transform first = keys.front();
+    const auto m = add_motion(std::move(keys), o);
+    if (!m) return false;
+    inst.transform = first;
+    inst.motion = *m;
+    return true;
+}
 
 // A mesh file's instances (its meshes and materials added on first use), its lights and cameras,
 // placed by the object's transform.
@@ -738,6 +810,11 @@ void ContentsBuilder::add_mesh_file(const ObjectDesc& o, const MeshFileDesc& fil
         const std::int32_t a = o.alpha || id != kNoImportedMaterial ? alpha : it->second.mesh_alpha.at(n.mesh);
         Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, a};
         if (id != kNoImportedMaterial) inst.material = id;
+        if (!o.motion.empty()) {
+            std::vector<Transform> keys;
+            for (const Transform& k : o.motion) keys.push_back(k * n.transform);
+            if (!place_moving(inst, std::move(keys), o)) return;
+        }
         scene_.instances.push_back(inst);
     }
 }
@@ -791,8 +868,9 @@ void ContentsBuilder::add_object(const ObjectDesc& o) {
             it = inline_meshes_.emplace(inline_mesh->mesh.get(), static_cast<std::uint32_t>(scene_.meshes.size())).first;
             scene_.meshes.push_back(std::move(m));
         }
-        scene_.instances.push_back(Instance{it->second, o.transform.value_or(Transform{}), id,
-                                           o.alpha ? materials_.add_alpha(*o.alpha) : -1});
+        Instance inst{it->second, o.transform.value_or(Transform{}), id, o.alpha ? materials_.add_alpha(*o.alpha) : -1};
+        if (!o.motion.empty() && !place_moving(inst, o.motion, o)) return;
+        scene_.instances.push_back(inst);
         return;
     }
     if (o.alpha) diagnostics_.error(o.alpha->loc, "alpha (a cut-out) applies to meshes only");
@@ -801,6 +879,10 @@ void ContentsBuilder::add_object(const ObjectDesc& o) {
             using S = decltype(shape);
             if constexpr (!std::is_same_v<S, MeshFileDesc> && !std::is_same_v<S, InlineMeshDesc>) {
                 shape.material = id;
+                if (!o.motion.empty()) {
+                    add_moving_shape(shape, o);
+                    return;
+                }
                 if (o.transform) {
                     if (const auto why = transform_shape(shape, *o.transform)) {
                         diagnostics_.error(o.transform_loc, *why);
@@ -826,7 +908,7 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
         job.notes.push_back(std::move(text));
     }
     build_film(d, overrides, job, diagnostics);
-    build_camera(d, job);
+    build_camera(d, job, diagnostics);
     build_integrator(d, overrides, job, diagnostics);
     ContentsBuilder contents(d, job, diagnostics);
     contents.add_media_and_materials();

@@ -25,7 +25,10 @@
 // direction: origin = P + A - zV, direction V; the viewport's size is then the visible extent in
 // world units. A window (pbrt's `screenwindow`) shows part of the viewport: [x0, x1] x [y0, y1]
 // in units of half the viewport's height, (0, 0) at its centre, y up.
+#include <memory>
+
 #include "glint/math/bounds.h"
+#include "glint/math/motion.h"
 #include "glint/ray.h"
 #include "glint/samplers/warp.h"
 
@@ -134,7 +137,43 @@ public:
         return Ray{origin, normalize(focus - origin)};
     }
 
+    /// Moves the camera over the shutter: `frames` are its camera-to-world frames (math/motion.h),
+    /// the first where this camera is; a ray is generated as at the opening, then carried by
+    /// frames.at(time) after the inverse of the first frame.
+    void set_motion(Motion frames) {
+        if (!frames.moves()) {
+            motion_ = nullptr;
+            return;
+        }
+        opening_ = frames.key(0).to_object;
+        motion_ = std::make_shared<const Motion>(std::move(frames));
+    }
+    bool moves() const { return motion_ != nullptr; }
+    const Motion* motion() const { return motion_.get(); }
+    /// `ray` (generated as at the opening) at time t in [0, 1] of the shutter: its time set, and
+    /// carried by the camera's motion if it moves.
+    Ray at_time(Ray ray, Float t) const {
+        ray.time = t;
+        if (!motion_) return ray;
+        const Matrix34 d = motion_->at(t).to_world * opening_;
+        ray.origin = d.apply(ray.origin);
+        ray.direction = normalize(d.apply(ray.direction));
+        return ray;
+    }
+
     const CameraBasis& basis() const { return basis_; }
+    /// Camera to world: right, up and view direction as the columns, the position last
+    /// (nullopt for a degenerate basis).
+    std::optional<Transform> frame() const {
+        Matrix34 m;
+        for (int i = 0; i < 3; ++i) {
+            m.m[i][0] = basis_.h[i];
+            m.m[i][1] = basis_.u[i];
+            m.m[i][2] = v_[i];
+            m.m[i][3] = position_[i];
+        }
+        return Transform::from(m);
+    }
     Vector3 view_direction() const { return v_; }
     /// The pixel footprint model of this camera, scaled by `scale`.
     PixelFootprint footprint(Float scale) const {
@@ -153,6 +192,8 @@ private:
     bool orthographic_ = false;
     Float aperture_radius_ = 0;
     Float focus_distance_ = 1;
+    std::shared_ptr<const Motion> motion_;  ///< null: still
+    Matrix34 opening_;                      ///< world to the first frame
 };
 
 /// A perspective camera that shows every corner of box `b` with a margin: it looks at the box's

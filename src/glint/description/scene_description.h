@@ -248,6 +248,9 @@ struct ObjectDesc {
     SourceLoc loc;
     std::optional<Transform> transform;  ///< object to world
     SourceLoc transform_loc;
+    /// Moving over the shutter: object-to-world transforms at evenly spaced times from its opening
+    /// to its close (math/motion.h; `transform`, if set, is the first); empty: still.
+    std::vector<Transform> motion;
     /// Names of the media inside and outside the object's surface (empty: not given; "none":
     /// vacuum). With either given the surface bounds a medium; an unset exterior is the scene's
     /// medium.
@@ -276,6 +279,13 @@ struct SceneDescription {
     std::vector<ObjectDesc> objects;
     /// What the reader approximated or left out (pbrt files), printed as located warnings.
     std::vector<Diagnostic> warnings;
+    /// The shutter: [open, close], in frames from `frame` (glint's YAML) or in the file's time
+    /// units (pbrt); open == close: an instant. Where something moves over it, camera rays carry a
+    /// time in it and the image is motion blurred (docs/motion.md).
+    std::array<double, 2> shutter{0, 0};
+    SourceLoc shutter_loc;
+    /// The camera at evenly spaced times over the shutter (the first = `camera`); empty: still.
+    std::vector<CameraDesc> camera_motion;
     /// Animation: the frame this description is of (keyframed values were read at it), frames
     /// per second (glTF animations are timed in seconds), and whether anything is keyframed.
     double frame = 0;

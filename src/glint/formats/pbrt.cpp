@@ -72,7 +72,10 @@ void Parser::directive(Stream& s, const Token& t, int depth) {
 
 bool Parser::transform_directive(Stream& s, const Token& t, const std::string& name) {
     std::vector<double> v;
-    const auto concat = [&](const M4& m) { gs_.ctm = gs_.ctm * m; };
+    const auto concat = [&](const M4& m) {
+        if (gs_.active & 1) gs_.ctm = gs_.ctm * m;
+        if (gs_.active & 2) gs_.ctm_end = gs_.ctm_end * m;
+    };
     if (name == "Translate") {
         if (numbers(s, t, 3, v)) concat(translate(v[0], v[1], v[2]));
     } else if (name == "Scale") {
@@ -99,7 +102,12 @@ bool Parser::transform_directive(Stream& s, const Token& t, const std::string& n
             M4 m;  // pbrt's matrices are given column by column
             for (int i = 0; i < 4; ++i)
                 for (int j = 0; j < 4; ++j) m.m[j][i] = v[static_cast<std::size_t>(4 * i + j)];
-            if (name == "Transform") gs_.ctm = m; else concat(m);
+            if (name == "Transform") {
+                if (gs_.active & 1) gs_.ctm = m;
+                if (gs_.active & 2) gs_.ctm_end = m;
+            } else {
+                concat(m);
+            }
         }
         if (bracket) {
             if (!s.done() && s.peek().kind == Token::Kind::kClose) s.next();
@@ -113,7 +121,7 @@ bool Parser::transform_directive(Stream& s, const Token& t, const std::string& n
             if (it == coordinate_systems_.end())
                 diag_.error(t.loc(), fmt::format("CoordSysTransform: no coordinate system \"{}\"", *n));
             else
-                gs_.ctm = it->second;
+                gs_.ctm = gs_.ctm_end = it->second;
         }
     } else if (name == "ReverseOrientation") {
         gs_.reverse_orientation = !gs_.reverse_orientation;
@@ -132,7 +140,7 @@ bool Parser::block_directive(const Token& t, const std::string& name) {
             diag_.throw_if_errors();
         }
         if (name == "AttributeBegin") stack_.push_back({gs_, t.loc()});
-        else transform_stack_.push_back({gs_.ctm, t.loc()});
+        else transform_stack_.push_back({{gs_.ctm, gs_.ctm_end}, t.loc()});
     } else if (name == "AttributeEnd") {
         if (stack_.empty()) {
             diag_.error(t.loc(), "AttributeEnd without AttributeBegin");
@@ -144,13 +152,14 @@ bool Parser::block_directive(const Token& t, const std::string& name) {
         if (transform_stack_.empty()) {
             diag_.error(t.loc(), "TransformEnd without TransformBegin");
         } else {
-            gs_.ctm = transform_stack_.back().first;
+            gs_.ctm = transform_stack_.back().first[0];
+            gs_.ctm_end = transform_stack_.back().first[1];
             transform_stack_.pop_back();
         }
     } else if (name == "WorldBegin") {
         if (world_) diag_.error(t.loc(), "WorldBegin given twice");
         world_ = true;
-        gs_.ctm = M4{};
+        gs_.ctm = gs_.ctm_end = M4{};
         coordinate_systems_["world"] = gs_.ctm;
     } else if (name == "WorldEnd") {
         // pbrt-v3's end of the scene; pbrt-v4 files end without it.
@@ -359,14 +368,11 @@ bool Parser::object_directive(Stream& s, const Token& t, const std::string& name
                 for (const ObjectDesc& o : it->second) {
                     ObjectDesc copy = o;
                     copy.loc = t.loc();
-                    M4 place = gs_.ctm;
-                    if (o.transform) {
-                        M4 inner;
+                    M4 inner;
+                    if (o.transform)
                         for (int i = 0; i < 3; ++i)
                             for (int j = 0; j < 4; ++j) inner.m[i][j] = o.transform->to_world.m[i][j];
-                        place = place * inner;
-                    }
-                    add_object(copy, place);
+                    add_object(copy, gs_.ctm * inner, gs_.ctm_end * inner);
                 }
             }
         }
@@ -388,10 +394,19 @@ bool Parser::ignored_directive(Stream& s, const Token& t, const std::string& nam
         const auto target = string_arg(s, t);
         ParamList pl = params(s);
         if (target) warn(t.loc(), fmt::format("Attribute \"{}\": default parameters are not supported; ignored", *target));
-    } else if (name == "TransformTimes" || name == "ActiveTransform") {
-        warn(t.loc(), fmt::format("{}: motion blur is not supported; ignored", name));
-        if (name == "TransformTimes") numbers(s, t, 2, v);
-        else if (!s.done() && s.peek().kind == Token::Kind::kWord) s.next();
+    } else if (name == "TransformTimes") {
+        if (numbers(s, t, 2, v)) {
+            if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] <= v[1]))
+                diag_.error(t.loc(), "TransformTimes: expected a start and an end time, start <= end");
+            else
+                transform_times_ = {v[0], v[1]};
+        }
+    } else if (name == "ActiveTransform") {
+        const std::string which = !s.done() && s.peek().kind == Token::Kind::kWord ? std::string(s.next().text) : "";
+        if (which == "StartTime") gs_.active = 1;
+        else if (which == "EndTime") gs_.active = 2;
+        else if (which == "All") gs_.active = 3;
+        else diag_.error(t.loc(), "ActiveTransform: expected StartTime, EndTime or All");
     } else {
         return false;
     }
@@ -430,11 +445,16 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     }
     if (get_float(pl, "frameaspectratio"))
         warn(pl.find("frameaspectratio")->loc, "frameaspectratio ignored; the film's resolution decides");
-    // The shutter interval is the exposure time of pbrt's imaging ratio (no motion blur).
+    // The shutter interval is the exposure time of pbrt's imaging ratio, and the interval over
+    // which shapes under ActiveTransform move (docs/motion.md).
     const double open = get_float(pl, "shutteropen").value_or(0), close = get_float(pl, "shutterclose").value_or(1);
     if (!(close >= open)) diag_.error(pl.find("shutterclose") ? pl.find("shutterclose")->loc : t.loc(),
                                       "shutterclose must not be before shutteropen");
     exposure_time_ = close - open;
+    d_.shutter = {open, close};
+    d_.shutter_loc = pl.find("shutteropen") ? pl.find("shutteropen")->loc : t.loc();
+    if (!(gs_.ctm_end.m == gs_.ctm.m))
+        warn(t.loc(), "Camera: a moving camera transform is not supported; the camera at the start time is used");
     if (type == "orthographic") {
         cam.orthographic = true;
         cam.height = Float(2 * std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]));  // shorter axis [-1, 1]

@@ -214,6 +214,10 @@ inline constexpr std::array kParamTypes{"integer", "float",  "point2", "vector2"
 // Camera, shapes, lights and media that hold a medium or a transform state.
 struct GraphicsState {
     M4 ctm;
+    /// pbrt's second transform, at the end time (TransformTimes): it differs from ctm where an
+    /// ActiveTransform StartTime / EndTime block moved one of them; then shapes move.
+    M4 ctm_end;
+    int active = 3;  ///< which transforms directives change: 1 the start's, 2 the end's
     bool reverse_orientation = false;
     std::string material;  ///< the name of a SceneDescription material ("" before any)
     std::optional<Emission> area_light;
@@ -309,7 +313,8 @@ private:
     double world_area(Point3 a, Point3 b, Point3 c) const;
     void texture(const Token& t, const std::string& name, const std::string& kind, const std::string& type, ParamList pl);
     void medium(const Token& t, const std::string& name, ParamList pl);
-    void add_object(ObjectDesc o, const M4& m);
+    /// `end`: the placement at the end time (default: the current end-time transform).
+    void add_object(ObjectDesc o, const M4& m, std::optional<M4> end = std::nullopt);
     std::string material_for_shape();
 
     SceneDescription& d_;
@@ -320,7 +325,11 @@ private:
     bool dir_set_ = false;
     GraphicsState gs_;
     std::vector<std::pair<GraphicsState, SourceLoc>> stack_;  ///< AttributeBegin/End
-    std::vector<std::pair<M4, SourceLoc>> transform_stack_;   ///< TransformBegin/End
+    std::vector<std::pair<std::array<M4, 2>, SourceLoc>> transform_stack_;   ///< TransformBegin/End
+    std::array<double, 2> transform_times_{0, 1};             ///< TransformTimes
+    /// The object's placement over the shutter from its transforms at the start and end times
+    /// (empty when they are equal).
+    std::vector<Transform> motion_keys(const M4& start, const M4& end, const SourceLoc& loc);
     std::map<std::string, M4> coordinate_systems_;
     std::map<std::string, TextureEntry> textures_;
     std::map<std::string, std::string> named_materials_;  ///< pbrt name -> SceneDescription name

@@ -6,11 +6,33 @@
 #include <numbers>
 
 #include "glint/formats/pbrt_parser.h"
+#include "glint/math/motion.h"
 #include "glint/shapes/subdivision.h"
 
 namespace glint::pbrt_detail {
 
-void Parser::add_object(ObjectDesc o, const M4& m) {
+std::vector<Transform> Parser::motion_keys(const M4& start, const M4& end, const SourceLoc& loc) {
+    if (start.m == end.m) return {};
+    const auto a = start.affine() ? Transform::from(start.to34()) : std::nullopt;
+    const auto b = end.affine() ? Transform::from(end.to34()) : std::nullopt;
+    if (!a || !b) {
+        diag_.error(loc, "the shape's transform at the start or end time is singular or projective");
+        return {};
+    }
+    // pbrt interpolates between the transform times and holds the ends outside them; glint's keys
+    // are at the shutter's opening and close.
+    const Motion between({*a, *b});
+    const double t0 = transform_times_[0], t1 = transform_times_[1];
+    const auto at = [&](double t) {
+        const double u = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : (t < t0 ? 0.0 : 1.0);
+        return between.at(static_cast<Float>(u));
+    };
+    const std::array<double, 2> shutter = camera_seen_ ? d_.shutter : std::array<double, 2>{0, 1};  // pbrt's default
+    return {at(shutter[0]), at(shutter[1])};
+}
+
+void Parser::add_object(ObjectDesc o, const M4& m, std::optional<M4> end) {
+    if (!defining_) o.motion = motion_keys(m, end ? *end : gs_.ctm_end, o.loc);
     if (defining_) {  // recorded for ObjectInstance, with the transform at definition
         if (!m.identity()) {
             o.transform = m.affine() ? Transform::from(m.to34()) : std::nullopt;
@@ -35,6 +57,7 @@ void Parser::add_object(ObjectDesc o, const M4& m) {
         o.transform = *tr;
         o.transform_loc = o.loc;
     }
+    if (!o.motion.empty()) o.transform_loc = o.loc;
     d_.objects.push_back(std::move(o));
 }
 

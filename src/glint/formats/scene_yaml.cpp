@@ -43,7 +43,11 @@ void SceneParser::parse_root(const YAML::Node& root, SceneDescription& scene) {
         YAML::Node value = it->second;
         animate(value, scene);
     }
-    if (auto n = m.get("camera")) scene.camera = camera(*n);
+    if (auto n = m.get("camera")) {
+        scene.camera = camera(*n);
+        scene.shutter = shutter_;
+        scene.shutter_loc = shutter_loc_;
+    }
     if (auto n = m.get("film")) film(*n, scene.film);
     if (auto n = m.get("sampler")) sampler(*n, scene.sampler);
     if (auto n = m.get("integrator")) integrator(*n, scene.integrator);
@@ -215,6 +219,7 @@ CameraDesc SceneParser::camera(const YAML::Node& node) {
         LookAtCameraDesc c;
         MapReader m(r_, node, "look_at camera", vocabulary_keys("camera", "look_at"));
         lens(m, c.aperture_radius, c.focus_distance);
+        shutter(m);
         handedness(m, c.right_handed);
         if (auto n = m.get("projection")) {
             if (auto o = choice<bool>(*n, "projection",
@@ -244,6 +249,7 @@ CameraDesc SceneParser::camera(const YAML::Node& node) {
     if (!type) return c;
     MapReader m(r_, node, "camera", vocabulary_keys("camera", "article"));
     lens(m, c.aperture_radius, c.focus_distance);
+    shutter(m);
     handedness(m, c.right_handed);
     assign(m.get("position"), c.position, point());
     assign(m.get("direction"), c.direction, direction("direction"));
@@ -558,7 +564,7 @@ SceneDescription load_scene_file(const std::string& path, std::shared_ptr<Source
         return d;
     }
     const std::string text = read_scene_text(path, sources);
-    return parse_scene(text, path, std::move(sources), frame);
+    return parse_scene_over_shutter(text, path, std::move(sources), frame);
 }
 
 }  // namespace glint

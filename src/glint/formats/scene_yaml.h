@@ -19,4 +19,9 @@ SceneDescription load_scene_file(const std::string& path, std::shared_ptr<Source
 SceneDescription parse_scene(const std::string& text, const std::string& path,
                              std::shared_ptr<SourceFiles> sources, double frame = 0);
 
+/// parse_scene, with what moves over the camera's shutter (`shutter: [open, close]`, in frames
+/// from `frame`) given its motion keys (scene_yaml_motion.cpp; docs/motion.md).
+SceneDescription parse_scene_over_shutter(const std::string& text, const std::string& path,
+                                          std::shared_ptr<SourceFiles> sources, double frame = 0);
+
 }  // namespace glint

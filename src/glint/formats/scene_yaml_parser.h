@@ -98,6 +98,21 @@ private:
         }
     }
 
+    // `shutter: [open, close]`, frames from the scene's frame (open <= close; equal: an instant).
+    void shutter(MapReader& m) {
+        const auto n = m.get("shutter");
+        if (!n) return;
+        const auto bad = [&] { r_.error(*n, "camera: 'shutter' must be [open, close], two frame offsets with open <= close"); };
+        if (!n->IsSequence() || n->size() != 2) return bad();
+        const auto open = r_.number_in((*n)[0], "shutter open", -1e6, 1e6), close = r_.number_in((*n)[1], "shutter close", -1e6, 1e6);
+        if (!open || !close) return;
+        if (!(*open <= *close)) return bad();
+        shutter_ = {*open, *close};
+        shutter_loc_ = r_.loc(*n);
+    }
+    std::array<double, 2> shutter_{0, 0};
+    SourceLoc shutter_loc_;
+
     void lens(MapReader& m, Float& aperture, std::optional<Float>& focus) {
         assign(m.get("aperture_radius"), aperture, [this](const YAML::Node& n) {
             return r_.number_in(n, "aperture_radius", 0, kInf);

@@ -71,7 +71,9 @@ public:
     bool traces_packets() const override { return true; }
     void li_packet(const Scene& scene, const Ray* rays, int n, Color* out, RayCounter& counter) const override;
     /// d at a surface point: ambient plus unshadowed direct light (exposed for tests).
-    Color direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k, RayCounter& counter) const;
+    /// `time`: the shadow rays' (moving shapes block where they are then).
+    Color direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k, RayCounter& counter,
+                 Float time = 0) const;
     /// With the shading normal equal to the true one.
     Color direct(const Scene& scene, Point3 p, Normal3 n, Color k, RayCounter& counter) const {
         return direct(scene, p, n, n, k, counter);

@@ -89,6 +89,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     Color beta{1};
     Color r_u{1};           // spectral MIS: per channel, the path's density over the hero's
     Ray ray = camera_ray;
+    const Float time = camera_ray.time;  // every ray of the path is traced at the camera ray's time
     bool specular = true;   // the camera ray counts as specular: emission seen directly is kept
     float bsdf_pdf = 0;     // of the direction that led here (BSDF or phase function)
     // Where the previous light sample was chosen (for the light's pmf when the BSDF or phase
@@ -113,7 +114,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         float w = 1;
         if (use_light && light != kNoLight) {
             const float pick_pmf = prev_by_power ? lights.pmf(light) : lights.pmf(prev_p, prev_n, light);
-            const float light_pdf = pick_pmf * lights.pdf_li(scene, light, prev_p, ray.direction, on_light);
+            const float light_pdf = pick_pmf * lights.pdf_li(scene, light, prev_p, ray.direction, on_light, time);
             w = power_heuristic(bsdf_pdf, light_pdf);
         }
         radiance += beta * le * w / average(r_u);
@@ -127,17 +128,18 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                                 const MediumInterface* mi, const auto& f_of, const auto& pdf_of,
                                 std::uint32_t l, float pmf, Sample2 u_light) {
         if (!(pmf > 0)) return;
-        const auto ls = lights.sample_li(scene, l, p, u_light);
+        const auto ls = lights.sample_li(scene, l, p, u_light, time);
         if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
         const Color f = f_of(ls->wi);
         if (f.max_component() <= 0) return;
         ++counter.rays;
-        const Ray shadow = !ng ? medium_shadow_ray(p, *ls)
+        Ray shadow = !ng ? medium_shadow_ray(p, *ls)
                            : ls->on_surface
                                ? spawn_ray_to(p, *ng, ls->p_light, ls->n_light)
                                : spawn_ray(p, *ng, ls->wi,
                                            std::isinf(ls->distance) ? ls->distance
                                                                     : ls->distance * (1 - 1e-4f));
+        shadow.time = time;
         Color tr{1}, r_l{1};
         if (!media) {
             if (scene.occluded(shadow)) return;
@@ -165,6 +167,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 return FirstHit{article_view(scene, s).color, face_forward(s.ns, line.direction), travelled + h->t, true};
             travelled += h->t;
             line = spawn_ray(s.p, s.n, line.direction);
+            line.time = time;
             ++counter.rays;
             h = scene.intersect(line);
         }
@@ -175,6 +178,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     int crossings = 0;  // interface surfaces passed since the last scattering event
     for (;;) {
         ++counter.rays;
+        ray.time = time;
         const auto hit = scene.intersect(ray);
         const Ray line = ray;  // the ray before the medium may turn it
 

@@ -11,7 +11,7 @@ void Integrator::li_packet(const Scene&, const Ray*, int, Color*, RayCounter&) c
 }
 
 Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k,
-                                RayCounter& counter) const {
+                                RayCounter& counter, Float time) const {
     Color d = k * settings_.ambient;
     for (const Light& light : scene.lights) {
         const LightSample ls = sample_light(light, p);
@@ -19,7 +19,9 @@ Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3
         if (cos_theta <= 0) continue;
         if (settings_.shadows) {
             ++counter.rays;
-            if (scene.occluded_opaque(spawn_ray(p, ng, ls.to_light, ls.distance))) continue;
+            Ray shadow = spawn_ray(p, ng, ls.to_light, ls.distance);
+            shadow.time = time;
+            if (scene.occluded_opaque(shadow)) continue;
         }
         d += k * ls.intensity * cos_theta;
     }
@@ -51,7 +53,7 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
         const ArticleView m = article_view(scene, si);  // the article's material as is
         const Color k = m.color;
         if (first && depth == 0) *first = {k, n, hit->t, true};
-        const Color d = direct(scene, si.p, n, si.n, k, counter);
+        const Color d = direct(scene, si.p, n, si.n, k, counter, ray.time);
         const float s = m.shininess;
         if (s <= 0) return result + weight * d;
         result += weight * d * (1 - s);
@@ -60,7 +62,9 @@ Color WhittedIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStr
         if (depth >= settings_.max_depth) {
             return result + weight * evaluate(scene.background, r);
         }
+        const Float time = ray.time;
         ray = spawn_ray(si.p, si.n, r);
+        ray.time = time;
     }
 }
 

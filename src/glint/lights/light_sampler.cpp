@@ -115,9 +115,24 @@ LightBounds light_bounds(const Scene& scene, const Light& light) {
                     case ShapeKind::kMesh: {
                         const Triangle t = scene.world_triangle(l.index, l.prim);
                         flat(std::array{t.p0, t.p1, t.p2}, t.normal(), t.area(), t.material);
+                        if (scene.motion_of(l.kind, l.index)) {  // swept below, from object space
+                            const Instance& in = scene.instances[l.index];
+                            const auto [p0, p1, p2] = scene.meshes[in.mesh].vertices(l.prim);
+                            b.box = Bounds3{};
+                            for (const Point3& q : {p0, p1, p2}) b.box.extend(q);
+                        }
                         break;
                     }
                     case ShapeKind::kPlane: break;
+                }
+            }
+            if constexpr (std::is_same_v<T, AreaLight>) {
+                // A moving light (its box in object space) is bounded over the whole shutter,
+                // facing every way.
+                if (const Motion* m = scene.motion_of(l.kind, l.index)) {
+                    b.box = m->swept_bounds(b.box);
+                    b.cos_o = -1;
+                    b.two_sided = true;
                 }
             }
             if (!is_finite(b.w) || !(dot(b.w, b.w) > 0)) b.w = {0, 0, 1}, b.cos_o = -1;
@@ -265,7 +280,39 @@ float LightSampler::pmf(Point3 p, Normal3 n, std::uint32_t light) const {
 }
 
 std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::uint32_t light,
-                                                     Point3 p, Sample2 u) const {
+                                                     Point3 p, Sample2 u, Float time) const {
+    // A moving analytic shape is sampled where it is stored (object space), from the point
+    // carried there; its placement is a similarity, which keeps solid angles (and so the
+    // density) as they are.
+    if (const auto* area = light < lights_.size() ? std::get_if<AreaLight>(&lights_[light]) : nullptr;
+        area && area->kind != ShapeKind::kMesh && scene.has_motion()) {
+        if (const Motion* m = scene.motion_of(area->kind, area->index)) {
+            const Transform d = m->at(time);
+            auto ls = sample_li_stored(scene, light, d.to_object.apply(p), u, time);
+            if (!ls) return ls;
+            ls->p_light = d.point(ls->p_light);
+            ls->n_light = normalize(d.normal(ls->n_light));
+            const Vector3 to = ls->p_light - p;
+            ls->distance = length(to);
+            ls->wi = to / ls->distance;
+            // An emission texture is read at the moved point (Scene::uv carries it back).
+            MaterialId material = 0;
+            switch (area->kind) {
+                case ShapeKind::kSphere: material = scene.spheres[area->index].material; break;
+                case ShapeKind::kQuad: material = scene.quads[area->index].material; break;
+                case ShapeKind::kDisk: material = scene.disks[area->index].material; break;
+                case ShapeKind::kTriangle: material = scene.triangles[area->index].material; break;
+                default: break;
+            }
+            ls->L = scene.light_radiance(*area, material, ls->p_light, ls->n_light, time);
+            return ls;
+        }
+    }
+    return sample_li_stored(scene, light, p, u, time);
+}
+
+std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, std::uint32_t light, Point3 p,
+                                                            Sample2 u, Float time) const {
     if (light == environment()) {
         return std::visit(
             [&](const auto& b) -> std::optional<LightLiSample> {
@@ -314,7 +361,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                         n = normalize(Normal3(q - s.center));
                         pdf = uniform_cone_pdf(omc);
                         if (!(scene.emission_of(material).two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{scene.light_radiance(l, material, q, n), wi, pdf, length(q - p), false, true, q, n};
+                        return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, length(q - p), false, true, q, n};
                     }
                 }
                 float area = 1;
@@ -330,7 +377,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                     case ShapeKind::kQuad: from(scene.quads[l.index]); break;
                     case ShapeKind::kDisk: from(scene.disks[l.index]); break;
                     case ShapeKind::kTriangle: from(scene.triangles[l.index]); break;
-                    case ShapeKind::kMesh: from(scene.world_triangle(l.index, l.prim)); break;
+                    case ShapeKind::kMesh: from(scene.world_triangle(l.index, l.prim, time)); break;
                     case ShapeKind::kPlane: return std::nullopt;
                 }
                 const Vector3 d = q - p;
@@ -342,7 +389,7 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
                 const Emission& e = scene.emission_of(material);
                 if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
                 pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{scene.light_radiance(l, material, q, n), wi, pdf, dist, false, true, q, n};
+                return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, dist, false, true, q, n};
             } else {
                 const LightSample s = l.sample(p);
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};
@@ -352,7 +399,20 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
 }
 
 float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,
-                           Point3 on_light) const {
+                           Point3 on_light, Float time) const {
+    if (const auto* area = light < lights_.size() ? std::get_if<AreaLight>(&lights_[light]) : nullptr;
+        area && area->kind != ShapeKind::kMesh && scene.has_motion()) {
+        if (const Motion* m = scene.motion_of(area->kind, area->index)) {
+            const Transform d = m->at(time);
+            return pdf_li_stored(scene, light, d.to_object.apply(p), normalize(d.to_object.apply(wi)),
+                                 d.to_object.apply(on_light), time);
+        }
+    }
+    return pdf_li_stored(scene, light, p, wi, on_light, time);
+}
+
+float LightSampler::pdf_li_stored(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi, Point3 on_light,
+                                  Float time) const {
     if (light == environment()) {
         return std::visit(
             [&](const auto& b) -> float {
@@ -391,7 +451,7 @@ float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Ve
                     case ShapeKind::kDisk: area = scene.disks[l.index].area(); n = scene.disks[l.index].normal; break;
                     case ShapeKind::kTriangle: area = scene.triangles[l.index].area(); n = scene.triangles[l.index].normal(); break;
                     case ShapeKind::kMesh: {
-                        const Triangle t = scene.world_triangle(l.index, l.prim);
+                        const Triangle t = scene.world_triangle(l.index, l.prim, time);
                         area = t.area();
                         n = t.normal();
                         break;

@@ -62,12 +62,20 @@ public:
     /// The share of choices the distant lights take (kBvh).
     float distant_share() const { return p_distant_; }
 
+    /// `time`: the path's (a moving light is sampled where it is then).
     std::optional<LightLiSample> sample_li(const Scene& scene, std::uint32_t light, Point3 p,
-                                           Sample2 u) const;
+                                           Sample2 u, Float time = 0) const;
     /// The solid-angle density with which sample_li(light, p) produces the direction wi that
     /// reaches the light at the point `on_light` (for area lights; ignored otherwise).
     float pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,
-                 Point3 on_light) const;
+                 Point3 on_light, Float time = 0) const;
+
+    /// sample_li and pdf_li with a moving analytic shape where it is stored (p, wi and on_light
+    /// carried there; meshes are placed at `time` by the scene).
+    std::optional<LightLiSample> sample_li_stored(const Scene& scene, std::uint32_t light, Point3 p, Sample2 u,
+                                                  Float time) const;
+    float pdf_li_stored(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi, Point3 on_light,
+                        Float time) const;
 
     /// The area light of an emitting shape, or kNoLight.
     std::uint32_t light_of(ShapeKind kind, std::uint32_t index, std::uint32_t prim = 0) const {

@@ -69,7 +69,8 @@ int adaptive_default_min_spp(float threshold) {
 ProgressiveRender::ProgressiveRender(const Scene& scene, const Camera& camera,
                                      const Integrator& integrator, const RenderOptions& options,
                                      int width, int height, bool aovs)
-    : scene_(scene), camera_(camera), integrator_(integrator), options_(options), filter_(options.filter) {
+    : scene_(scene), camera_(camera), moving_(scene.has_motion() || camera.moves()), integrator_(integrator),
+      options_(options), filter_(options.filter) {
     state_.width = width;
     state_.height = height;
     state_.spp_target = std::max(1, options.spp);
@@ -194,8 +195,9 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
         Color li;
         float w;
         if (spp == 1) {  // the pixel centre, through the lens centre
-            const Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f,
-                                                 static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
+            const Ray ray = camera_.at_time(camera_.generate_ray(static_cast<float>(col + ox) + 0.5f,
+                                                                 static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f}),
+                                            0.5f);  // the shutter's middle
             SampleStream samples(sampler, 0);
             sum = integrator_.li(scene_, ray, samples, counter, want);
             w = 1;
@@ -203,11 +205,13 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
             li = sum;
         } else {
             // Dimension pair 0 places the sample in the pixel (through the filter), pair 1 on the
-            // lens; later pairs are the integrator's.
+            // lens; later pairs are the integrator's. The time, where something moves, is a pair
+            // of its own far past them, so that still scenes draw exactly what they always drew.
             const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
             const Sample2 lens = sampler.get_2d(index, 1);
-            const Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
-                                                 static_cast<float>(row + oy) + 0.5f + f.dy, lens);
+            Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
+                                           static_cast<float>(row + oy) + 0.5f + f.dy, lens);
+            if (moving_) ray = camera_.at_time(ray, sampler.get_2d(index, kTimeDimension).x);
             SampleStream samples(sampler, index);
             li = integrator_.li(scene_, ray, samples, counter, want);
             w = f.weight;

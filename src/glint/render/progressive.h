@@ -144,6 +144,8 @@ private:
 
     const Scene& scene_;
     const Camera& camera_;
+    /// Whether camera samples draw a time (something in the scene or the camera moves).
+    bool moving_ = false;
     const Integrator& integrator_;
     RenderOptions options_;
     FilterSampler filter_;  ///< its tables are built once

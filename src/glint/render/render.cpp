@@ -31,7 +31,8 @@ RenderStats sweep(const Scene& scene, const Camera& camera, const Integrator& in
     std::atomic<bool> skipped{false};
     // Film pixel (col, row) is pixel (col + ox, row + oy) of the camera's frame (a crop).
     const int ox = options.offset_x, oy = options.offset_y;
-    const bool packets = integrator.traces_packets() && options.packets;
+    // (Packets trace still scenes only; with motion each ray goes alone, at the shutter's middle.)
+    const bool packets = integrator.traces_packets() && options.packets && !scene.has_motion() && !camera.moves();
     auto render_tile = [&](const tbb::blocked_range2d<int>& r) {
         if (cancel && cancel->load(std::memory_order_relaxed)) {
             skipped.store(true, std::memory_order_relaxed);
@@ -56,8 +57,9 @@ RenderStats sweep(const Scene& scene, const Camera& camera, const Integrator& in
                                                pixel_seed(options.seed, static_cast<std::uint32_t>(col0 + ox),
                                                           static_cast<std::uint32_t>(row + oy)));
                     SampleStream samples(sampler, 0);
-                    const Ray ray = camera.generate_ray(static_cast<float>(col0 + ox) + 0.5f,
-                                                        static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f});
+                    const Ray ray = camera.at_time(camera.generate_ray(static_cast<float>(col0 + ox) + 0.5f,
+                                                                       static_cast<float>(row + oy) + 0.5f, {0.5f, 0.5f}),
+                                                   0.5f);
                     colors[0] = integrator.li(scene, ray, samples, counter);
                 }
                 if (options.scale != 1)

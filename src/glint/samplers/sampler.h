@@ -43,6 +43,10 @@ private:
 /// The dimensions of one camera sample, handed out in order: an integrator draws what it needs
 /// per bounce, and the same path always gets the same numbers. Pairs 0 (pixel) and 1 (lens)
 /// belong to the camera; the stream starts at pair 2.
+/// The dimension pair whose first number is a camera sample's time over the shutter, drawn only
+/// where something moves (far past any pair a path uses, so that drawing it changes no other).
+inline constexpr std::uint32_t kTimeDimension = 0x7fffu;
+
 class SampleStream {
 public:
     SampleStream(const PixelSampler& sampler, std::uint32_t index, std::uint32_t first_pair = 2)

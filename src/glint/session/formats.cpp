@@ -14,7 +14,7 @@ namespace {
 
 SceneDescription parse_yaml(const std::string& text, const std::string& path, std::shared_ptr<SourceFiles> sources,
                             const ReadOptions& options) {
-    return parse_scene(text, path, std::move(sources), options.frame);
+    return parse_scene_over_shutter(text, path, std::move(sources), options.frame);
 }
 
 SceneDescription parse_pbrt_file(const std::string& text, const std::string& path,

@@ -97,6 +97,9 @@ struct Instance {
     Transform transform;
     std::optional<MaterialId> material;  ///< replaces every material of the mesh
     std::int32_t alpha = -1;             ///< a cut-out: an index into Scene::alpha_masks
+    /// Placed over the shutter by Scene::motions[motion] (object-to-world keys; `transform` is
+    /// then the first); -1: still.
+    std::int32_t motion = -1;
 };
 
 }  // namespace glint

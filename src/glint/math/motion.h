@@ -1,0 +1,55 @@
+#pragma once
+// Motion over the shutter: a transform that changes with time, given by keyframes at evenly
+// spaced times over the shutter interval (key 0 at its opening, the last at its close; a ray's
+// `time` is in [0, 1] across it). Between keys the transform is interpolated as pbrt-v4's
+// AnimatedTransform does (Shoemake and Duff 1992): each key is decomposed into a translation T,
+// a rotation R (a unit quaternion) and a stretch S (symmetric, scale and shear) by polar
+// decomposition, M = T R S; T and S are blended linearly and R by slerp, so a rotating object
+// turns along an arc instead of shrinking through the chord, as blending matrices would make it.
+//
+// The keys are whole placements (object-to-world transforms, as pbrt-v4's ActiveTransform gives
+// at its start and end times, and as Embree's motion-blurred instances take them), so a shape
+// turning about its own centre while its parent moves interpolates as one rigid motion.
+// See docs/motion.md.
+#include <array>
+#include <vector>
+
+#include "glint/math/bounds.h"
+#include "glint/math/transform.h"
+
+namespace glint {
+
+class Motion {
+public:
+    Motion() = default;
+    /// Keys at times k / (n - 1), k = 0 .. n - 1 (one key: still). Every key must be invertible.
+    explicit Motion(std::vector<Transform> keys);
+
+    /// The transform at time t in [0, 1] (clamped).
+    Transform at(Float t) const;
+    /// A box that holds `b` moved by every transform of the interval: exact (the keys' boxes) when
+    /// only the translation changes between keys; otherwise the boxes at 64 steps per segment,
+    /// widened by the most any corner moves in one step (a point's path within a step is shorter
+    /// than that for the rotations and stretches of one key's segment).
+    Bounds3 swept_bounds(const Bounds3& b) const;
+    /// Whether the keys differ at all.
+    bool moves() const { return keys_.size() > 1; }
+    std::size_t key_count() const { return keys_.size(); }
+    const Transform& key(std::size_t k) const { return keys_[k]; }
+    /// Key k's decomposition M = T R S: translation, rotation (w, x, y, z) and stretch (row-major).
+    Vector3 translation(std::size_t k) const { return parts_[k].t; }
+    std::array<double, 4> rotation(std::size_t k) const { return parts_[k].q; }
+    std::array<std::array<double, 3>, 3> stretch(std::size_t k) const { return parts_[k].s; }
+
+private:
+    struct Parts {
+        Vector3 t;
+        std::array<double, 4> q;  ///< w, x, y, z
+        std::array<std::array<double, 3>, 3> s;
+    };
+    std::vector<Transform> keys_;
+    std::vector<Parts> parts_;
+    bool translation_only_ = true;  ///< keys differ by translation alone: blend T, keep the rest
+};
+
+}  // namespace glint
