@@ -40,7 +40,8 @@ int layer_of(const fs::path& rel, std::string& unit) {
     const std::string first = rel.begin()->string();
     unit = std::distance(rel.begin(), rel.end()) > 1 ? first : rel.filename().string();
     if (unit == "background.cpp") unit = "background.h";
-    if (unit == "scene.cpp") unit = "scene.h";
+    // The scene's sources beside scene.h: scene.cpp, scene_motion.cpp (and its test).
+    if (unit == "scene.cpp" || unit == "scene_motion.cpp" || unit == "scene_motion_test.cpp") unit = "scene.h";
     const auto it = kLayer.find(unit);
     return it == kLayer.end() ? -1 : it->second;
 }

@@ -469,7 +469,10 @@ void Importer::visit(int index, const Matrix34& parent, int depth) {
         if (!t) {
             out.notes.push_back(fmt::format("{}: node {} has a singular transform; skipped", file, index));
         } else {
-            for (std::uint32_t k = 0; k < mesh_count[n.mesh]; ++k) out.nodes.push_back({mesh_first[n.mesh] + k, *t});
+            for (std::uint32_t k = 0; k < mesh_count[n.mesh]; ++k) {
+                out.nodes.push_back({mesh_first[n.mesh] + k, *t});
+                node_of.push_back(index);
+            }
         }
     }
     const auto place = [&](Vector3 local) { return g.apply(local); };
@@ -664,7 +667,38 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
 
 }  // namespace
 
-ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name, double time) {
+void Importer::world_matrices(int index, const Matrix34& parent, int depth, std::map<int, Matrix34>& out_m) const {
+    if (depth >= limit(Limit::kNesting)) return;  // the first walk reported it
+    const Matrix34 world = parent * node_matrix(index);
+    Matrix34 g = world;  // to glint, as visit() does
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j)
+            if ((i == 2) != (j == 2) && j != 3) g.m[i][j] = -g.m[i][j];
+    g.m[2][3] = -g.m[2][3];
+    out_m[index] = g;
+    for (int c : model.nodes[index].children)
+        if (c >= 0 && c < static_cast<int>(model.nodes.size())) world_matrices(c, world, depth + 1, out_m);
+}
+
+void Importer::sample_motion(const std::vector<double>& times, const std::vector<int>& scene_roots) {
+    out.node_motion.assign(out.nodes.size(), {});
+    const std::size_t notes = out.notes.size();
+    for (const double t : times) {
+        posed.clear();
+        animate(t);
+        out.notes.resize(notes);  // said once, at the frame
+        std::map<int, Matrix34> world;
+        for (int r : scene_roots) world_matrices(r, Matrix34{}, 0, world);
+        for (std::size_t i = 0; i < out.nodes.size(); ++i) {
+            const auto it = world.find(node_of[i]);
+            const auto x = it != world.end() ? Transform::from(it->second) : std::nullopt;
+            out.node_motion[i].push_back(x ? *x : out.nodes[i].transform);
+        }
+    }
+}
+
+ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera_name, double time,
+                         const std::vector<double>& motion_times) {
     const std::string file = path.string();
     if (std::error_code ec; !std::filesystem::exists(path, ec))
         throw IoError(fmt::format("{}: cannot open: no such file", file));
@@ -770,13 +804,16 @@ ImportedFile import_gltf(const std::filesystem::path& path, const std::string& c
     im.check_trees();
     im.animate(time);
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    std::vector<int> roots;
     if (model.scenes.empty()) {  // no scene to show: every tree of nodes
-        for (int n : im.roots()) im.visit(n, Matrix34{}, 0);
+        roots = im.roots();
     } else {
         if (scene >= static_cast<int>(model.scenes.size()))
             im.fail_at("/scene", fmt::format("scene {} does not exist", scene));
-        for (int n : model.scenes[scene].nodes) im.visit(n, Matrix34{}, 0);
+        roots = model.scenes[scene].nodes;
     }
+    for (int n : roots) im.visit(n, Matrix34{}, 0);
+    if (!motion_times.empty() && !model.animations.empty()) im.sample_motion(motion_times, roots);
     if (!camera_name.empty() && !im.camera)
         throw IoError(im.out.cameras.empty()
                           ? fmt::format("{}: no camera named '{}' (the file has no cameras)", file, camera_name)

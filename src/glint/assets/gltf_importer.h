@@ -245,12 +245,18 @@ struct Importer {
                                       int curve, bool quaternion);
 
     Matrix34 node_matrix(int index) const;
+    /// Every node's world matrix in glint's frame under the pose `posed` holds, from `index` down.
+    void world_matrices(int index, const Matrix34& parent, int depth, std::map<int, Matrix34>& out) const;
+    /// out.node_motion at `times` (seconds).
+    void sample_motion(const std::vector<double>& times, const std::vector<int>& scene_roots);
 
     std::optional<GltfCamera> camera;
     std::string camera_name;
     /// Per material: whether some primitive drawn with it has COLOR_0 (which multiplies its
     /// base colour, and its alpha the base alpha).
     std::vector<bool> vertex_colored;
+    /// The glTF node of each entry of out.nodes (for node_motion).
+    std::vector<int> node_of;
 
     /// A file that requires an extension glint lacks cannot be shown as its author meant: an
     /// error. One that only uses such an extension renders without it, with a note naming it.

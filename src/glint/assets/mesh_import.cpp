@@ -46,7 +46,7 @@ std::string mesh_size_error(long long vertices, long long triangles) {
     return charge_memory(44 * vertices + 80 * triangles, fmt::format("a mesh of {} vertices and {} triangles", vertices, triangles));
 }
 
-ImportedFile import_mesh_file(const std::filesystem::path& path, double time) {
+ImportedFile import_mesh_file(const std::filesystem::path& path, double time, const std::vector<double>& motion_times) {
     const auto format = mesh_format(path);
     if (!format)
         throw IoError(fmt::format("{}: unknown mesh format '{}' (known: .obj, .ply, .ply.gz, .gltf, .glb)", path.string(),
@@ -55,7 +55,7 @@ ImportedFile import_mesh_file(const std::filesystem::path& path, double time) {
         case MeshFormat::kPly: return import_ply(path);
         case MeshFormat::kObj: return import_obj(path);
         case MeshFormat::kGltf:
-        case MeshFormat::kGlb: return import_gltf(path, "", time);
+        case MeshFormat::kGlb: return import_gltf(path, "", time, motion_times);
     }
     return {};  // unreachable: every format is covered
 }

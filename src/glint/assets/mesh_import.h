@@ -43,6 +43,9 @@ struct ImportedFile {
     std::vector<TriangleMesh> meshes;
     std::vector<ImportedMaterial> materials;
     std::vector<ImportedNode> nodes;
+    /// glTF, when motion times are asked: per node, its placement at each of them (the frame's
+    /// where it is singular then); empty otherwise.
+    std::vector<std::vector<Transform>> node_motion;
     std::size_t dropped_triangles = 0;  ///< degenerate or non-finite, left out
     std::vector<std::string> notes;     ///< things a user should hear about (missing textures, ...)
     std::vector<Light> lights;          ///< glTF KHR_lights_punctual, placed by their nodes
@@ -58,10 +61,12 @@ enum class MeshFormat { kPly, kObj, kGltf, kGlb };
 std::optional<MeshFormat> mesh_format(const std::filesystem::path& path);
 
 /// By extension: .ply, .obj, .gltf, .glb. `time`: seconds into a glTF file's animation.
-ImportedFile import_mesh_file(const std::filesystem::path& path, double time = 0);
+ImportedFile import_mesh_file(const std::filesystem::path& path, double time = 0, const std::vector<double>& motion_times = {});
 /// `camera`: the name of the camera to use (empty: the first one met in the node hierarchy).
 /// `time`: the nodes are placed as the file's first animation has them at this many seconds.
-ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera = "", double time = 0);
+/// `motion_times`: seconds at which nodes' placements are also wanted (motion blur; node_motion).
+ImportedFile import_gltf(const std::filesystem::path& path, const std::string& camera = "", double time = 0,
+                         const std::vector<double>& motion_times = {});
 ImportedFile import_ply(const std::filesystem::path& path);
 ImportedFile import_obj(const std::filesystem::path& path);
 

@@ -626,7 +626,15 @@ public:
     ContentsBuilder(const SceneDescription& d, RenderJob& job, Diagnostics& diagnostics)
         : d_(d), job_(job), scene_(job.scene), diagnostics_(diagnostics),
           scene_dir_(std::filesystem::path(d.path).parent_path()), materials_(job.scene, diagnostics, scene_dir_),
-          time_(d.frame / d.fps) {}
+          time_(d.frame / d.fps) {
+        // glTF animations are also read across the shutter (in seconds), at the keys the YAML
+        // reader reads the scene's keyframes at.
+        if (d.shutter[1] > d.shutter[0]) {
+            const int segments = shutter_segments(d.shutter[1] - d.shutter[0]);
+            for (int k = 0; k <= segments; ++k)
+                motion_times_.push_back((d.frame + d.shutter[0] + (d.shutter[1] - d.shutter[0]) * k / segments) / d.fps);
+        }
+    }
 
     void add_media_and_materials() {
         scene_.background = d_.background;
@@ -699,6 +707,7 @@ private:
         std::optional<GltfCamera> camera;
         std::vector<GltfCamera> cameras;
         std::vector<std::int32_t> mesh_alpha;  ///< per mesh: its material's cut-out, or -1
+        std::vector<std::vector<Transform>> node_motion;  ///< per node: at motion_times_ (animated glTF)
     };
 
     const SceneDescription& d_;
@@ -708,6 +717,7 @@ private:
     std::filesystem::path scene_dir_;
     MaterialBuilder materials_;
     double time_;  ///< seconds into glTF animations
+    std::vector<double> motion_times_;  ///< seconds: the shutter's keys (empty: an instant)
     std::vector<std::string> medium_names_, names_;
     std::map<std::string, LoadedFile> loaded_;
     std::map<const TriangleMesh*, std::uint32_t> inline_meshes_;
@@ -752,7 +762,8 @@ void ContentsBuilder::add_mesh_file(const ObjectDesc& o, const MeshFileDesc& fil
     if (it == loaded_.end()) {
         ImportedFile f;
         try {
-            f = mesh_file->camera.empty() ? import_mesh_file(path, time_) : import_gltf(path, mesh_file->camera, time_);
+            f = mesh_file->camera.empty() ? import_mesh_file(path, time_, motion_times_)
+                                          : import_gltf(path, mesh_file->camera, time_, motion_times_);
         } catch (const IoError& e) {
             diagnostics_.error(mesh_file->file.loc, e.what());
             return;
@@ -771,7 +782,8 @@ void ContentsBuilder::add_mesh_file(const ObjectDesc& o, const MeshFileDesc& fil
             if (!fallback) fallback = materials_.add_material(MaterialDesc{});
             return *fallback;
         };
-        LoadedFile lf{static_cast<std::uint32_t>(scene_.meshes.size()), f.nodes, f.lights, f.camera, f.cameras, {}};
+        LoadedFile lf{static_cast<std::uint32_t>(scene_.meshes.size()), f.nodes, f.lights, f.camera, f.cameras, {},
+                      f.node_motion};
         for (TriangleMesh& m : f.meshes) {
             lf.mesh_alpha.push_back(m.material != kNoImportedMaterial ? alphas.at(m.material) : -1);
             m.material = map_id(m.material);
@@ -806,13 +818,21 @@ void ContentsBuilder::add_mesh_file(const ObjectDesc& o, const MeshFileDesc& fil
     // The object's cut-out, else (unless the object replaces the file's materials, and
     // with them their alpha) the file material's.
     const std::int32_t alpha = o.alpha ? materials_.add_alpha(*o.alpha) : -1;
-    for (const ImportedNode& n : it->second.nodes) {
+    const auto& node_motion = it->second.node_motion;
+    for (std::size_t i = 0; i < it->second.nodes.size(); ++i) {
+        const ImportedNode& n = it->second.nodes[i];
         const std::int32_t a = o.alpha || id != kNoImportedMaterial ? alpha : it->second.mesh_alpha.at(n.mesh);
         Instance inst{it->second.first_mesh + n.mesh, place * n.transform, std::nullopt, a};
         if (id != kNoImportedMaterial) inst.material = id;
-        if (!o.motion.empty()) {
+        // Moving by the object's keys, the file's animation, or both (the same key times).
+        const std::vector<Transform>* node_keys =
+            i < node_motion.size() && node_motion[i].size() == motion_times_.size() ? &node_motion[i] : nullptr;
+        if (!o.motion.empty() || node_keys) {
             std::vector<Transform> keys;
-            for (const Transform& k : o.motion) keys.push_back(k * n.transform);
+            for (std::size_t k = 0; k < motion_times_.size() || k < o.motion.size(); ++k) {
+                const Transform outer = o.motion.empty() ? place : o.motion[std::min(k, o.motion.size() - 1)];
+                keys.push_back(outer * (node_keys ? (*node_keys)[std::min(k, node_keys->size() - 1)] : n.transform));
+            }
             if (!place_moving(inst, std::move(keys), o)) return;
         }
         scene_.instances.push_back(inst);

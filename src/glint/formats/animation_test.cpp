@@ -243,5 +243,27 @@ TEST_F(GltfAnimation, ASceneFilePlaysItAtFrameOverFpsSeconds) {
     EXPECT_NEAR(right_edge(2.5), 1.5, 1e-5);
 }
 
+// With a shutter open over frames 0 to 5 at 10 fps, the nodes move over 0 to 0.5 s: the
+// instances' placements at the shutter's ends are the animation's at 0 and 0.5 s (node 0's
+// translation, node 1's slerp to 22.5 degrees, as above), and the top-level box holds the sweep.
+TEST_F(GltfAnimation, AShutterBlursTheNodesAlongTheirAnimation) {
+    std::ofstream(dir_ / "s.yaml") << "animation: {fps: 10}\ncamera: {shutter: [0, 5]}\nobjects: [{type: mesh, file: anim.gltf}]\n";
+    auto sources = std::make_shared<SourceFiles>();
+    const RenderJob job = build(load_scene_file((dir_ / "s.yaml").string(), sources, 0), {}, sources);
+    const Scene& scene = job.scene;
+    ASSERT_EQ(scene.instances.size(), 4u);
+    EXPECT_TRUE(scene.has_motion());
+    const auto at = [&](std::uint32_t i, Float t, Point3 p) {  // in glTF's frame
+        const Point3 q = scene.placement(i, t).point({p.x, p.y, -p.z});
+        return Point3{q.x, q.y, -q.z};
+    };
+    expect_near(at(0, 0, {0, 0, 0}), {0, 0, 0}, "node 0 at the opening");
+    expect_near(at(0, 0.5f, {0, 0, 0}), {0.5f, 0, 0}, "node 0 half way");
+    expect_near(at(0, 1, {0, 0, 0}), {1, 0, 0}, "node 0 at the close");
+    const auto a = static_cast<Float>(std::numbers::pi / 8);
+    expect_near(at(1, 1, {1, 0, 0}), {std::cos(a), 0, -std::sin(a)}, "node 1 at the close");
+    EXPECT_GE(scene.bounds().hi.x, 2 - 1e-5f);
+}
+
 }  // namespace
 }  // namespace glint

@@ -6,15 +6,11 @@
 #include <cmath>
 
 #include "glint/formats/scene_yaml.h"
+#include "glint/math/motion.h"
 
 namespace glint {
 
 namespace {
-
-// Segments over a shutter `length` frames long: four per frame, at least one, at most 64 (keys
-// are blended by rotation and translation between them, so rotations and moves at a steady rate
-// are exact with any count; curves need a few per frame).
-int motion_segments(double length) { return std::clamp(static_cast<int>(std::ceil(4 * length)), 1, 64); }
 
 // Where an object is: its transform, times a sphere's own centre and radius (the sphere is
 // then the unit sphere at the origin, placed by the keys).
@@ -43,7 +39,7 @@ SceneDescription parse_scene_over_shutter(const std::string& text, const std::st
     SceneDescription d = parse_scene(text, path, sources, frame);
     const double open = d.shutter[0], close = d.shutter[1];
     if (!d.animated || !(close > open)) return d;
-    const int segments = motion_segments(close - open);
+    const int segments = shutter_segments(close - open);
     std::vector<SceneDescription> keys;
     for (int k = 0; k <= segments; ++k)
         keys.push_back(parse_scene(text, path, sources, frame + open + (close - open) * k / segments));

@@ -118,6 +118,11 @@ bool same_linear(const Matrix34& a, const Matrix34& b) {
 
 }  // namespace
 
+int shutter_segments(double frames) {
+    if (!(frames > 0)) return 1;
+    return static_cast<int>(std::clamp(std::ceil(4 * frames), 1.0, 64.0));
+}
+
 Motion::Motion(std::vector<Transform> keys) : keys_(std::move(keys)) {
     if (keys_.empty()) keys_.push_back(Transform{});
     for (const Transform& k : keys_) {

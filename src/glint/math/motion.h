@@ -19,6 +19,11 @@
 
 namespace glint {
 
+/// How many key segments a shutter `frames` long is read at (glint's YAML keyframes, glTF
+/// animations): four per frame, at least one, at most 64. Keys blend by rotation and translation,
+/// so turns and moves at a steady rate are exact with any count; curves need a few per frame.
+int shutter_segments(double frames);
+
 class Motion {
 public:
     Motion() = default;
