@@ -76,6 +76,9 @@ struct Scene {
         std::uint32_t motion;
     };
     std::vector<MovingShape> moving_shapes;
+    /// Per light of `lights` (may be shorter): an index into motions that carries a point or spot
+    /// light's position over the shutter, or -1.
+    std::vector<std::int32_t> light_motion;
     std::vector<AlphaMask> alpha_masks;
     std::vector<Material> materials;
     std::vector<Emission> emission;  ///< per material; missing entries emit nothing
@@ -126,6 +129,19 @@ struct Scene {
     bool any_moving(std::uint32_t m, const Ray& ray) const;
     /// Moving shape m's box over the whole shutter.
     Bounds3 moving_bounds(std::uint32_t m) const;
+    /// Light i of `lights` where it is at `time`.
+    Light light_at(std::size_t i, Float time) const {
+        Light l = lights[i];
+        if (i < light_motion.size() && light_motion[i] >= 0) {
+            const Transform x = motions[static_cast<std::size_t>(light_motion[i])].at(time);
+            std::visit(
+                [&](auto& v) {
+                    if constexpr (requires { v.position; }) v.position = x.point(v.position);
+                },
+                l);
+        }
+        return l;
+    }
     /// Instance i's object-to-world transform at `time`.
     Transform placement(std::uint32_t i, Float time) const {
         const Instance& in = instances[i];

@@ -56,6 +56,11 @@ void Scene::index_motion() {
         v[s.index] = static_cast<std::int32_t>(s.motion);
         has_motion_ = has_motion_ || motions[s.motion].moves();
     }
+    for (const std::int32_t m : light_motion) {
+        if (m < 0) continue;
+        if (static_cast<std::size_t>(m) >= motions.size()) throw std::out_of_range("a light's motion that does not exist");
+        has_motion_ = has_motion_ || motions[static_cast<std::size_t>(m)].moves();
+    }
     for (const Instance& in : instances) {
         if (in.motion < 0) continue;
         if (static_cast<std::size_t>(in.motion) >= motions.size())

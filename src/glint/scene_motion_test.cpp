@@ -244,6 +244,32 @@ TEST(MotionScene, AMovingLightIsSampledWhereItIs) {
     }
 }
 
+// A keyframed point light moves over the shutter: the path tracer's light sample and the
+// article integrator's light both come from where it is at the time.
+TEST(MotionScene, AKeyframedPointLightMovesOverTheShutter) {
+    const std::string yaml = R"(
+camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], shutter: [0, 2]}
+integrator: {type: path}
+lights: [{type: point, position: {keyframes: [[0, [-4, 3, 0]], [2, [4, 3, 0]]]}, intensity: [10, 10, 10]}]
+objects: [{type: sphere, center: [0, 0, 0], radius: 1}]
+)";
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene_over_shutter(yaml, "light.yaml", sources);
+    const RenderJob job = build(d, Overrides{}, sources);
+    const Scene& s = job.scene;
+    ASSERT_TRUE(s.has_motion());
+    for (const float t : {0.0f, 0.25f, 1.0f}) {
+        const Light moved = s.light_at(0, t);
+        ASSERT_TRUE(std::holds_alternative<PointLight>(moved));
+        const Point3 expected{-4 + 8 * t, 3, 0};
+        EXPECT_NEAR(std::get<PointLight>(moved).position.x, expected.x, 1e-5f) << t;
+        const auto sample = s.light_sampler().sample_li(s, 0, {0, 0, 0}, {0.5f, 0.5f}, t);
+        ASSERT_TRUE(sample);
+        EXPECT_NEAR(sample->distance, length(expected - Point3{0, 0, 0}), 1e-4f) << t;
+        EXPECT_NEAR(sample->wi.x, expected.x / length(expected - Point3{0, 0, 0}), 1e-5f) << t;
+    }
+}
+
 std::string error_of(const std::string& yaml) {
     try {
         parse_scene_over_shutter(yaml, "scene.yaml", std::make_shared<SourceFiles>());

@@ -639,6 +639,21 @@ public:
     void add_media_and_materials() {
         scene_.background = d_.background;
         scene_.lights = d_.lights;
+        // Moving point and spot lights: stored where they are at the opening, moved by their path.
+        for (std::size_t i = 0; i < d_.light_paths.size() && i < scene_.lights.size(); ++i) {
+            const auto& path = d_.light_paths[i];
+            if (path.size() < 2) continue;
+            std::visit(
+                [&](auto& l) {
+                    if constexpr (requires { l.position; }) l.position = path.front();
+                },
+                scene_.lights[i]);
+            std::vector<Transform> keys;
+            for (const Point3& p : path) keys.push_back(Transform::translate(p - path.front()));
+            scene_.motions.emplace_back(std::move(keys));
+            scene_.light_motion.resize(scene_.lights.size(), -1);
+            scene_.light_motion[i] = static_cast<std::int32_t>(scene_.motions.size() - 1);
+        }
         // Media first: materials (glTF volumes) and objects refer to them.
         for (const NamedMedium& m : d_.media) {
             medium_names_.push_back(m.name);

@@ -286,6 +286,9 @@ struct SceneDescription {
     SourceLoc shutter_loc;
     /// The camera at evenly spaced times over the shutter (the first = `camera`); empty: still.
     std::vector<CameraDesc> camera_motion;
+    /// Per light of `lights` (may be shorter): a point or spot light's position at those times;
+    /// empty: still.
+    std::vector<std::vector<Point3>> light_paths;
     /// Animation: the frame this description is of (keyframed values were read at it), frames
     /// per second (glTF animations are timed in seconds), and whether anything is keyframed.
     double frame = 0;

@@ -62,6 +62,19 @@ SceneDescription parse_scene_over_shutter(const std::string& text, const std::st
         o.transform = motion.front();
         o.motion = std::move(motion);
     }
+    // Point and spot lights move by their positions (a spot's direction is the frame's).
+    for (std::size_t i = 0; i < d.lights.size(); ++i) {
+        std::vector<Point3> path;
+        for (const SceneDescription& key : keys) {
+            const Light& l = key.lights[i];
+            if (const auto* p = std::get_if<PointLight>(&l)) path.push_back(p->position);
+            else if (const auto* s = std::get_if<SpotLight>(&l)) path.push_back(s->position);
+        }
+        if (path.size() != keys.size() || std::all_of(path.begin(), path.end(), [&](Point3 q) { return q == path.front(); }))
+            continue;
+        d.light_paths.resize(d.lights.size());
+        d.light_paths[i] = std::move(path);
+    }
     bool camera_moves = false;
     for (const SceneDescription& key : keys) camera_moves = camera_moves || !same_camera(key.camera, keys.front().camera);
     if (camera_moves) {

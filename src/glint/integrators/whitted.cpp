@@ -13,8 +13,8 @@ void Integrator::li_packet(const Scene&, const Ray*, int, Color*, RayCounter&) c
 Color WhittedIntegrator::direct(const Scene& scene, Point3 p, Normal3 n, Normal3 ng, Color k,
                                 RayCounter& counter, Float time) const {
     Color d = k * settings_.ambient;
-    for (const Light& light : scene.lights) {
-        const LightSample ls = sample_light(light, p);
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightSample ls = scene.has_motion() ? sample_light(scene.light_at(i, time), p) : sample_light(scene.lights[i], p);
         const Float cos_theta = dot(n, ls.to_light);  // the article's -L.N
         if (cos_theta <= 0) continue;
         if (settings_.shadows) {

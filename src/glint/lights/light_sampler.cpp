@@ -236,6 +236,8 @@ void LightSampler::build(const Scene& scene, float radius, LightSamplerKind samp
             distant_power.push_back(power[i]);
         } else {
             bounds[i] = light_bounds(scene, lights_[i]);
+            if (i < scene.light_motion.size() && scene.light_motion[i] >= 0)  // over the whole shutter
+                bounds[i].box = scene.motions[static_cast<std::size_t>(scene.light_motion[i])].swept_bounds(bounds[i].box);
         }
     }
     if (env_) {
@@ -313,6 +315,13 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
 
 std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, std::uint32_t light, Point3 p,
                                                             Sample2 u, Float time) const {
+    // A moving point or spot light where it is at `time` (a copy only then).
+    const Light* chosen = light < lights_.size() ? &lights_[light] : nullptr;
+    Light moved;
+    if (light < scene.light_motion.size() && scene.light_motion[light] >= 0) {
+        moved = scene.light_at(light, time);
+        chosen = &moved;
+    }
     if (light == environment()) {
         return std::visit(
             [&](const auto& b) -> std::optional<LightLiSample> {
@@ -395,7 +404,7 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};
             }
         },
-        lights_[light]);
+        *chosen);
 }
 
 float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,
