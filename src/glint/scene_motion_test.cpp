@@ -326,6 +326,38 @@ Shape "sphere"
     EXPECT_TRUE(d.objects[1].motion.empty());
 }
 
+// A pbrt camera whose end-time transform differs moves: pbrt's CTM is camera-from-world, so a
+// Translate 1 0 0 at the end time puts the camera at x = -1 then (by hand).
+TEST(MotionScene, PbrtMovingCameraMovesOverTheShutter) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_pbrt(R"(LookAt 0 0 -5  0 0 0  0 1 0
+ActiveTransform EndTime
+Translate 1 0 0
+ActiveTransform All
+Camera "perspective" "float fov" 40
+WorldBegin
+Shape "sphere"
+)", "test.pbrt", sources, PbrtOptions{true});
+    EXPECT_TRUE(d.warnings.empty());
+    ASSERT_EQ(d.camera_motion.size(), 2u);
+    const auto& open = std::get<LookAtCameraDesc>(d.camera_motion[0]);
+    const auto& close = std::get<LookAtCameraDesc>(d.camera_motion[1]);
+    EXPECT_NEAR(open.from.x, 0, 1e-5f);
+    EXPECT_NEAR(open.from.z, -5, 1e-5f);
+    EXPECT_NEAR(close.from.x, -1, 1e-5f);
+    EXPECT_NEAR(close.from.z, -5, 1e-5f);
+    EXPECT_NEAR(close.to.x, -1, 1e-5f);  // it moves sideways, looking the same way
+    Overrides o;
+    o.width = 8;
+    o.height = 8;
+    const RenderJob job = build(d, o, sources);
+    ASSERT_TRUE(job.camera.moves());
+    // The centre ray at the close starts one unit to the left of the opening's.
+    const Ray r0 = job.camera.at_time(job.camera.generate_ray(4, 4), 0), r1 = job.camera.at_time(job.camera.generate_ray(4, 4), 1);
+    EXPECT_NEAR(r1.origin.x - r0.origin.x, -1, 1e-5f);
+    EXPECT_NEAR(dot(r0.direction, r1.direction), 1, 1e-6f);
+}
+
 // The collection's killeroo-moving.pbrt is killeroo-simple.pbrt with ActiveTransform blocks
 // around the two killeroos; the same edit made here to the copy in ../shared/models. It reads
 // with no warning (strict) and both killeroos (the second comes later in the same block) move by

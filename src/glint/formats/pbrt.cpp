@@ -15,6 +15,7 @@
 
 #include "glint/base/limits.h"
 #include "glint/formats/pbrt_parser.h"
+#include "glint/math/motion.h"
 
 namespace glint {
 namespace pbrt_detail {
@@ -453,8 +454,6 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     exposure_time_ = close - open;
     d_.shutter = {open, close};
     d_.shutter_loc = pl.find("shutteropen") ? pl.find("shutteropen")->loc : t.loc();
-    if (!(gs_.ctm_end.m == gs_.ctm.m))
-        warn(t.loc(), "Camera: a moving camera transform is not supported; the camera at the start time is used");
     if (type == "orthographic") {
         cam.orthographic = true;
         cam.height = Float(2 * std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]));  // shorter axis [-1, 1]
@@ -464,6 +463,29 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
     }
     check_unused(pl, "Camera \"" + type + "\"");
     d_.camera = cam;
+    // A moving camera (its start and end transforms differ): its frames at the shutter's open
+    // and close, interpolated between the transform times as shapes are (docs/motion.md).
+    if (!(gs_.ctm_end.m == gs_.ctm.m)) {
+        const auto end_from_camera = gs_.ctm_end.inverse();
+        const auto a = c.affine() ? Transform::from(c.to34()) : std::nullopt;
+        const auto b = end_from_camera && end_from_camera->affine() ? Transform::from(end_from_camera->to34()) : std::nullopt;
+        if (!a || !b) {
+            diag_.error(t.loc(), "Camera: the camera transform at the end time is singular or projective");
+        } else {
+            const Motion between({*a, *b});
+            const double t0 = transform_times_[0], t1 = transform_times_[1];
+            for (const double time : {open, close}) {
+                const double u = t1 > t0 ? std::clamp((time - t0) / (t1 - t0), 0.0, 1.0) : (time < t0 ? 0.0 : 1.0);
+                const Transform x = between.at(static_cast<Float>(u));
+                LookAtCameraDesc key = cam;
+                key.from = x.point({0, 0, 0});
+                key.to = x.point({0, 0, 1});
+                key.up = normalize(x.vector({0, 1, 0}));
+                d_.camera_motion.push_back(key);
+            }
+            d_.camera = d_.camera_motion.front();
+        }
+    }
     if (!gs_.outside.empty()) d_.medium = Located<std::string>{gs_.outside, t.loc()};
 }
 
