@@ -473,10 +473,8 @@ void Parser::camera(const Token& t, const std::string& type, ParamList pl) {
             diag_.error(t.loc(), "Camera: the camera transform at the end time is singular or projective");
         } else {
             const Motion between({*a, *b});
-            const double t0 = transform_times_[0], t1 = transform_times_[1];
             for (const double time : {open, close}) {
-                const double u = t1 > t0 ? std::clamp((time - t0) / (t1 - t0), 0.0, 1.0) : (time < t0 ? 0.0 : 1.0);
-                const Transform x = between.at(static_cast<Float>(u));
+                const Transform x = between.at(transform_fraction(time));
                 LookAtCameraDesc key = cam;
                 key.from = x.point({0, 0, 0});
                 key.to = x.point({0, 0, 1});

@@ -5,6 +5,7 @@
 // textures, media). pbrt.h is the interface.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
@@ -327,6 +328,12 @@ private:
     std::vector<std::pair<GraphicsState, SourceLoc>> stack_;  ///< AttributeBegin/End
     std::vector<std::pair<std::array<M4, 2>, SourceLoc>> transform_stack_;   ///< TransformBegin/End
     std::array<double, 2> transform_times_{0, 1};             ///< TransformTimes
+    /// Where `time` falls between the transform times, in [0, 1]: pbrt holds the start's
+    /// transform before them and the end's after.
+    Float transform_fraction(double time) const {
+        const double t0 = transform_times_[0], t1 = transform_times_[1];
+        return static_cast<Float>(t1 > t0 ? std::clamp((time - t0) / (t1 - t0), 0.0, 1.0) : (time < t0 ? 0.0 : 1.0));
+    }
     /// The object's placement over the shutter from its transforms at the start and end times
     /// (empty when they are equal).
     std::vector<Transform> motion_keys(const M4& start, const M4& end, const SourceLoc& loc);

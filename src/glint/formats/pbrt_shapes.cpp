@@ -22,13 +22,8 @@ std::vector<Transform> Parser::motion_keys(const M4& start, const M4& end, const
     // pbrt interpolates between the transform times and holds the ends outside them; glint's keys
     // are at the shutter's opening and close.
     const Motion between({*a, *b});
-    const double t0 = transform_times_[0], t1 = transform_times_[1];
-    const auto at = [&](double t) {
-        const double u = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : (t < t0 ? 0.0 : 1.0);
-        return between.at(static_cast<Float>(u));
-    };
     const std::array<double, 2> shutter = camera_seen_ ? d_.shutter : std::array<double, 2>{0, 1};  // pbrt's default
-    return {at(shutter[0]), at(shutter[1])};
+    return {between.at(transform_fraction(shutter[0])), between.at(transform_fraction(shutter[1]))};
 }
 
 void Parser::add_object(ObjectDesc o, const M4& m, std::optional<M4> end) {
