@@ -244,6 +244,24 @@ TEST(MotionScene, AMovingLightIsSampledWhereItIs) {
     }
 }
 
+// A moving sphere kept as the unit sphere and placed at radius 2 is as strong a light as a
+// still sphere of radius 2: the power sampler gives them the same share.
+TEST(MotionScene, AMovingLightsPowerIsItsPlacedSize) {
+    Scene s;
+    s.background = ConstantBackground{Color{0}};
+    s.light_sampling = LightSamplerKind::kPower;
+    s.materials.push_back(DiffuseMaterial{});
+    s.emission.push_back(Emission{Color{2}});
+    s.spheres.push_back({{0, 0, 5}, 2, 0});
+    s.spheres.push_back({{0, 0, 0}, 1, 0});
+    s.motions.push_back(Motion({Transform::translate({5, 0, 5}) * Transform::scale({2, 2, 2}), Transform::translate({8, 0, 5}) * Transform::scale({2, 2, 2})}));
+    s.moving_shapes = {{ShapeKind::kSphere, 1, 0}};
+    s.commit();
+    ASSERT_EQ(s.light_sampler().count(), 2u);
+    EXPECT_NEAR(s.light_sampler().pmf(0), 0.5f, 1e-6f);
+    EXPECT_NEAR(s.light_sampler().pmf(1), 0.5f, 1e-6f);
+}
+
 // A keyframed point light moves over the shutter: the path tracer's light sample and the
 // article integrator's light both come from where it is at the time.
 TEST(MotionScene, AKeyframedPointLightMovesOverTheShutter) {

@@ -56,6 +56,16 @@ float env_power_density(const Background& bg) {
         bg);
 }
 
+// How much a moving analytic shape's area grows from where it is stored (object space) to where
+// it is at the shutter's opening: k^2 for its similarity of scale k (1 for everything else).
+float placed_area_scale(const Scene& scene, ShapeKind kind, std::uint32_t index) {
+    if (kind == ShapeKind::kMesh) return 1;
+    const Motion* m = scene.motion_of(kind, index);
+    if (!m) return 1;
+    const float k = length(m->key(0).vector({1, 0, 0}));
+    return k * k;
+}
+
 // Where a light is and which way it shines, for the BVH (lights/light_bvh.h). Distant lights
 // have no place: phi 0 leaves them out.
 LightBounds light_bounds(const Scene& scene, const Light& light) {
@@ -131,6 +141,7 @@ LightBounds light_bounds(const Scene& scene, const Light& light) {
                 // facing every way.
                 if (const Motion* m = scene.motion_of(l.kind, l.index)) {
                     b.box = m->swept_bounds(b.box);
+                    b.phi *= placed_area_scale(scene, l.kind, l.index);
                     b.cos_o = -1;
                     b.two_sided = true;
                 }
@@ -207,6 +218,7 @@ void LightSampler::build(const Scene& scene, float radius, LightSamplerKind samp
                         }
                         case ShapeKind::kPlane: break;
                     }
+                    area *= placed_area_scale(scene, l.kind, l.index);
                     const Emission& e = scene.emission_of(material);
                     return kPi * area * luminance(e.radiance) * (e.two_sided ? 2.0f : 1.0f);
                 }
