@@ -342,6 +342,19 @@ Shape "sphere"
     EXPECT_NEAR(keys[1].point({0, 0, 0}).x, 1, 1e-6f);
     EXPECT_NEAR(keys[1].point({0, 0, 0}).y, 2, 1e-6f);
     EXPECT_TRUE(d.objects[1].motion.empty());
+    // Bad times and names are errors at their directive.
+    const auto error = [](const std::string& text) -> std::string {
+        try {
+            parse_pbrt(text, "bad.pbrt", std::make_shared<SourceFiles>(), PbrtOptions{true});
+        } catch (const SceneError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    };
+    EXPECT_NE(error("TransformTimes 2 1\n").find("bad.pbrt:1:1: error: TransformTimes: expected a start and an end time"),
+              std::string::npos) << error("TransformTimes 2 1\n");
+    EXPECT_NE(error("WorldBegin\nActiveTransform Sometimes\n").find("bad.pbrt:2:1: error: ActiveTransform: expected StartTime"),
+              std::string::npos) << error("WorldBegin\nActiveTransform Sometimes\n");
 }
 
 // A pbrt camera whose end-time transform differs moves: pbrt's CTM is camera-from-world, so a
