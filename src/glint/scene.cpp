@@ -1,6 +1,7 @@
 #include "glint/scene.h"
 
 #include <bit>
+#include <numbers>
 
 #include <algorithm>
 #include <cassert>
@@ -206,6 +207,10 @@ void Scene::commit() {
             },
             textures[i]);
     }
+    // The environment map's pyramid, for what the camera sees of it (background_seen).
+    env_pyramid_ = MipPyramid{};
+    if (const auto* env = std::get_if<EnvironmentMap>(&background); env && footprint)
+        env_pyramid_ = MipPyramid::build(env->image);
     // The pyramids of the images that filtered textures read (a third more texels each).
     pyramids_.assign(images.size(), MipPyramid{});
     for (const Texture& t : textures) {
@@ -536,6 +541,17 @@ Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim, Float tim
     // winding of the transformed vertices flips under a mirror. Rewind to match.
     if (x.flips() != flip_mesh_normal(m, prim, cross(p1 - p0, p2 - p0))) std::swap(t.p1, t.p2);
     return t;
+}
+
+Color Scene::background_seen(Vector3 d) const {
+    const auto* env = std::get_if<EnvironmentMap>(&background);
+    if (!env || !footprint || footprint->orthographic || env_pyramid_.levels.empty()) return evaluate(background, d);
+    const Point2 uv = EnvironmentMap::direction_to_uv(d);
+    if (!(std::isfinite(uv.x) && std::isfinite(uv.y))) return Color{0};
+    // A pixel's angle (at the image's centre), in units of the map's width (2 pi around).
+    const Float angle = length(footprint->h_step) / footprint->near * footprint->scale;
+    const Float width = angle / (2 * std::numbers::pi_v<Float>);
+    return trilinear(env->image, env_pyramid_, {uv.x, 1 - uv.y}, width, WrapMode::kRepeat, WrapMode::kClamp) * env->scale;
 }
 
 Color Scene::light_radiance(const AreaLight& l, MaterialId material, Point3 q, Normal3 n, Float time) const {

@@ -170,6 +170,11 @@ struct Scene {
         static const Emission kNone;
         return m < emission.size() ? emission[m] : kNone;
     }
+    /// The background the camera sees along d, directly or through perfect mirrors and glass:
+    /// with texture filtering on (a footprint) an environment map is read over the pixel's
+    /// angular size (trilinear over its MIP pyramid); every other lookup is evaluate()'s, which
+    /// light sampling's densities are made from (docs/textures.md).
+    Color background_seen(Vector3 d) const;
     /// Radiance the surface at si emits towards wo (unit, pointing away from the surface).
     Color emitted(const SurfaceInteraction& si, Vector3 wo) const {
         const Emission& e = emission_of(si.material);
@@ -273,6 +278,7 @@ private:
     bool has_interfaces_ = false;
     /// Per image: its MIP pyramid, for the images filtered textures read (built by commit()).
     std::vector<MipPyramid> pyramids_;
+    MipPyramid env_pyramid_;  ///< the environment map's, when textures are filtered (commit())
     /// uv (set 0) at point q of si's surface (q near si.p, on its tangent plane).
     Point2 uv_near(const SurfaceInteraction& si, Point3 q) const;
     /// uv(si) for a shape where it is stored.

@@ -955,8 +955,8 @@ RenderJob build(const SceneDescription& d, const Overrides& overrides,
     for (Texture& t : job.scene.textures)
         if (auto* image = std::get_if<ImageTexture>(&t))
             image->filter = job.texture_filter;
+    set_texture_footprint(job);  // before commit: it builds the environment's pyramid for it
     job.scene.commit();
-    set_texture_footprint(job);
     return job;
 }
 

@@ -329,11 +329,15 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 
         if (!hit) {
             if (want_features) *first = {evaluate(scene.background, ray.direction), {}, 0, false};
-            for (const std::uint32_t l : lights.distant())
-                add_emission(lights.distant_radiance(scene, l, ray.direction), l, {});
+            for (const std::uint32_t l : lights.distant()) {
+                // Seen by the camera (through perfect mirrors and glass), the environment is read
+                // over the pixel's footprint; that term has no MIS weight to keep consistent.
+                const bool seen = specular && l == lights.environment();
+                add_emission(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction), l, {});
+            }
             // A background that is no light (black has no power) still shows to the camera.
             if (lights.environment() == kNoLight && depth == 0)
-                radiance += beta * evaluate(scene.background, ray.direction) / average(r_u);
+                radiance += beta * scene.background_seen(ray.direction) / average(r_u);
             break;
         }
         const SurfaceInteraction si = scene.interaction(ray, *hit);
