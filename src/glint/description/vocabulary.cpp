@@ -104,7 +104,7 @@ const std::vector<VocabularyEntry>& table() {
         {"object", "triangle", {"type", "vertices", GLINT_OBJECT_KEYS}},
         {"object", "polygon", {"type", "vertices", GLINT_OBJECT_KEYS}},
         {"object", "box", {"type", "min", "max", GLINT_OBJECT_KEYS}},
-        {"object", "mesh", {"type", "file", GLINT_OBJECT_KEYS, "alpha", "alpha_mode", "alpha_cutoff"}},
+        {"object", "mesh", {"type", "file", "positions", "indices", "normals", "uvs", "colors", GLINT_OBJECT_KEYS, "alpha", "alpha_mode", "alpha_cutoff"}},
         {"alpha_mode", "mask", {}},
         {"alpha_mode", "blend", {}},
         {"transform", "translate", {}},

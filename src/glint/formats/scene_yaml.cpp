@@ -59,6 +59,7 @@ void SceneParser::parse_root(const YAML::Node& root, SceneDescription& scene) {
     if (auto n = m.get("media")) media(*n, scene.media);
     if (auto n = m.get("medium")) scene.medium = located_name(*n);
     if (auto n = m.get("objects")) objects(*n, scene.objects);
+    scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
 }
 
 // Replaces, in place, every `{keyframes: [[frame, value], ...], interpolation: ...}` under
@@ -499,7 +500,7 @@ using yaml_detail::SceneParser;
 
 
 SceneDescription parse_scene(const std::string& text, const std::string& path,
-                             std::shared_ptr<SourceFiles> sources, double frame) {
+                             std::shared_ptr<SourceFiles> sources, double frame, const InlineArrays* arrays) {
     reset_memory_budget();  // a new scene
     sources->add(path, text);
     Diagnostics diagnostics(sources);
@@ -552,7 +553,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& path,
         check_expanded_size(reader, root);
         diagnostics.throw_if_errors();
     }
-    SceneParser(diagnostics, path).parse_root(root, scene);
+    SceneParser(diagnostics, path, arrays).parse_root(root, scene);
     diagnostics.throw_if_errors();
     return scene;
 }

@@ -1,13 +1,27 @@
 #pragma once
 // Scene files in YAML (yaml-cpp). JSON is accepted too: it is YAML 1.2. The format is documented
 // in docs/scene-format.md.
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "glint/base/diagnostics.h"
 #include "glint/description/scene_description.h"
 
 namespace glint {
+
+/// Numbers given beside a scene's text instead of in it (the Python module's numpy arrays,
+/// docs/python.md): an inline mesh's `positions`, `indices`, `normals`, `uvs` or `colors` whose
+/// value is the string "<array N>" reads arrays[N]. The memory stays the caller's; the parser
+/// copies it once, into the mesh.
+struct ArrayView {
+    const float* floats = nullptr;         ///< rows x columns floats, row-major; or
+    const std::uint32_t* ints = nullptr;   ///< rows x columns indices
+    std::size_t rows = 0, columns = 0;
+};
+using InlineArrays = std::vector<ArrayView>;
 
 /// Reads and parses a scene file. All errors (syntax, unknown keys, wrong types, out-of-range
 /// values) are collected and thrown together as one SceneError; a missing file is a SceneError
@@ -17,11 +31,13 @@ SceneDescription load_scene_file(const std::string& path, std::shared_ptr<Source
 
 /// Parses scene text; `path` names it in messages and resolves nothing else.
 SceneDescription parse_scene(const std::string& text, const std::string& path,
-                             std::shared_ptr<SourceFiles> sources, double frame = 0);
+                             std::shared_ptr<SourceFiles> sources, double frame = 0,
+                             const InlineArrays* arrays = nullptr);
 
 /// parse_scene, with what moves over the camera's shutter (`shutter: [open, close]`, in frames
 /// from `frame`) given its motion keys (scene_yaml_motion.cpp; docs/motion.md).
 SceneDescription parse_scene_over_shutter(const std::string& text, const std::string& path,
-                                          std::shared_ptr<SourceFiles> sources, double frame = 0);
+                                          std::shared_ptr<SourceFiles> sources, double frame = 0,
+                                          const InlineArrays* arrays = nullptr);
 
 }  // namespace glint

@@ -35,14 +35,15 @@ bool same_camera(const CameraDesc& a, const CameraDesc& b) {
 }  // namespace
 
 SceneDescription parse_scene_over_shutter(const std::string& text, const std::string& path,
-                                          std::shared_ptr<SourceFiles> sources, double frame) {
-    SceneDescription d = parse_scene(text, path, sources, frame);
+                                          std::shared_ptr<SourceFiles> sources, double frame,
+                                          const InlineArrays* arrays) {
+    SceneDescription d = parse_scene(text, path, sources, frame, arrays);
     const double open = d.shutter[0], close = d.shutter[1];
     if (!d.animated || !(close > open)) return d;
     const int segments = shutter_segments(close - open);
     std::vector<SceneDescription> keys;
     for (int k = 0; k <= segments; ++k)
-        keys.push_back(parse_scene(text, path, sources, frame + open + (close - open) * k / segments));
+        keys.push_back(parse_scene(text, path, sources, frame + open + (close - open) * k / segments, arrays));
     // Keyframes cannot add or remove objects, so the readings match one to one.
     for (std::size_t i = 0; i < d.objects.size(); ++i) {
         ObjectDesc& o = d.objects[i];
@@ -64,16 +65,16 @@ SceneDescription parse_scene_over_shutter(const std::string& text, const std::st
     }
     // Point and spot lights move by their positions (a spot's direction is the frame's).
     for (std::size_t i = 0; i < d.lights.size(); ++i) {
-        std::vector<Point3> path;
+        std::vector<Point3> route;
         for (const SceneDescription& key : keys) {
             const Light& l = key.lights[i];
-            if (const auto* p = std::get_if<PointLight>(&l)) path.push_back(p->position);
-            else if (const auto* s = std::get_if<SpotLight>(&l)) path.push_back(s->position);
+            if (const auto* p = std::get_if<PointLight>(&l)) route.push_back(p->position);
+            else if (const auto* s = std::get_if<SpotLight>(&l)) route.push_back(s->position);
         }
-        if (path.size() != keys.size() || std::all_of(path.begin(), path.end(), [&](Point3 q) { return q == path.front(); }))
+        if (route.size() != keys.size() || std::all_of(route.begin(), route.end(), [&](Point3 q) { return q == route.front(); }))
             continue;
         d.light_paths.resize(d.lights.size());
-        d.light_paths[i] = std::move(path);
+        d.light_paths[i] = std::move(route);
     }
     bool camera_moves = false;
     for (const SceneDescription& key : keys) camera_moves = camera_moves || !same_camera(key.camera, keys.front().camera);

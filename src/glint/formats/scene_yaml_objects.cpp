@@ -101,12 +101,19 @@ void SceneParser::objects(const YAML::Node& node, std::vector<ObjectDesc>& out) 
             mat = m.get("material");
         } else if (*type == "mesh") {
             MapReader m(r_, item, "mesh", vocabulary_keys("object", "mesh"));
-            MeshFileDesc f;
-            if (const auto n = m.require("file")) {
-                f.file.loc = r_.loc(*n);
-                assign(n, f.file.value, [this](const YAML::Node& v) { return r_.string(v); });
+            if (m.has("positions")) {  // the mesh itself
+                if (m.has("file")) r_.error(item, "mesh: give 'file' or 'positions' (the mesh itself), not both");
+                const auto mesh = inline_mesh(m, item);
+                if (!mesh) continue;
+                out.push_back(object_of(InlineMeshDesc{mesh}));
+            } else {
+                MeshFileDesc f;
+                if (const auto n = m.require("file")) {
+                    f.file.loc = r_.loc(*n);
+                    assign(n, f.file.value, [this](const YAML::Node& v) { return r_.string(v); });
+                }
+                out.push_back(object_of(f));
             }
-            out.push_back(object_of(f));
             if (const auto n = m.get("alpha")) {
                 AlphaDesc a;
                 a.loc = r_.loc(*n);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "glint/description/scene_description.h"
+#include "glint/formats/scene_yaml.h"
 #include "glint/formats/yaml_reader.h"
 
 namespace glint::yaml_detail {
@@ -36,8 +37,8 @@ void assign(const std::optional<YAML::Node>& node, T& field, Read read) {
 
 class SceneParser {
 public:
-    SceneParser(Diagnostics& diagnostics, const std::string& path)
-        : r_(diagnostics, path) {}
+    SceneParser(Diagnostics& diagnostics, const std::string& path, const InlineArrays* arrays = nullptr)
+        : r_(diagnostics, path), arrays_(arrays) {}
 
     void parse_root(const YAML::Node& root, SceneDescription& scene);
 
@@ -159,6 +160,15 @@ private:
     void media(const YAML::Node& node, std::vector<NamedMedium>& out);
 
     void objects(const YAML::Node& node, std::vector<ObjectDesc>& out);
+    // A mesh given by its arrays (`positions`, `indices`, ...; scene_yaml_mesh.cpp); null after an error.
+    std::shared_ptr<const TriangleMesh> inline_mesh(MapReader& m, const YAML::Node& item);
+    // An inline mesh's array of `columns` numbers a row: a YAML list (flat, or of rows) or
+    // "<array N>" from arrays_. Integers (indices) when `ints`.
+    bool mesh_array(const YAML::Node& node, const char* key, std::size_t columns, bool ints,
+                    std::vector<float>& floats, std::vector<std::uint32_t>& indices);
+    // Whether `rows` vertices (or triangles) fit the limits and the memory budget; errors otherwise.
+    bool check_mesh_size(const YAML::Node& node, const char* key, std::size_t rows, bool triangles);
+    std::vector<Diagnostic> warnings_;  ///< into SceneDescription::warnings
 
     // `transform`: one step or a list of steps, applied in the order listed (the first step acts
     // on the object first). Each step is a one-key map: translate, scale (a number or three),
@@ -178,6 +188,7 @@ private:
     static std::array<Quad, 6> box_faces(Point3 lo, Point3 hi);
 
     YamlReader r_;
+    const InlineArrays* arrays_ = nullptr;
 };
 
 }  // namespace glint::yaml_detail

@@ -378,3 +378,74 @@ TEST(SceneYaml, ATransformStepKeyThatIsNotANameIsALocatedError) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// A mesh given in the scene itself, as lists: its triangles as written, in object space.
+TEST(SceneYamlInlineMesh, ListsBecomeTheMesh) {
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(
+        "objects:\n"
+        "  - type: mesh\n"
+        "    positions: [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]\n"
+        "    indices: [0, 1, 2, 0, 2, 3]\n"
+        "    uvs: [0, 0, 1, 0, 1, 1, 0, 1]\n",
+        "scene.yaml", sources);
+    ASSERT_EQ(d.objects.size(), 1u);
+    const auto* m = std::get_if<InlineMeshDesc>(&d.objects[0].shape);
+    ASSERT_NE(m, nullptr);
+    EXPECT_EQ(m->mesh->triangle_count(), 2u);
+    EXPECT_EQ(m->mesh->positions[2], (Point3{1, 1, 0}));
+    EXPECT_EQ(m->mesh->indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
+    ASSERT_EQ(m->mesh->uvs.size(), 4u);
+    EXPECT_EQ(m->mesh->uvs[3].y, 1.0f);
+    EXPECT_TRUE(m->mesh->normals.empty());
+}
+
+// Arrays handed over beside the text (the Python module's numpy arrays) read as lists do.
+TEST(SceneYamlInlineMesh, ArraysBesideTheTextAreReadAsLists) {
+    const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const std::uint32_t i[] = {0, 1, 2, 0, 2, 3};
+    const InlineArrays arrays{{p, nullptr, 4, 3}, {nullptr, i, 2, 3}};
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(
+        "objects: [{type: mesh, positions: '<array 0>', indices: '<array 1>'}]\n", "scene.yaml", sources, 0, &arrays);
+    const auto* m = std::get_if<InlineMeshDesc>(&d.objects.at(0).shape);
+    ASSERT_NE(m, nullptr);
+    EXPECT_EQ(m->mesh->positions[1], (Point3{1, 0, 0}));
+    EXPECT_EQ(m->mesh->indices.size(), 6u);
+    // Without the arrays, or with the kinds swapped, the placeholders are errors at the key.
+    EXPECT_NE(errors_of("objects: [{type: mesh, positions: '<array 0>', indices: [0, 1, 2]}]\n")
+                  .find("scene.yaml:1:35: error: mesh: 'positions' must be a list of numbers (no array 0 was given"),
+              std::string::npos);
+    try {
+        parse_scene("objects: [{type: mesh, positions: '<array 1>', indices: '<array 0>'}]\n", "scene.yaml", sources, 0,
+                    &arrays);
+        ADD_FAILURE() << "swapped arrays were accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("'positions' must hold numbers"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SceneYamlInlineMesh, MistakesAreLocated) {
+    EXPECT_NE(errors_of("objects: [{type: mesh, positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, 3]}]\n")
+                  .find("scene.yaml:1:73: error: mesh: triangle 0 uses vertex 3, but there are 3 vertices"),
+              std::string::npos);
+    EXPECT_NE(errors_of("objects: [{type: mesh, positions: [0, 0, 0, 1, 0], indices: [0, 1, 2]}]\n")
+                  .find("'positions' holds 5 numbers, not a multiple of 3"),
+              std::string::npos);
+    EXPECT_NE(errors_of("objects: [{type: mesh, file: a.ply, positions: [0, 0, 0], indices: [0, 0, 0]}]\n")
+                  .find("give 'file' or 'positions'"),
+              std::string::npos);
+    EXPECT_NE(errors_of("objects: [{type: mesh, positions: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], indices: [0, 1, 2],"
+                        " normals: [[0, 0, 1]]}]\n")
+                  .find("'normals' has 1 rows for 3 positions"),
+              std::string::npos);
+    EXPECT_NE(errors_of("objects: [{type: mesh, positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, -2]}]\n")
+                  .find("indices"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint
