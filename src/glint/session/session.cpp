@@ -86,13 +86,25 @@ std::optional<TextureFilter> parse_texture_filter(const std::string& name) {
     throw IoError(fmt::format("--texture-filter: unknown texture filter '{}' (known: ewa, trilinear, none)", name));
 }
 
+LoadedScene read_scene(const SessionOptions& args) {
+    LoadedScene s;
+    s.sources = std::make_shared<SourceFiles>();
+    s.mesh = !args.scene.empty() && scene_file_format(args.scene).mesh;
+    s.description = args.scene.empty() ? parse_scene(kDemoScene, kDemoSceneName, s.sources, args.frame)
+                                       : read_scene_file(args.scene, s.sources, {args.strict, args.frame, args.camera});
+    s.description.frame = args.frame;
+    return s;
+}
+
 RenderJob load_job(const SessionOptions& args) {
-    auto sources = std::make_shared<SourceFiles>();
-    const bool mesh = !args.scene.empty() && scene_file_format(args.scene).mesh;
-    SceneDescription description =
-        args.scene.empty() ? parse_scene(kDemoScene, kDemoSceneName, sources, args.frame)
-                           : read_scene_file(args.scene, sources, {args.strict, args.frame, args.camera});
-    description.frame = args.frame;
+    std::optional<LoadedScene> read;
+    if (!args.loaded) read = read_scene(args);
+    const LoadedScene& loaded = args.loaded ? *args.loaded : *read;
+    const bool mesh = loaded.mesh;
+    // Each build its own copy of the texts: building adds the files it reads (and a loaded scene
+    // may be built by two threads at once).
+    auto sources = args.loaded ? std::make_shared<SourceFiles>(*loaded.sources) : loaded.sources;
+    SceneDescription description = args.loaded ? loaded.description : std::move(read->description);
     if (args.fps) {
         if (!(*args.fps > 0) || !std::isfinite(*args.fps) || *args.fps > 1e6)
             throw IoError(fmt::format("--fps {}: must be a number above 0", *args.fps));
@@ -244,9 +256,10 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     const bool distributed = !args.local && cluster_ && cluster_->size() > 1;
     if (distributed && cluster_->rank() > 0) return run_rank(args) == 0 ? SessionResult::kComplete : SessionResult::kInterrupted;
     RenderJob job = preloaded ? std::move(*preloaded) : prepare_job(args);
-    const std::filesystem::path out = output_path(args, job);
-    check_writable(out, job.film_width, job.film_height);  // fail before rendering, not after
-    if (job.aovs && image_format_for(out) != ImageFormat::kExr) {
+    const bool in_memory = static_cast<bool>(hooks_.image);
+    const std::filesystem::path out = in_memory ? std::filesystem::path() : output_path(args, job);
+    if (!in_memory) check_writable(out, job.film_width, job.film_height);  // fail before rendering, not after
+    if (job.aovs && !in_memory && image_format_for(out) != ImageFormat::kExr) {
         throw IoError(fmt::format(
             "{}: AOVs (albedo, normal, depth) are written as EXR channels; use an .exr output",
             out.string()));
@@ -267,7 +280,7 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     const std::filesystem::path checkpoint = !args.checkpoint.empty() ? args.checkpoint : args.resume;
     if (!checkpoint.empty()) {
         std::error_code ec, ec2;
-        if (std::filesystem::weakly_canonical(checkpoint, ec) == std::filesystem::weakly_canonical(out, ec2) && !ec && !ec2)
+        if (!in_memory && std::filesystem::weakly_canonical(checkpoint, ec) == std::filesystem::weakly_canonical(out, ec2) && !ec && !ec2)
             throw IoError(fmt::format("{}: the checkpoint and the image cannot be one file", out.string()));
         const auto dir = checkpoint.parent_path().empty() ? std::filesystem::path(".") : checkpoint.parent_path();
         if (!std::filesystem::is_directory(dir, ec))
@@ -279,17 +292,25 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     const auto pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
     Progress progress(mode, hooks_.progress_stream, pixels * static_cast<std::uint64_t>(std::max(1, job.options.spp)));
     if (hooks_.writing) {
-        hooks_.writing(0, out);
+        if (!in_memory) hooks_.writing(0, out);
         if (!checkpoint.empty()) hooks_.writing(1, checkpoint);
     }
     if (hooks_.arm) hooks_.arm();
     const auto interrupted_status = [&](const std::string& what) { return interrupted(args, what); };
+    // The image to its file, or (in memory) to the front end.
+    const auto deliver = [&](const Film& film, const ImageMetadata& meta) {
+        if (in_memory) {
+            hooks_.image(film, job.display, meta);
+            return;
+        }
+        write_image(out, film, job.display, meta);
+    };
 
     // The article's case (one sample, no AOVs, nothing to save or show): one sweep, no sums;
     // for PNG and PPM straight to 8-bit codes, with no float film (a 1080p film is 25 MB of
     // memory the kernel must clear and the encoder read back: docs/architecture.md).
     if (job.options.spp == 1 && !job.features() && checkpoint.empty() && args.display.empty() && !distributed) {
-        if (!is_linear_format(image_format_for(out))) {
+        if (!in_memory && !is_linear_format(image_format_for(out))) {
             // PNG strips are encoded by the render's threads as their rows come in.
             Image8Writer writer(out, w, h, job.display.encoding == Encoding::kSrgb);
             const RenderStats stats = render_8bit(
@@ -305,16 +326,16 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
         const RenderStats stats =
             glint::render(job.scene, job.camera, *job.integrator, job.options, film, &progress, hooks_.cancel);
         if (!stats.complete) return interrupted_status(args.animation ? fmt::format("frame {} not written", args.frame) : "no pass completed; nothing written");
-        write_image(out, film, job.display, metadata(args, 1, 1, 1, stats.seconds, true));
+        deliver(film, metadata(args, 1, 1, 1, stats.seconds, true));
         progress.finish(stats, w, h, "1 spp");
-        if (!args.quiet) say(fmt::format("wrote {}\n", out.string()));
+        if (!args.quiet && !in_memory) say(fmt::format("wrote {}\n", out.string()));
         return SessionResult::kComplete;
     }
     Film film(w, h);
     if (job.features()) film.enable_aovs();
 
     ProgressiveRender render(job.scene, job.camera, *job.integrator, job.options, w, h, job.features());
-    if (render.adaptive() && image_format_for(out) == ImageFormat::kExr) film.enable_sample_counts();
+    if (render.adaptive() && (in_memory || image_format_for(out) == ImageFormat::kExr)) film.enable_sample_counts();
     std::uint64_t fingerprint = 0;
     if (!checkpoint.empty() || distributed) {
         fingerprint = render_fingerprint(job, image_settings(args, job));
@@ -421,11 +442,10 @@ SessionResult RenderSession::render(const SessionOptions& args, std::optional<Re
     std::string what = spp_text(render);
     if (!render.finished()) what += fmt::format(" of {}", render.spp_target());
     if (budget_hit) what += " (time budget reached)";
-    write_image(out, film, job.display,
-                       metadata(args, render.spp_done(), render.spp_target(), render.passes(), state.seconds,
-                                render.finished()));
+    deliver(film, metadata(args, render.spp_done(), render.spp_target(), render.passes(), state.seconds,
+                           render.finished()));
     progress.finish(stats, w, h, what);
-    if (!args.quiet) {
+    if (!args.quiet && !in_memory) {
         say(fmt::format("wrote {}{}\n", out.string(),
                         checkpoint.empty() ? "" : fmt::format(" and checkpoint {}", checkpoint.string())));
     }

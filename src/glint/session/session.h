@@ -27,9 +27,19 @@
 
 namespace glint {
 
+/// A scene read but not yet built (the Python module's glint.load and glint.load_dict): a
+/// session given one builds it for each render with that render's options.
+struct LoadedScene {
+    SceneDescription description;
+    std::shared_ptr<SourceFiles> sources;
+    bool mesh = false;  ///< a mesh file rendered directly: framed by its bounds or its own camera
+};
+
 /// What to render and how: `glint render`'s options, one field per flag.
 struct SessionOptions {
     std::string scene;   ///< a scene or mesh file; empty: the built-in demo
+    /// A scene already read, rendered instead of reading `scene` (which then only names it).
+    std::shared_ptr<const LoadedScene> loaded;
     std::string output;  ///< the image; empty: the scene's film.filename, else <scene stem>.png
     std::optional<long long> width, height, spp, threads, max_depth;
     std::optional<std::uint64_t> seed;
@@ -79,6 +89,11 @@ struct SessionHooks {
     /// whose resolve(film) gives the image so far (a notebook's live view). Not called by the
     /// one-sample sweep (a single pass) nor on the ranks other than 0.
     std::function<void(const ProgressiveRender& render, double seconds)> pass_done;
+    /// Set: the image is handed over in memory instead of written (the Python module). Called
+    /// once, at the end, with the film (its AOVs, and the noisy image when denoised) and what a
+    /// file's header would say of it (glint:spp, glint:complete, ...). `output` is then unused,
+    /// AOVs need no EXR, and nothing is written but a checkpoint if one was asked for.
+    std::function<void(const Film& film, const DisplaySettings& display, const ImageMetadata& metadata)> image;
 };
 
 /// How a render ended, when it did not throw.
@@ -87,7 +102,11 @@ enum class SessionResult {
     kInterrupted = 3,  ///< cancelled: the completed passes were written where that is possible
 };
 
-/// The scene loaded and built with every option that changes the image (no MPI thread share).
+/// `options.scene` (a scene or mesh file, or the built-in demo) read at `options.frame`, not
+/// built. Throws SceneError or IoError.
+LoadedScene read_scene(const SessionOptions& options);
+
+/// The scene loaded (or `options.loaded`) and built with every option that changes the image (no MPI thread share).
 /// Notes for the user are in RenderJob::notes. Throws SceneError or IoError.
 RenderJob load_job(const SessionOptions& options);
 

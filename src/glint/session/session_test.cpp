@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 
@@ -63,6 +64,34 @@ TEST(Session, RendersWhatItsPiecesRender) {
     const Image b = read_image(dir / "b.exr", ImageEncoding::kLinear);
     ASSERT_EQ(a.texels.size(), b.texels.size());
     for (std::size_t i = 0; i < a.texels.size(); ++i) ASSERT_EQ(a.texels[i], b.texels[i]) << i;
+}
+
+// In memory (the Python module): a scene read once, rendered twice with the image handed over,
+// gives the floats the written file holds, and nothing is written.
+TEST(Session, AnImageInMemoryIsTheImageWritten) {
+    testing::TempDir dir;
+    Recorder rec;
+    SessionOptions o = small("cornell-box.yaml", dir / "a.exr");
+    ASSERT_EQ(RenderSession(o, rec.hooks()).run(), SessionResult::kComplete);
+    const Image written = read_image(dir / "a.exr", ImageEncoding::kLinear);
+
+    o.loaded = std::make_shared<const LoadedScene>(read_scene(o));
+    o.output = (dir / "not-written.exr").string();
+    for (int run = 0; run < 2; ++run) {
+        SessionHooks h = rec.hooks();
+        std::vector<Color> pixels;
+        ImageMetadata meta;
+        h.pass_done = nullptr;
+        h.image = [&](const Film& film, const DisplaySettings&, const ImageMetadata& m) {
+            pixels.assign(film.pixels().begin(), film.pixels().end());
+            meta = m;
+        };
+        ASSERT_EQ(RenderSession(o, h).run(), SessionResult::kComplete);
+        ASSERT_EQ(pixels.size(), written.texels.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i) ASSERT_EQ(pixels[i], written.texels[i]) << i;
+        EXPECT_NE(std::find(meta.begin(), meta.end(), std::pair<std::string, std::string>("glint:spp", "16")), meta.end());
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "not-written.exr"));
 }
 
 TEST(Session, ACancelledSessionWritesNothingBeforeItsFirstPass) {
