@@ -25,6 +25,7 @@ packages=(
   libopenmpi-dev openmpi-bin   # distributed rendering (mpirun -np N glint render), and its tests
   zlib1g-dev               # gzip-compressed PLY meshes (.ply.gz, as pbrt-v4 scenes ship them)
   python3                  # scripts/make_gltf_scene.py (the glTF test scene)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
   libgtest-dev libgmock-dev
   libbenchmark-dev
   clang libclang-rt-14-dev # libFuzzer and the sanitizers: `make fuzz`, run by `make test`
