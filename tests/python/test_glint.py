@@ -405,3 +405,17 @@ def test_help_is_useful():
     for word in ("spp", "aovs", "denoise", "time", "KeyboardInterrupt", "GIL"):
         assert word in doc
     assert glint.__version__.count(".") == 2
+
+
+# --- the examples run ----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("example", sorted(p.name for p in (pathlib.Path(__file__).resolve().parents[2] / "examples"
+                                                             / "python").glob("*.py")))
+def test_examples_run(source, tmp_path, example):
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(glint.__file__).resolve().parents[1]))
+    r = subprocess.run(["/usr/bin/python3" if os.path.exists("/usr/bin/python3") else "python3",
+                        source / "examples" / "python" / example, tmp_path / "out.png", "--quick"],
+                       capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert glint.read(tmp_path / "out.png").mean() > 0
