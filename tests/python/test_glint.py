@@ -419,3 +419,11 @@ def test_examples_run(source, tmp_path, example):
                        capture_output=True, text=True, env=env, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert glint.read(tmp_path / "out.png").mean() > 0
+
+
+def test_the_reference_documents_every_argument(source):
+    doc = (source / "docs" / "python.md").read_text()
+    for name in glint.__all__:
+        assert f"glint.{name}" in doc or name.startswith("__"), name
+    for name in inspect.signature(glint.render).parameters:
+        assert f"`{name}`" in doc, name
