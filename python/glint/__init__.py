@@ -55,6 +55,9 @@ class SceneError(GlintError):
         self.file, self.line, self.column, self.message = first
 
 
+_glint.set_error_types(SceneError, GlintError)
+
+
 class Scene:
     """A scene read by load() or load_dict(), not yet built: render() builds it with each
     render's options (size, samples, seed ...), so one Scene renders many ways."""

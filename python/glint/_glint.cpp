@@ -245,20 +245,32 @@ PYBIND11_MODULE(_glint, m) {
     m.doc() = "glint's compiled core; use the glint package (docs/python.md).";
     m.attr("version") = GLINT_VERSION;
 
-    // SceneError and IoError become glint.SceneError and glint.GlintError (classes of __init__.py).
+    // SceneError and IoError become the package's SceneError and GlintError, classes of
+    // __init__.py handed over by set_error_types (not looked up by the package's name: Blender's
+    // add-on is a module named glint too, and loads this package under another name).
+    static py::object scene_error, glint_error;
+    m.def("set_error_types", [](py::object scene, py::object other) {
+        scene_error = std::move(scene);
+        glint_error = std::move(other);
+    });
+    // Dropped before the interpreter ends (static objects outlive it).
+    py::module_::import("atexit").attr("register")(py::cpp_function([] {
+        scene_error = py::object();
+        glint_error = py::object();
+    }));
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const SceneError& e) {
+            if (!scene_error) throw;
             py::list diagnostics;
             for (const Diagnostic& d : e.diagnostics())
                 diagnostics.append(py::make_tuple(d.loc.file, d.loc.line, d.loc.column, d.message));
-            const py::object type = py::module_::import("glint").attr("SceneError");
-            const py::object value = type(e.what(), diagnostics);
-            PyErr_SetObject(type.ptr(), value.ptr());
+            const py::object value = scene_error(e.what(), diagnostics);
+            PyErr_SetObject(scene_error.ptr(), value.ptr());
         } catch (const IoError& e) {
-            const py::object type = py::module_::import("glint").attr("GlintError");
-            PyErr_SetObject(type.ptr(), type(e.what()).ptr());
+            if (!glint_error) throw;
+            PyErr_SetObject(glint_error.ptr(), glint_error(e.what()).ptr());
         } catch (const std::bad_alloc&) {
             PyErr_SetString(PyExc_MemoryError, "glint: out of memory");
         }
