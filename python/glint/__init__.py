@@ -160,6 +160,12 @@ def _plain(value, arrays, key=None):
 
 
 def _mesh_array(a, key, arrays):
+    # The same array object given to several meshes is handed over once: the reader then makes
+    # them one mesh, placed as instances (one BVH).
+    for i, (original, _) in enumerate(arrays):
+        if original is a:
+            return f"<array {i}>"
+    original = a
     if key == "indices":
         if a.dtype.kind not in "iu":
             raise TypeError(f"mesh indices must be integers, not {a.dtype}")
@@ -171,7 +177,7 @@ def _mesh_array(a, key, arrays):
     if a.ndim == 0:
         raise ValueError(f"mesh {key}: expected an array of rows, got a scalar")
     a = a.reshape(a.shape[0], -1) if a.ndim > 1 else a
-    arrays.append(a)
+    arrays.append((original, a))
     return f"<array {len(arrays) - 1}>"
 
 
@@ -189,7 +195,7 @@ def load_dict(scene, *, name="<dict>", frame=0.0):
     arrays = []
     plain = _plain(scene, arrays)
     text = json.dumps(plain, indent=1, allow_nan=True)
-    return Scene(_glint.load_text(text, name, arrays, float(frame)), name)
+    return Scene(_glint.load_text(text, name, [a for _, a in arrays], float(frame)), name)
 
 
 def _scene_of(scene):

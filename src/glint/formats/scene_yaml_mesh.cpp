@@ -115,6 +115,26 @@ std::shared_ptr<const TriangleMesh> SceneParser::inline_mesh(MapReader& m, const
     const auto positions = m.require("positions");
     const auto indices = m.require("indices");
     if (!positions || !indices) return nullptr;
+    // Objects naming the same arrays share one mesh (and its BVH): instances, as a mesh file
+    // named twice is read once.
+    std::string key;
+    for (const char* k : {"positions", "indices", "normals", "uvs", "colors"}) {
+        const auto node = m.get(k);
+        if (!node) {
+            key += "-|";
+        } else if (node->IsScalar() && array_number(node->Scalar()) >= 0) {
+            key += node->Scalar() + "|";
+        } else {
+            key.clear();
+            break;
+        }
+    }
+    if (!key.empty())
+        if (const auto it = shared_meshes_.find(key); it != shared_meshes_.end()) return it->second;
+    const auto remember = [&](std::shared_ptr<const TriangleMesh> made) {
+        if (!key.empty()) shared_meshes_.emplace(key, made);
+        return made;
+    };
     if (!mesh_array(*positions, "positions", 3, false, p, unused)) return nullptr;
     if (!mesh_array(*indices, "indices", 3, true, none, mesh->indices)) return nullptr;
     const std::size_t vertices = p.size() / 3;
@@ -161,7 +181,7 @@ std::shared_ptr<const TriangleMesh> SceneParser::inline_mesh(MapReader& m, const
         r_.error(*indices, fmt::format("mesh: {}", e.what()));
         return nullptr;
     }
-    return mesh;
+    return remember(mesh);
 }
 
 }  // namespace glint::yaml_detail

@@ -10,6 +10,8 @@
 #include <array>
 #include <initializer_list>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -169,6 +171,8 @@ private:
     // Whether `rows` vertices (or triangles) fit the limits and the memory budget; errors otherwise.
     bool check_mesh_size(const YAML::Node& node, const char* key, std::size_t rows, bool triangles);
     std::vector<Diagnostic> warnings_;  ///< into SceneDescription::warnings
+    /// Inline meshes by the arrays they were read from ("<array 0>|<array 1>|-|..."): shared.
+    std::map<std::string, std::shared_ptr<const TriangleMesh>> shared_meshes_;
 
     // `transform`: one step or a list of steps, applied in the order listed (the first step acts
     // on the object first). Each step is a one-key map: translate, scale (a number or three),

@@ -428,6 +428,24 @@ TEST(SceneYamlInlineMesh, ArraysBesideTheTextAreReadAsLists) {
     }
 }
 
+// Two objects naming the same arrays are instances of one mesh; lists are not compared.
+TEST(SceneYamlInlineMesh, ObjectsNamingTheSameArraysShareTheMesh) {
+    const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+    const std::uint32_t i[] = {0, 1, 2};
+    const InlineArrays arrays{{p, nullptr, 3, 3}, {nullptr, i, 1, 3}};
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_scene(
+        "objects:\n"
+        "  - {type: mesh, positions: '<array 0>', indices: '<array 1>'}\n"
+        "  - {type: mesh, positions: '<array 0>', indices: '<array 1>', transform: {translate: [2, 0, 0]}}\n"
+        "  - {type: mesh, positions: '<array 0>', indices: [0, 1, 2]}\n",
+        "scene.yaml", sources, 0, &arrays);
+    ASSERT_EQ(d.objects.size(), 3u);
+    const auto mesh = [&](int k) { return std::get<InlineMeshDesc>(d.objects[k].shape).mesh.get(); };
+    EXPECT_EQ(mesh(0), mesh(1));
+    EXPECT_NE(mesh(0), mesh(2));
+}
+
 TEST(SceneYamlInlineMesh, MistakesAreLocated) {
     EXPECT_NE(errors_of("objects: [{type: mesh, positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, 3]}]\n")
                   .find("scene.yaml:1:73: error: mesh: triangle 0 uses vertex 3, but there are 3 vertices"),
