@@ -14,7 +14,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR ?= 1
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-release test-sanitized fuzz bench bench-cycles bench-embree bench-volumes gallery sanitize clean
+.PHONY: all deps configure build demo test test-release test-sanitized test-blender fuzz bench bench-cycles bench-embree bench-volumes gallery sanitize clean
 
 all: build
 
@@ -43,6 +43,13 @@ TEST_TARGETS = glint_tests glint_tests_oiio
 test-release: configure
 	cmake --build $(BUILD) -j $(JOBS) --target $(TEST_TARGETS)
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The Blender add-on against Cycles, headless (docs/blender.md): not part of `make test`, since it
+# installs Blender (about 300 MB from Debian, a few minutes on a fresh machine); about 2 minutes.
+test-blender: configure
+	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
+	cmake --build $(BUILD) -j $(JOBS) --target glint_python
+	GLINT_PYTHON=$(CURDIR)/$(BUILD)/python/glint blender -b --factory-startup --python tests/blender/test_engine.py
 
 $(FUZZ_BUILD)/build.ninja: | deps
 	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -1,0 +1,265 @@
+"""The glint render engine inside Blender, headless (docs/blender.md):
+
+    GLINT_PYTHON=build/python/glint blender -b --factory-startup --python tests/blender/test_engine.py
+
+A Cornell-like box built by script (coloured walls, a smooth sphere and a cube with Principled
+materials, an area light, a dim world) rendered by glint and by Cycles at high spp: the channel
+means must agree within 3 % and 95 % of the 16 x 16 blocks within 10 %. Then: each mapped input
+changes glint's image, Esc (test_break) stops a render early, and an unmapped node gives one
+report line. Exit status 0 when every check holds; the failures are printed.
+"""
+import math
+import os
+import pathlib
+import sys
+import tempfile
+import traceback
+
+import bpy
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "blender"))
+import glint as addon  # noqa: E402  (the add-on: blender/glint)
+
+addon.register()
+failures = []
+SIZE = int(os.environ.get("GLINT_BLENDER_SIZE", "96"))
+SPP = int(os.environ.get("GLINT_BLENDER_SPP", "512"))
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def principled(name, **inputs):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    p = m.node_tree.nodes["Principled BSDF"]
+    for k, v in inputs.items():
+        p.inputs[k].default_value = v
+    return m
+
+
+def lambert(name, color):
+    """A Diffuse BSDF of roughness 0: Lambertian in both renderers (Cycles' Principled diffuse is
+    Burley's, which glint does not have)."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nodes = m.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    d = nodes.new("ShaderNodeBsdfDiffuse")
+    d.inputs["Color"].default_value = color
+    d.inputs["Roughness"].default_value = 0
+    m.node_tree.links.new(d.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+    return m
+
+
+def plane(name, location, rotation, size, material):
+    bpy.ops.mesh.primitive_plane_add(size=size, location=location, rotation=rotation)
+    o = bpy.context.object
+    o.name = name
+    o.data.materials.append(material)
+    return o
+
+
+def build_scene():
+    scene = bpy.context.scene
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras,
+                       bpy.data.worlds):
+        for item in list(collection):
+            collection.remove(item)
+    white = lambert("white", (0.73, 0.71, 0.68, 1))
+    red = lambert("red", (0.63, 0.065, 0.05, 1))
+    green = lambert("green", (0.14, 0.45, 0.09, 1))
+    plane("floor", (0, 0, 0), (0, 0, 0), 2, white)
+    plane("ceiling", (0, 0, 2), (math.pi, 0, 0), 2, white)
+    plane("back", (0, 1, 1), (math.pi / 2, 0, 0), 2, white)
+    plane("left", (-1, 0, 1), (0, math.pi / 2, 0), 2, red)
+    plane("right", (1, 0, 1), (0, -math.pi / 2, 0), 2, green)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.35, location=(-0.35, 0.2, 0.35), segments=48, ring_count=24)
+    sphere = bpy.context.object
+    bpy.ops.object.shade_smooth()
+    sphere.data.materials.append(principled("metal", **{"Base Color": (0.9, 0.7, 0.4, 1), "Metallic": 1.0,
+                                                        "Roughness": 0.3}))
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.4, -0.1, 0.25), rotation=(0, 0, 0.4))
+    cube = bpy.context.object
+    cube.data.materials.append(principled("plastic", **{"Base Color": (0.2, 0.3, 0.8, 1), "Roughness": 0.4,
+                                                        "Clearcoat": 0.5, "Clearcoat Roughness": 0.25}))
+    bpy.ops.object.light_add(type="AREA", location=(0, 0, 1.98))
+    light = bpy.context.object
+    light.data.size = 0.5
+    light.data.energy = 30
+    light.data.color = (1.0, 0.85, 0.6)
+    # The light just out of view: Cycles hides light objects from camera rays, glint's area lights
+    # are emitting shapes the camera sees (docs/blender.md).
+    bpy.ops.object.camera_add(location=(0, -3.2, 1.0), rotation=(math.pi / 2 - 0.08, 0, 0))
+    scene.camera = bpy.context.object
+    scene.camera.data.lens = 50
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.06, 1)
+    scene.world = world
+    scene.render.resolution_x = scene.render.resolution_y = SIZE
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = 2
+    return scene
+
+
+def render(scene, engine, path, spp):
+    scene.render.engine = engine
+    if engine == "CYCLES":
+        c = scene.cycles
+        c.samples = spp
+        c.use_adaptive_sampling = False
+        c.use_denoising = False
+        c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 12
+        c.sample_clamp_direct = c.sample_clamp_indirect = 0
+        c.filter_glossy = 0
+        c.light_sampling_threshold = 0
+        c.pixel_filter_type = "BOX"
+        c.filter_width = 1.0
+        c.seed = 1
+    else:
+        scene.glint.samples = spp
+        scene.glint.max_depth = 12
+        scene.glint.seed = 1
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(str(path))
+    pixels = np.array(image.pixels[:], dtype=np.float32).reshape(image.size[1], image.size[0], 4)[..., :3]
+    bpy.data.images.remove(image)
+    return pixels
+
+
+def compare_with_cycles(scene, tmp):
+    g = render(scene, "GLINT", tmp / "glint.exr", SPP)
+    c = render(scene, "CYCLES", tmp / "cycles.exr", SPP)
+    if os.environ.get("GLINT_BLENDER_KEEP"):  # docs/blender.md's picture
+        keep = pathlib.Path(os.environ["GLINT_BLENDER_KEEP"])
+        keep.mkdir(parents=True, exist_ok=True)
+        for name in ("glint.exr", "cycles.exr"):
+            (keep / name).write_bytes((tmp / name).read_bytes())
+    gm, cm = g.mean(axis=(0, 1)), c.mean(axis=(0, 1))
+    print(f"channel means: glint {gm}, Cycles {cm}, ratio {gm / cm}")
+    check(bool(np.all(np.abs(gm / cm - 1) < 0.03)), "channel means within 3 % of Cycles'")
+    b = SIZE // 16
+    gb = g[:b * 16, :b * 16].reshape(16, b, 16, b, 3).mean(axis=(1, 3))
+    cb = c[:b * 16, :b * 16].reshape(16, b, 16, b, 3).mean(axis=(1, 3))
+    # Blocks compared by their luminance-like sum (a dark block's single channel is mostly noise).
+    ratio = gb.sum(axis=2) / np.maximum(cb.sum(axis=2), 1e-6)
+    within = float(np.mean(np.abs(ratio - 1) < 0.10))
+    print(f"16 x 16 blocks within 10 %: {within:.3f}")
+    check(within >= 0.95, "95 % of 16 x 16 blocks within 10 % of Cycles'")
+    return g
+
+
+def glint_image(scene, tmp, name, spp=16):
+    return render(scene, "GLINT", tmp / f"{name}.exr", spp)
+
+
+def each_mapped_input_changes_the_image(scene, tmp):
+    base = glint_image(scene, tmp, "base")
+    changes = {
+        "base colour": lambda: bpy.data.materials["plastic"].node_tree.nodes["Principled BSDF"].inputs[
+            "Base Color"].__setattr__("default_value", (0.9, 0.1, 0.1, 1)),
+        "metallic": lambda: bpy.data.materials["metal"].node_tree.nodes["Principled BSDF"].inputs[
+            "Metallic"].__setattr__("default_value", 0.0),
+        "roughness": lambda: bpy.data.materials["metal"].node_tree.nodes["Principled BSDF"].inputs[
+            "Roughness"].__setattr__("default_value", 0.9),
+        "emission": lambda: bpy.data.materials["plastic"].node_tree.nodes["Principled BSDF"].inputs[
+            "Emission Strength"].__setattr__("default_value", 2.0) or bpy.data.materials["plastic"].node_tree.nodes[
+            "Principled BSDF"].inputs["Emission"].__setattr__("default_value", (1, 1, 1, 1)),
+        "transmission": lambda: bpy.data.materials["plastic"].node_tree.nodes["Principled BSDF"].inputs[
+            "Transmission"].__setattr__("default_value", 1.0),
+        "light power": lambda: setattr(bpy.data.lights[0], "energy", 60),
+        "world colour": lambda: scene.world.node_tree.nodes["Background"].inputs["Color"].__setattr__(
+            "default_value", (0.5, 0.5, 0.5, 1)),
+        "camera lens": lambda: setattr(scene.camera.data, "lens", 35),
+        "depth of field": lambda: (setattr(scene.camera.data.dof, "use_dof", True),
+                                   setattr(scene.camera.data.dof, "aperture_fstop", 0.5),
+                                   setattr(scene.camera.data.dof, "focus_distance", 1.0)),
+    }
+    for name, change in changes.items():
+        change()
+        image = glint_image(scene, tmp, name.replace(" ", "-"))
+        check(float(np.abs(image - base).mean()) > 1e-3, f"{name} changes the image")
+        scene = build_scene()  # the next change starts from the base scene
+    return scene
+
+
+def cancel_stops_the_render(scene):
+    glint = addon.renderer()
+    ex = addon.export.Export(bpy.context.evaluated_depsgraph_get(), 64, 64)
+    loaded = glint.load_dict(ex.scene_dict(4096, 8))
+
+    class Pass:
+        rect = None
+
+    class Result:
+        layers = [type("L", (), {"passes": {"Combined": Pass()}})()]
+
+    class Engine:
+        breaks = 0
+        updates = []
+
+        def test_break(self):
+            self.breaks += 1
+            return True
+
+        def update_result(self, result):
+            pass
+
+        def update_progress(self, p):
+            self.updates.append(p)
+
+        def update_stats(self, a, b):
+            pass
+
+    settings = type("S", (), dict(samples=4096, seed=0, denoise=False, threads=0, time_limit=0))()
+    engine, result = Engine(), Result()
+    addon.GlintRenderEngine.render_passes(engine, glint, loaded, settings, result, 64, 64)
+    rect = result.layers[0].passes["Combined"].rect
+    check(engine.breaks == 1 and len(engine.updates) == 1 and engine.updates[0] < 1,
+          "Esc (test_break) stops the render after the pass in hand")
+    check(rect is not None and len(rect) == 64 * 64, "the pass was written into the render result")
+
+
+def unmapped_node_is_reported_once(scene):
+    mat = bpy.data.materials["plastic"]
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    noise = nodes.new("ShaderNodeTexNoise")
+    links.new(noise.outputs["Fac"], nodes["Principled BSDF"].inputs["Roughness"])
+    nodes["Principled BSDF"].inputs["Subsurface"].default_value = 0.5
+    ex = addon.export.Export(bpy.context.evaluated_depsgraph_get(), 32, 32)
+    ex.scene_dict(4, 4)
+    ex.scene_dict(4, 4)  # a second pass over the scene adds nothing
+    print("reported:", ex.unmapped)
+    check(sum("Roughness" in line and "ShaderNodeTexNoise" in line for line in ex.unmapped) == 1,
+          "a node into Roughness gives one report line")
+    check(sum("Subsurface" in line for line in ex.unmapped) == 1, "an unmapped Principled input gives one line")
+
+
+def main():
+    with tempfile.TemporaryDirectory() as folder:
+        tmp = pathlib.Path(folder)
+        scene = build_scene()
+        compare_with_cycles(scene, tmp)
+        scene = each_mapped_input_changes_the_image(scene, tmp)
+        cancel_stops_the_render(scene)
+        unmapped_node_is_reported_once(scene)
+
+
+try:
+    main()
+except Exception:
+    traceback.print_exc()
+    failures.append("exception")
+print(f"{len(failures)} failure(s)" + (": " + "; ".join(failures) if failures else ""))
+sys.stdout.flush()
+os._exit(1 if failures else 0)
