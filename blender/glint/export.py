@@ -312,6 +312,14 @@ class Export:
         m = {"type": "pbr", "base_color": base, "metallic": value("Metallic"),
              "roughness": value("Roughness"), "ior": max(1.0001, value("IOR")),
              "transmission": value("Transmission")}
+        spec = value("Specular")
+        if m["metallic"] == 0 and m["transmission"] == 0 and isinstance(base, list) and spec > 0:
+            # Principled (v1) adds its specular layer over an undimmed diffuse; glint's pbr puts the
+            # diffuse under a dielectric coat, whose internal reflection leaves the albedo
+            # rho (1 - Fdr) / (1 - rho Fdr) (Fdr: the coat's diffuse reflectance from inside).
+            # The base colour is the one whose coated albedo is Principled's.
+            fdr = _fdr_inside(m["ior"])
+            m["base_color"] = [c / ((1 - fdr) + c * fdr) if c > 0 else 0.0 for c in base]
         if value("Clearcoat") > 0:
             m["clearcoat"] = value("Clearcoat")
             m["clearcoat_roughness"] = value("Clearcoat Roughness")
@@ -320,7 +328,6 @@ class Export:
             b = base if isinstance(base, list) else [1.0, 1.0, 1.0]
             m["sheen"] = [value("Sheen") * ((1 - tint) + tint * c) for c in b]
         # Blender's Specular 0.5 is an F0 of 0.04 (index 1.5): glTF's specular weight is twice it.
-        spec = value("Specular")
         m["specular"] = min(1.0, 2 * spec)
         if spec == 0 and m["metallic"] == 0 and m["transmission"] == 0 and "clearcoat" not in m and "sheen" not in m:
             # No specular layer at all: a diffuse surface. (glint's pbr keeps its coat's internal
@@ -365,6 +372,24 @@ class Export:
             self.note(f"material '{mat.name}': '{socket.name}' from node "
                       f"{socket.links[0].from_node.bl_idname} is not mapped (its value is used)")
         return float(socket.default_value)
+
+
+def _fresnel(cos_i, eta):
+    """Unpolarised Fresnel reflectance of a dielectric interface (eta: the far side's index over
+    the near side's)."""
+    sin2_t = (1 - cos_i * cos_i) / (eta * eta)
+    if sin2_t >= 1:
+        return 1.0
+    cos_t = math.sqrt(1 - sin2_t)
+    r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+    r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+    return 0.5 * (r_par * r_par + r_perp * r_perp)
+
+
+def _fdr_inside(eta, steps=1024):
+    """The coat's reflectance, from inside, of diffuse light: 2 int_0^1 F(mu, 1/eta) mu dmu (the
+    same integral as glint's diffuse_fresnel_inside)."""
+    return sum(2 * _fresnel((i + 0.5) / steps, 1 / eta) * (i + 0.5) / steps / steps for i in range(steps))
 
 
 def _image_path(image):

@@ -24,8 +24,8 @@ import glint as addon  # noqa: E402  (the add-on: blender/glint)
 
 addon.register()
 failures = []
-SIZE = int(os.environ.get("GLINT_BLENDER_SIZE", "96"))
-SPP = int(os.environ.get("GLINT_BLENDER_SPP", "512"))
+SIZE = int(os.environ.get("GLINT_BLENDER_SIZE", "128"))
+SPP = int(os.environ.get("GLINT_BLENDER_SPP", "1024"))
 
 
 def check(ok, what):
@@ -245,6 +245,52 @@ def unmapped_node_is_reported_once(scene):
     check(sum("Subsurface" in line for line in ex.unmapped) == 1, "an unmapped Principled input gives one line")
 
 
+def light_units_match_closed_forms(tmp):
+    """A 100 W light 2 m above a white diffuse plane, seen straight down by an orthographic camera,
+    direct light only: the pixel is rho/pi E with E = L A / d^2 (area light, L = P / (4 A), small
+    enough for the point-source limit) or I / d^2 (point light, I = P / (4 pi)). Both renderers
+    against the closed form."""
+    scene = build_scene()
+    for o in list(bpy.data.objects):
+        bpy.data.objects.remove(o)
+    bpy.ops.mesh.primitive_plane_add(size=20)
+    bpy.context.object.data.materials.append(lambert("one", (1, 1, 1, 1)))
+    bpy.ops.object.camera_add(location=(0, 0, 1), rotation=(0, 0, 0))
+    scene.camera = bpy.context.object
+    scene.camera.data.type = "ORTHO"
+    scene.camera.data.ortho_scale = 0.02
+    scene.world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
+    scene.render.resolution_x = scene.render.resolution_y = 8
+    d2 = 4.0  # the light's height, squared
+    for kind in ("AREA", "POINT"):
+        for o in [o for o in bpy.data.objects if o.type == "LIGHT"]:
+            bpy.data.objects.remove(o)
+        bpy.ops.object.light_add(type=kind, location=(0, 0, 2))
+        light = bpy.context.object.data
+        light.energy = 100
+        if kind == "AREA":
+            light.size = 0.05
+            expected_kind = (100 / 4) / d2 / math.pi  # L A / d^2 / pi with L A = P / 4
+        else:
+            light.shadow_soft_size = 0
+            expected_kind = 100 / (4 * math.pi) / d2 / math.pi  # I / d^2 / pi with I = P / (4 pi)
+        scene.cycles.max_bounces = 0
+        scene.glint.max_depth = 1
+        for engine in ("CYCLES", "GLINT"):
+            scene.render.engine = engine
+            if engine == "CYCLES":
+                scene.cycles.samples, scene.cycles.use_denoising = 64, False
+            else:
+                scene.glint.samples = 64
+            scene.render.filepath = str(tmp / f"units-{kind}-{engine}.exr")
+            bpy.ops.render.render(write_still=True)
+            image = bpy.data.images.load(scene.render.filepath)
+            value = float(np.array(image.pixels[:]).reshape(-1, 4)[:, 0].mean())
+            bpy.data.images.remove(image)
+            print(f"{kind} light, {engine}: {value:.5f}, closed form {expected_kind:.5f}")
+            check(abs(value / expected_kind - 1) < 0.01, f"{kind.lower()} light units: {engine} within 1 % of the closed form")
+
+
 def main():
     with tempfile.TemporaryDirectory() as folder:
         tmp = pathlib.Path(folder)
@@ -253,6 +299,7 @@ def main():
         scene = each_mapped_input_changes_the_image(scene, tmp)
         cancel_stops_the_render(scene)
         unmapped_node_is_reported_once(scene)
+        light_units_match_closed_forms(tmp)
 
 
 try:
