@@ -330,8 +330,7 @@ class Export:
         # Blender's Specular 0.5 is an F0 of 0.04 (index 1.5): glTF's specular weight is twice it.
         m["specular"] = min(1.0, 2 * spec)
         if spec == 0 and m["metallic"] == 0 and m["transmission"] == 0 and "clearcoat" not in m and "sheen" not in m:
-            # No specular layer at all: a diffuse surface. (glint's pbr keeps its coat's internal
-            # reflection when the specular weight is 0, which darkens coloured bases.)
+            # No specular layer at all: a diffuse surface (what glint's pbr is at specular 0).
             m = {"type": "diffuse", "albedo": base}
         if 2 * spec > 1:
             self.note(f"material '{mat.name}': Specular above 0.5 is clipped to 0.5")

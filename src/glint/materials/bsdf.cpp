@@ -312,10 +312,18 @@ Color PlasticLobe::eval(Vector3 wo_in, Vector3 wi_in) const {
     return upper(wo_in, wi_in, [this](Vector3 wo, Vector3 wi) {
         if (wo.z <= 0 || wi.z <= 0) return Color{0};
         const float fo = coat_fresnel(wo.z).max_component(), fi = coat_fresnel(wi.z).max_component();
-        const float scale = (1 - fo) * (1 - fi) * kInvPi / (eta * eta);
-        const Color base{albedo.r * scale / (1 - albedo.r * fdr_inside),
-                         albedo.g * scale / (1 - albedo.g * fdr_inside),
-                         albedo.b * scale / (1 - albedo.b * fdr_inside)};
+        Color base;
+        if (specular_weight == 1) {  // the coat whole: refraction's 1/eta^2 and internal reflection
+            const float scale = (1 - fo) * (1 - fi) * kInvPi / (eta * eta);
+            base = {albedo.r * scale / (1 - albedo.r * fdr_inside), albedo.g * scale / (1 - albedo.g * fdr_inside),
+                    albedo.b * scale / (1 - albedo.b * fdr_inside)};
+        } else {
+            // A weaker coat is that much less of an interface: the interior's terms fade with the
+            // weight, so that at 0 the base is the plain Lambertian it then is (white: albedo 1).
+            const float w = specular_weight, scale = (1 - fo) * (1 - fi) * kInvPi;
+            const auto channel = [&](float a) { return a * scale * (w / (eta * eta * (1 - a * fdr_inside)) + (1 - w)); };
+            base = {channel(albedo.r), channel(albedo.g), channel(albedo.b)};
+        }
         if (ggx.smooth()) return base;
         const Vector3 wm = normalize(wo + wi);
         // Multiplied in the order of the plain coat's d g F / (4 cos cos), so that its images

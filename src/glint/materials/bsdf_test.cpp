@@ -299,6 +299,27 @@ TEST(Layers, SpecularWeightAndColourShapeTheCoatFresnel) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(f0[k], 0.5f, 1e-3f);
 }
 
+// A specular weight of 0 leaves no coat at all: a white base is a white Lambertian, whose albedo
+// is 1 from every direction (quadrature over the hemisphere); between 0 and 1 no energy is made.
+TEST(Layers, ASpecularWeightOfZeroLeavesThePlainBase) {
+    for (const float weight : {0.0f, 0.5f}) {
+        PlasticLobe p = make_plastic(Color{1.0f}, 1.5f, 0.3f);
+        p.specular_weight = weight;
+        for (const float mu : {0.2f, 0.6f, 1.0f}) {
+            const Vector3 wo{std::sqrt(1 - mu * mu), 0, mu};
+            double albedo = 0;
+            constexpr int kN = 400;  // midpoint rule in (cos theta, phi)
+            for (int i = 0; i < kN; ++i)
+                for (int j = 0; j < kN; ++j) {
+                    const float c = (i + 0.5f) / kN, phi = 2 * kPi * (j + 0.5f) / kN, s = std::sqrt(1 - c * c);
+                    albedo += p.eval(wo, {s * std::cos(phi), s * std::sin(phi), c}).r * c * (2 * kPi) / (kN * kN);
+                }
+            if (weight == 0) EXPECT_NEAR(albedo, 1.0, 2e-3) << mu;
+            else EXPECT_LE(albedo, 1.0 + 2e-3) << mu;
+        }
+    }
+}
+
 // A sheen or coat adds reflection where the base has little, and takes it from the base: the
 // coated diffuse reflects more at grazing angles and less at normal incidence into the diffuse.
 TEST(Layers, ACoatTakesFromTheBaseWhatItReflects) {
