@@ -347,8 +347,24 @@ class Export:
             if socket.is_linked or _differs_from_default(node, name):
                 self.note(f"material '{mat.name}': Principled input '{name}' is not mapped")
         if i["Normal"].is_linked:
-            self.note(f"material '{mat.name}': normal maps from node trees are not mapped")
+            self.normal_map(mat, i["Normal"].links[0].from_node, m)
         return m, ([alpha] * 3 if alpha < 1 else None)
+
+    def normal_map(self, mat, node, m):
+        """A Normal Map node (tangent space) fed by an Image Texture: glint's normal_map, the
+        node's Strength its normal_scale (both follow glTF's convention, +y along +v)."""
+        color = node.inputs["Color"] if node.type == "NORMAL_MAP" else None
+        if color is None or node.space != "TANGENT" or not color.is_linked:
+            self.note(f"material '{mat.name}': only tangent-space Normal Map nodes fed by an image are mapped")
+            return
+        texture = self.color_input(mat, color)
+        if not isinstance(texture, dict):
+            return
+        texture["encoding"] = "linear"
+        m["normal_map"] = texture
+        strength = self.number_input(mat, node.inputs["Strength"])
+        if strength != 1:
+            m["normal_scale"] = min(100.0, max(0.0, strength))
 
     def color_input(self, mat, socket):
         if not socket.is_linked:

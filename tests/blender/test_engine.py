@@ -163,6 +163,22 @@ def glint_image(scene, tmp, name, spp=16):
     return render(scene, "GLINT", tmp / f"{name}.exr", spp)
 
 
+def add_normal_map(tmp):
+    """A tilted constant normal map (an image file) on the cube, through a Normal Map node."""
+    image = bpy.data.images.new("tilt", 4, 4)
+    image.pixels = [0.8, 0.5, 0.7, 1.0] * 16
+    image.filepath_raw = str(tmp / "tilt.png")
+    image.file_format = "PNG"
+    image.save()
+    image.colorspace_settings.name = "Non-Color"
+    tree = bpy.data.materials["plastic"].node_tree
+    tex = tree.nodes.new("ShaderNodeTexImage")
+    tex.image = image
+    nmap = tree.nodes.new("ShaderNodeNormalMap")
+    tree.links.new(tex.outputs["Color"], nmap.inputs["Color"])
+    tree.links.new(nmap.outputs["Normal"], tree.nodes["Principled BSDF"].inputs["Normal"])
+
+
 def each_mapped_input_changes_the_image(scene, tmp):
     base = glint_image(scene, tmp, "base")
     changes = {
@@ -181,6 +197,7 @@ def each_mapped_input_changes_the_image(scene, tmp):
         "world colour": lambda: scene.world.node_tree.nodes["Background"].inputs["Color"].__setattr__(
             "default_value", (0.5, 0.5, 0.5, 1)),
         "camera lens": lambda: setattr(scene.camera.data, "lens", 35),
+        "normal map": lambda: add_normal_map(tmp),
         "depth of field": lambda: (setattr(scene.camera.data.dof, "use_dof", True),
                                    setattr(scene.camera.data.dof, "aperture_fstop", 0.5),
                                    setattr(scene.camera.data.dof, "focus_distance", 1.0)),

@@ -9,7 +9,7 @@ namespace {
 // Keys every object takes, whatever its shape (after `type` and the shape's own).
 #define GLINT_OBJECT_KEYS "material", "transform", "interior", "exterior"
 // Keys every material takes.
-#define GLINT_MATERIAL_KEYS "type", "emission", "two_sided"
+#define GLINT_MATERIAL_KEYS "type", "emission", "two_sided", "normal_map", "normal_scale"
 // Keys of the coated materials' slab (pbrt-v4's LayeredBxDF).
 #define GLINT_LAYER_KEYS "ior", "thickness", "layer_albedo", "g", "max_depth", "samples"
 // Keys of both media.

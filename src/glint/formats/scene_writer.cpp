@@ -147,6 +147,10 @@ std::string Writer::material(const MaterialDesc& m) const {
         s += ", emission: " + vec(m.emission.radiance);
         if (m.emission.two_sided) s += ", two_sided: true";
     }
+    if (m.normal_map) {
+        s += ", normal_map: " + texture(*m.normal_map);
+        if (m.normal_scale != 1) s += ", normal_scale: " + num(m.normal_scale);
+    }
     return "{" + s + "}";
 }
 

@@ -176,6 +176,19 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
     assign(m.get("emission"), d.emission.radiance, color());
     assign(m.get("two_sided"), d.emission.two_sided,
            [this](const YAML::Node& v) { return r_.boolean(v); });
+    if (const auto n = m.get("normal_map")) {
+        if (auto t = texture(*n)) {
+            // A normal map holds directions, not colours: an image is read as stored unless told.
+            if (t->kind == TextureDesc::Kind::kImage && t->encoding == ImageEncoding::kAuto)
+                t->encoding = ImageEncoding::kLinear;
+            d.normal_map = std::move(*t);
+        }
+    }
+    assign(m.get("normal_scale"), d.normal_scale, [this](const YAML::Node& v) {
+        return r_.number_in(v, "normal_scale", 0, 100);
+    });
+    if (m.has("normal_scale") && !m.has("normal_map"))
+        r_.error(node, fmt::format("{}: 'normal_scale' goes with a 'normal_map'", context));
     if (d.kind == K::kConductor || (d.kind == K::kCoated && d.coated_conductor)) {
         const auto metal = m.get("metal");
         const auto eta = m.get("eta"), k = m.get("k"), reflectance = m.get("reflectance");
