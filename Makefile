@@ -45,7 +45,7 @@ test-release: configure
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The Blender add-on against Cycles, headless (docs/blender.md): not part of `make test`, since it
-# installs Blender (about 300 MB from Debian, a few minutes on a fresh machine); about 2 minutes.
+# installs Blender (about 300 MB from Debian, a few minutes on a fresh machine); about a minute (63 s here).
 test-blender: configure
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
 	cmake --build $(BUILD) -j $(JOBS) --target glint_python

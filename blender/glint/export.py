@@ -21,6 +21,8 @@ W = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [-1.0, 0.0, 0.0, 0.0],
 _MAPPED = {"Base Color", "Metallic", "Roughness", "IOR", "Transmission", "Emission", "Emission Strength", "Alpha",
            "Clearcoat", "Clearcoat Roughness", "Sheen", "Sheen Tint", "Specular"}
 _IGNORED = {"Normal", "Clearcoat Normal", "Tangent", "Weight"}
+_VISIBLE_LIGHTS = ("area lights and point lights with a radius are shapes the camera sees in glint "
+                   "(Cycles hides light objects from camera rays)")
 
 
 def _matrix(m):
@@ -164,8 +166,7 @@ class Export:
             if light.shadow_soft_size > 0:
                 # A sphere of radius r seen as a disk of radiance I / (pi r^2), as Cycles has it.
                 r = light.shadow_soft_size * _uniform_scale(m)
-                self.note("area lights and point lights with a radius are shapes the camera sees in glint "
-                          "(Cycles hides light objects from camera rays)")
+                self.note(_VISIBLE_LIGHTS)
                 objects.append({"type": "sphere", "center": _point(m), "radius": r,
                                 "material": {"type": "diffuse", "albedo": [0, 0, 0],
                                              "emission": _rgb(intensity, 1 / (math.pi * r * r))}})
@@ -199,8 +200,7 @@ class Export:
                 # glint's quad faces along edge1 x edge2; through the mirror W, (W e1) x (W e2) is
                 # -W (e1 x e2) = W (-z): the light's side, as Blender has it.
                 objects.append({"type": "quad", "corner": corner, "edge1": e1, "edge2": e2, "material": material})
-            self.note("area lights and point lights with a radius are shapes the camera sees in glint "
-                      "(Cycles hides light objects from camera rays)")
+            self.note(_VISIBLE_LIGHTS)
             if light.spread < math.pi - 1e-3:
                 self.note("area lights: spread is not mapped (light leaves in every direction)")
         else:

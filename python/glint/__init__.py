@@ -8,6 +8,7 @@
 Every render goes through the same render session as the `glint render` command, so the same
 scene, seed and samples give the same floats, bit for bit. The reference is docs/python.md.
 """
+import inspect
 import json
 import os
 import queue
@@ -23,9 +24,9 @@ __version__ = _glint.version
 __all__ = ["Diagnostic", "GlintError", "Image", "Scene", "SceneError", "load", "load_dict", "read",
            "render", "render_passes", "write", "__version__"]
 
-# The arrays an inline mesh takes from numpy without a copy through text, and their columns.
-_MESH_ARRAYS = {"positions": 3, "indices": 3, "normals": 3, "uvs": 2, "colors": 3}
-# The AOVs render() can return, and what each needs.
+# The arrays an inline mesh takes from numpy without a copy through text.
+_MESH_ARRAYS = {"positions", "indices", "normals", "uvs", "colors"}
+# The AOVs render() can return.
 _AOVS = ("albedo", "normal", "depth", "noisy", "samples")
 
 
@@ -141,13 +142,13 @@ def load(path, *, strict=False, frame=0.0, camera=""):
     return Scene(_glint.load(path, strict, float(frame), camera), path)
 
 
-def _plain(value, arrays, key=None):
+def _plain(value, arrays):
     """The dict as JSON-able values; numpy arrays under an inline mesh's keys into `arrays`."""
     if isinstance(value, dict):
         if value.get("type") == "mesh":
             return {k: (_mesh_array(v, k, arrays) if k in _MESH_ARRAYS and isinstance(v, np.ndarray)
-                        else _plain(v, arrays, k)) for k, v in value.items()}
-        return {str(k): _plain(v, arrays, k) for k, v in value.items()}
+                        else _plain(v, arrays)) for k, v in value.items()}
+        return {str(k): _plain(v, arrays) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [_plain(v, arrays) for v in value]
     if isinstance(value, np.ndarray):
@@ -161,10 +162,10 @@ def _plain(value, arrays, key=None):
 
 def _mesh_array(a, key, arrays):
     # The same array object given to several meshes is handed over once: the reader then makes
-    # them one mesh, placed as instances (one BVH).
-    for i, (original, _) in enumerate(arrays):
-        if original is a:
-            return f"<array {i}>"
+    # them one mesh, placed as instances (one BVH). `arrays` maps id(original) to (its number,
+    # the original, kept alive so that its id stays its own, the array handed over).
+    if id(a) in arrays:
+        return f"<array {arrays[id(a)][0]}>"
     original = a
     if key == "indices":
         if a.dtype.kind not in "iu":
@@ -177,7 +178,7 @@ def _mesh_array(a, key, arrays):
     if a.ndim == 0:
         raise ValueError(f"mesh {key}: expected an array of rows, got a scalar")
     a = a.reshape(a.shape[0], -1) if a.ndim > 1 else a
-    arrays.append((original, a))
+    arrays[id(original)] = (len(arrays), original, a)
     return f"<array {len(arrays) - 1}>"
 
 
@@ -192,10 +193,10 @@ def load_dict(scene, *, name="<dict>", frame=0.0):
 
     Errors are located in the dict written as indented JSON, under `name`. Mesh and texture files
     named by a relative path are looked for from the current folder."""
-    arrays = []
+    arrays = {}
     plain = _plain(scene, arrays)
     text = json.dumps(plain, indent=1, allow_nan=True)
-    return Scene(_glint.load_text(text, name, [a for _, a in arrays], float(frame)), name)
+    return Scene(_glint.load_text(text, name, [a for _, _, a in arrays.values()], float(frame)), name)
 
 
 def _scene_of(scene):
@@ -300,9 +301,8 @@ def render_passes(scene=None, **options):
         thread.join()
 
 
-_DEFAULTS = dict(spp=None, width=None, height=None, threads=None, seed=None, max_depth=None, aovs=(), time=None,
-                 denoise=False, noise_threshold=None, min_spp=None, checkpoint=None, checkpoint_every="5m",
-                 resume=None, accel=None, light_sampler=None, texture_filter=None, progress=False)
+# render_passes takes render's keyword arguments, with render's defaults.
+_DEFAULTS = {k: p.default for k, p in inspect.signature(render).parameters.items() if k != "scene"}
 
 
 def write(path, image, *, metadata=None):

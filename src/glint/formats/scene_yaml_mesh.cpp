@@ -42,30 +42,28 @@ bool SceneParser::check_mesh_size(const YAML::Node& node, const char* key, std::
     return true;
 }
 
-bool SceneParser::mesh_array(const YAML::Node& node, const char* key, std::size_t columns, bool ints,
-                             std::vector<float>& floats, std::vector<std::uint32_t>& indices) {
-    if (node.IsScalar()) {
-        const long long n = array_number(node.Scalar());
-        if (n < 0 || !arrays_ || n >= static_cast<long long>(arrays_->size())) {
-            r_.error(node, fmt::format("mesh: '{}' must be a list of numbers{}", key,
-                                       n >= 0 ? fmt::format(" (no array {} was given with the scene)", n) : ""));
-            return false;
-        }
-        const ArrayView& a = (*arrays_)[static_cast<std::size_t>(n)];
-        if (a.columns != columns && !(a.columns == 1 && a.rows % columns == 0)) {
-            r_.error(node, fmt::format("mesh: '{}' must have {} columns, not {}", key, columns, a.columns));
-            return false;
-        }
-        const std::size_t count = a.rows * a.columns;
-        if (!check_mesh_size(node, key, count / columns, ints)) return false;
-        if (ints != (a.ints != nullptr)) {
-            r_.error(node, fmt::format("mesh: '{}' must hold {}", key, ints ? "integers" : "numbers"));
-            return false;
-        }
-        if (ints) indices.assign(a.ints, a.ints + count);
-        else floats.assign(a.floats, a.floats + count);
-        return true;
+const ArrayView* SceneParser::handed_array(const YAML::Node& node, const char* key, std::size_t columns, bool ints) {
+    const long long n = array_number(node.Scalar());
+    if (n < 0 || !arrays_ || n >= static_cast<long long>(arrays_->size())) {
+        r_.error(node, fmt::format("mesh: '{}' must be a list of numbers{}", key,
+                                   n >= 0 ? fmt::format(" (no array {} was given with the scene)", n) : ""));
+        return nullptr;
     }
+    const ArrayView& a = (*arrays_)[static_cast<std::size_t>(n)];
+    if (a.columns != columns && !(a.columns == 1 && a.rows % columns == 0)) {
+        r_.error(node, fmt::format("mesh: '{}' must have {} columns, not {}", key, columns, a.columns));
+        return nullptr;
+    }
+    if (!check_mesh_size(node, key, a.rows * a.columns / columns, ints)) return nullptr;
+    if (ints != (a.ints != nullptr)) {
+        r_.error(node, fmt::format("mesh: '{}' must hold {}", key, ints ? "integers" : "numbers"));
+        return nullptr;
+    }
+    return &a;
+}
+
+bool SceneParser::mesh_list(const YAML::Node& node, const char* key, std::size_t columns, bool ints,
+                            std::vector<float>& floats, std::vector<std::uint32_t>& indices) {
     if (!node.IsSequence()) {
         r_.error(node, fmt::format("mesh: '{}' must be a list of numbers, got {}", key, describe(node)));
         return false;
@@ -107,11 +105,22 @@ bool SceneParser::mesh_array(const YAML::Node& node, const char* key, std::size_
     return ok;
 }
 
+std::optional<std::span<const float>> SceneParser::mesh_floats(const YAML::Node& node, const char* key,
+                                                               std::size_t columns, std::vector<float>& storage) {
+    if (node.IsScalar()) {
+        const ArrayView* a = handed_array(node, key, columns, false);
+        if (!a) return std::nullopt;
+        return std::span<const float>(a->floats, a->rows * a->columns);
+    }
+    std::vector<std::uint32_t> unused;
+    if (!mesh_list(node, key, columns, false, storage, unused)) return std::nullopt;
+    return std::span<const float>(storage);
+}
+
 std::shared_ptr<const TriangleMesh> SceneParser::inline_mesh(MapReader& m, const YAML::Node& item) {
     auto mesh = std::make_shared<TriangleMesh>();
     mesh->name = "inline mesh";
-    std::vector<float> p, n, uv, c, none;
-    std::vector<std::uint32_t> unused;
+    std::vector<float> p_list, n_list, uv_list, c_list, unused;
     const auto positions = m.require("positions");
     const auto indices = m.require("indices");
     if (!positions || !indices) return nullptr;
@@ -131,29 +140,39 @@ std::shared_ptr<const TriangleMesh> SceneParser::inline_mesh(MapReader& m, const
     }
     if (!key.empty())
         if (const auto it = shared_meshes_.find(key); it != shared_meshes_.end()) return it->second;
-    const auto remember = [&](std::shared_ptr<const TriangleMesh> made) {
-        if (!key.empty()) shared_meshes_.emplace(key, made);
-        return made;
-    };
-    if (!mesh_array(*positions, "positions", 3, false, p, unused)) return nullptr;
-    if (!mesh_array(*indices, "indices", 3, true, none, mesh->indices)) return nullptr;
+    // Each array is copied once, from the caller's memory or the list read, into the mesh.
+    const auto read_p = mesh_floats(*positions, "positions", 3, p_list);
+    if (!read_p) return nullptr;
+    const std::span<const float> p = *read_p;
+    if (indices->IsScalar()) {
+        const ArrayView* a = handed_array(*indices, "indices", 3, true);
+        if (!a) return nullptr;
+        mesh->indices.assign(a->ints, a->ints + a->rows * a->columns);
+    } else if (!mesh_list(*indices, "indices", 3, true, unused, mesh->indices)) {
+        return nullptr;
+    }
     const std::size_t vertices = p.size() / 3;
     if (vertices == 0 || mesh->indices.empty()) {
         r_.error(item, "mesh: 'positions' and 'indices' must not be empty");
         return nullptr;
     }
     // Each optional attribute: one row per position.
-    const auto optional = [&](const char* key, std::size_t columns, std::vector<float>& out) {
+    bool ok = true;
+    const auto optional = [&](const char* key, std::size_t columns, std::vector<float>& storage) {
         const auto node = m.get(key);
-        if (!node) return true;
-        if (!mesh_array(*node, key, columns, false, out, unused)) return false;
-        if (out.size() / columns != vertices) {
-            r_.error(*node, fmt::format("mesh: '{}' has {} rows for {} positions", key, out.size() / columns, vertices));
-            return false;
+        if (!node || !ok) return std::span<const float>();
+        const auto out = mesh_floats(*node, key, columns, storage);
+        if (!out) {
+            ok = false;
+        } else if (out->size() / columns != vertices) {
+            r_.error(*node, fmt::format("mesh: '{}' has {} rows for {} positions", key, out->size() / columns, vertices));
+            ok = false;
         }
-        return true;
+        return ok ? *out : std::span<const float>();
     };
-    if (!optional("normals", 3, n) || !optional("uvs", 2, uv) || !optional("colors", 3, c)) return nullptr;
+    const std::span<const float> n = optional("normals", 3, n_list), uv = optional("uvs", 2, uv_list),
+                                 c = optional("colors", 3, c_list);
+    if (!ok) return nullptr;
     mesh->positions.resize(vertices);
     for (std::size_t i = 0; i < vertices; ++i) mesh->positions[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
     if (!n.empty()) {
@@ -181,7 +200,8 @@ std::shared_ptr<const TriangleMesh> SceneParser::inline_mesh(MapReader& m, const
         r_.error(*indices, fmt::format("mesh: {}", e.what()));
         return nullptr;
     }
-    return remember(mesh);
+    if (!key.empty()) shared_meshes_.emplace(key, mesh);
+    return mesh;
 }
 
 }  // namespace glint::yaml_detail

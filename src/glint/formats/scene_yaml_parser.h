@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -164,10 +165,16 @@ private:
     void objects(const YAML::Node& node, std::vector<ObjectDesc>& out);
     // A mesh given by its arrays (`positions`, `indices`, ...; scene_yaml_mesh.cpp); null after an error.
     std::shared_ptr<const TriangleMesh> inline_mesh(MapReader& m, const YAML::Node& item);
-    // An inline mesh's array of `columns` numbers a row: a YAML list (flat, or of rows) or
-    // "<array N>" from arrays_. Integers (indices) when `ints`.
-    bool mesh_array(const YAML::Node& node, const char* key, std::size_t columns, bool ints,
-                    std::vector<float>& floats, std::vector<std::uint32_t>& indices);
+    // An inline mesh's array of `columns` numbers a row, given as "<array N>": arrays_[N], checked
+    // (columns, kind, size); null after an error.
+    const ArrayView* handed_array(const YAML::Node& node, const char* key, std::size_t columns, bool ints);
+    // The same given as a YAML list (flat, or of rows), read into `floats` or (ints) `indices`.
+    bool mesh_list(const YAML::Node& node, const char* key, std::size_t columns, bool ints,
+                   std::vector<float>& floats, std::vector<std::uint32_t>& indices);
+    // A float array either way: a view of the handed-over memory, or of `storage` (a list read
+    // into it); nullopt after an error.
+    std::optional<std::span<const float>> mesh_floats(const YAML::Node& node, const char* key, std::size_t columns,
+                                       std::vector<float>& storage);
     // Whether `rows` vertices (or triangles) fit the limits and the memory budget; errors otherwise.
     bool check_mesh_size(const YAML::Node& node, const char* key, std::size_t rows, bool triangles);
     std::vector<Diagnostic> warnings_;  ///< into SceneDescription::warnings
