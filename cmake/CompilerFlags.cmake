@@ -3,10 +3,10 @@
 # result (unlike -ffast-math): glint never reads errno from math functions and never enables
 # floating-point traps.
 add_library(glint_flags INTERFACE)
-target_compile_options(glint_flags INTERFACE
+target_compile_options(glint_flags INTERFACE $<$<COMPILE_LANGUAGE:CXX>:
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast
   -Wcast-align -Woverloaded-virtual -Wimplicit-fallthrough
-  -fno-math-errno -fno-trapping-math)
+  -fno-math-errno -fno-trapping-math>)
 if(GLINT_ARCH)
-  target_compile_options(glint_flags INTERFACE -march=${GLINT_ARCH})
+  target_compile_options(glint_flags INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-march=${GLINT_ARCH}>)
 endif()

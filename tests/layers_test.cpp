@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 // Lowest first. Folders of src/glint/, and the headers at its top by file name.
 const std::map<std::string, int> kLayer{
-    {"base", 0},       {"math", 0},        {"ray.h", 1},      {"interaction.h", 1}, {"samplers", 2},
+    {"base", 0},       {"math", 0},        {"spectra", 1},    {"ray.h", 1},      {"interaction.h", 1}, {"samplers", 2},
     {"shapes", 3},     {"textures", 3},    {"film", 3},       {"denoise", 3},       {"media", 4},
     {"materials", 5},
     {"lights", 5},     {"cameras", 5},     {"background.h", 5}, {"accel", 6},       {"scene.h", 7},

@@ -1,0 +1,80 @@
+#include "glint/spectra/rgb_spectrum.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "glint/spectra/rgb_spectrum_model.h"
+
+// The table glint_rgb2spec wrote at build time, assembled into the library (rgb_spectrum_table.S).
+extern "C" const float glint_rgb_spectrum_table[];
+
+namespace glint {
+
+namespace {
+
+using namespace rgb_model;
+
+struct ZNodes {
+    std::array<float, kRes> z;
+    ZNodes() {
+        for (int k = 0; k < kRes; ++k) z[std::size_t(k)] = z_node(k);
+    }
+};
+const ZNodes& z_nodes() {
+    static const ZNodes nodes;
+    return nodes;
+}
+
+}  // namespace
+
+float RgbSigmoid::operator()(float lambda) const { return evaluate(c, lambda); }
+
+RgbSigmoid rgb_sigmoid(Color rgb) {
+    const float v[3] = {std::clamp(rgb.r, 0.0f, 1.0f), std::clamp(rgb.g, 0.0f, 1.0f), std::clamp(rgb.b, 0.0f, 1.0f)};
+    RgbSigmoid s;
+    if (v[0] == v[1] && v[1] == v[2]) {
+        // A grey is a constant: the sigmoid's inverse at it (infinite at 0 and 1).
+        const float g = v[0];
+        s.c[2] = g <= 0 ? -INFINITY : g >= 1 ? INFINITY : (g - 0.5f) / std::sqrt(g * (1 - g));
+        return s;
+    }
+    const int l = v[0] >= v[1] ? (v[0] >= v[2] ? 0 : 2) : (v[1] >= v[2] ? 1 : 2);
+    const float z = v[l];
+    const float x = v[(l + 1) % 3] / z * (kRes - 1), y = v[(l + 2) % 3] / z * (kRes - 1);
+    const int xi = std::min(int(x), kRes - 2), yi = std::min(int(y), kRes - 2);
+    const auto& zs = z_nodes().z;
+    const int zi = std::clamp(int(std::upper_bound(zs.begin(), zs.end(), z) - zs.begin()) - 1, 0, kRes - 2);
+    const float dx = x - float(xi), dy = y - float(yi);
+    const float dz = (z - zs[std::size_t(zi)]) / (zs[std::size_t(zi) + 1] - zs[std::size_t(zi)]);
+    const float* t = glint_rgb_spectrum_table;
+    for (int a = 0; a < 3; ++a) {
+        const auto at = [&](int k, int j, int i) { return t[node(l, k, j, i) + a]; };
+        const auto lerp = [](float u, float p, float q) { return p + u * (q - p); };
+        s.c[a] = lerp(dz,
+                      lerp(dy, lerp(dx, at(zi, yi, xi), at(zi, yi, xi + 1)), lerp(dx, at(zi, yi + 1, xi), at(zi, yi + 1, xi + 1))),
+                      lerp(dy, lerp(dx, at(zi + 1, yi, xi), at(zi + 1, yi, xi + 1)),
+                           lerp(dx, at(zi + 1, yi + 1, xi), at(zi + 1, yi + 1, xi + 1))));
+    }
+    return s;
+}
+
+Color upsample_reflectance(Color rgb, const Wavelengths& wl) {
+    const RgbSigmoid s = rgb_sigmoid(rgb);
+    return {s(wl.lambda[0]), s(wl.lambda[1]), s(wl.lambda[2])};
+}
+
+Color upsample_unbounded(Color rgb, const Wavelengths& wl) {
+    const float m = std::max({rgb.r, rgb.g, rgb.b});
+    if (!(m > 0)) return Color{0};
+    const float scale = 2 * m;
+    return upsample_reflectance(rgb / scale, wl) * scale;
+}
+
+Color upsample_illuminant(Color rgb, const Wavelengths& wl) {
+    const Color s = upsample_unbounded(rgb, wl);
+    if (s.is_black()) return s;
+    return s * d65_at(wl);
+}
+
+}  // namespace glint

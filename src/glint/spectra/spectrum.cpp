@@ -1,0 +1,232 @@
+#include "glint/spectra/spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace glint {
+
+namespace {
+
+#include "glint/spectra/cie_tables.inc"
+
+struct NamedSpectrumData {
+    std::string_view name;
+    std::span<const float> pairs;
+    bool illuminant;
+};
+
+#include "glint/spectra/named_spectra.inc"
+
+constexpr int kCieSamples = 471;
+
+// The visible density and its inverse CDF in closed form: p(l) = A / cosh^2(B (l - 538)) over
+// [360, 830]; A normalises it (A = B / (tanh(B 292) + tanh(B 178))).
+constexpr double kB = 0.0072;
+const double kTanhLo = std::tanh(kB * (kLambdaMin - 538)), kTanhHi = std::tanh(kB * (kLambdaMax - 538));
+
+struct NamedTable {
+    std::vector<PiecewiseLinearSpectrum> spectra;
+    NamedTable() {
+        for (const NamedSpectrumData& d : kNamedSpectra)
+            spectra.push_back(PiecewiseLinearSpectrum::interleaved(d.pairs, d.illuminant));
+    }
+};
+const NamedTable& named_table() {
+    static const NamedTable table;
+    return table;
+}
+
+}  // namespace
+
+float visible_wavelength_pdf(float lambda) {
+    if (lambda < kLambdaMin || lambda > kLambdaMax) return 0;
+    const double c = std::cosh(kB * (lambda - 538));
+    return float(kB / (kTanhHi - kTanhLo) / (c * c));
+}
+
+Wavelengths sample_wavelengths(float u) {
+    Wavelengths wl;
+    for (int i = 0; i < 3; ++i) {
+        double ui = u + i / 3.0;
+        if (ui >= 1) ui -= 1;
+        const double lambda = 538 + std::atanh(kTanhLo + ui * (kTanhHi - kTanhLo)) / kB;
+        wl.lambda[i] = std::clamp(float(lambda), kLambdaMin, kLambdaMax);
+        wl.pdf[i] = visible_wavelength_pdf(wl.lambda[i]);
+    }
+    return wl;
+}
+
+void terminate_secondary(Wavelengths& wl) {
+    if (wl.secondary_terminated) return;
+    wl.secondary_terminated = true;
+    wl.pdf[0] /= 3;
+    wl.pdf[1] = wl.pdf[2] = 0;
+}
+
+Xyz cie_xyz(float lambda) {
+    const float x = lambda - kLambdaMin;
+    if (!(x >= 0) || x > kCieSamples - 1) return {};
+    const int i = std::min(int(x), kCieSamples - 2);
+    const float t = x - float(i);
+    const auto lerp = [&](const float* f) { return f[i] + t * (f[i + 1] - f[i]); };
+    return {lerp(kCieX), lerp(kCieY), lerp(kCieZ)};
+}
+
+float cie_y_integral() {
+    static const float sum = float(std::accumulate(kCieY, kCieY + kCieSamples, 0.0));
+    return sum;
+}
+
+Color xyz_to_linear_srgb(Xyz c) {
+    return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
+            -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+            0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
+}
+
+Color film_rgb(Color radiance, const Wavelengths& wl) {
+    Xyz sum;
+    for (int i = 0; i < 3; ++i) {
+        const float v = radiance[i];
+        if (v == 0 || !(wl.pdf[i] > 0)) continue;
+        const Xyz c = cie_xyz(wl.lambda[i]);
+        const float w = v / wl.pdf[i];
+        sum.x += c.x * w, sum.y += c.y * w, sum.z += c.z * w;
+    }
+    const float n = 1 / (3 * cie_y_integral());
+    return xyz_to_linear_srgb({sum.x * n, sum.y * n, sum.z * n});
+}
+
+PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<float> lambda, std::vector<float> value)
+    : lambda_(std::move(lambda)), value_(std::move(value)) {}
+
+PiecewiseLinearSpectrum PiecewiseLinearSpectrum::interleaved(std::span<const float> pairs, bool normalise) {
+    std::vector<float> l, v;
+    for (std::size_t i = 0; i + 1 < pairs.size(); i += 2) l.push_back(pairs[i]), v.push_back(pairs[i + 1]);
+    PiecewiseLinearSpectrum s(std::move(l), std::move(v));
+    if (normalise) {
+        const float y = spectrum_to_xyz(s).y;
+        if (y > 0) s.scale(1 / y);
+    }
+    return s;
+}
+
+float PiecewiseLinearSpectrum::operator()(float lambda) const {
+    if (lambda_.empty()) return 0;
+    if (lambda <= lambda_.front()) return value_.front();
+    if (lambda >= lambda_.back()) return value_.back();
+    const auto it = std::upper_bound(lambda_.begin(), lambda_.end(), lambda);
+    const std::size_t i = std::size_t(it - lambda_.begin()) - 1;
+    const float t = (lambda - lambda_[i]) / (lambda_[i + 1] - lambda_[i]);
+    return value_[i] + t * (value_[i + 1] - value_[i]);
+}
+
+void PiecewiseLinearSpectrum::scale(float s) {
+    for (float& v : value_) v *= s;
+}
+
+double planck(float lambda_nm, float kelvin) {
+    if (!(kelvin > 0)) return 0;
+    constexpr double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+    const double l = lambda_nm * 1e-9;
+    return 2 * h * c * c / (l * l * l * l * l * (std::exp(h * c / (l * kb * kelvin)) - 1));
+}
+
+float blackbody_normalised(float lambda_nm, float kelvin) {
+    if (!(kelvin > 0)) return 0;
+    const float peak = float(2.8977721e-3 / kelvin * 1e9);  // Wien's displacement law, in nm
+    return float(planck(lambda_nm, kelvin) / planck(peak, kelvin));
+}
+
+Spectrum Spectrum::tabulated(PiecewiseLinearSpectrum table) {
+    Spectrum s;
+    s.kind_ = Kind::kTabulated;
+    s.table_ = std::move(table);
+    return s;
+}
+
+Spectrum Spectrum::blackbody(float kelvin) {
+    Spectrum s;
+    s.kind_ = Kind::kBlackbody;
+    s.p_[0] = kelvin;
+    return s;
+}
+
+Spectrum Spectrum::sellmeier(const float b[3], const float c[3]) {
+    Spectrum s;
+    s.kind_ = Kind::kSellmeier;
+    for (int i = 0; i < 3; ++i) s.p_[i] = b[i], s.p_[3 + i] = c[i];
+    return s;
+}
+
+Spectrum Spectrum::from_abbe(float n_d, float v_d) {
+    constexpr double l_d = 587.56, l_f = 486.13, l_c = 656.27;
+    Spectrum s;
+    s.kind_ = Kind::kCauchy;
+    const double b = (n_d - 1) / v_d / (1 / (l_f * l_f) - 1 / (l_c * l_c));
+    s.p_[0] = float(n_d - b / (l_d * l_d));
+    s.p_[1] = float(b);
+    return s;
+}
+
+float Spectrum::operator()(float lambda) const {
+    switch (kind_) {
+        case Kind::kTabulated: return table_(lambda);
+        case Kind::kBlackbody: return blackbody_normalised(lambda, p_[0]);
+        case Kind::kSellmeier: {
+            const double l2 = double(lambda) * lambda * 1e-6;  // micrometres squared
+            double n2 = 1;
+            for (int i = 0; i < 3; ++i) n2 += p_[i] * l2 / (l2 - p_[3 + i]);
+            return float(std::sqrt(std::max(n2, 0.0)));
+        }
+        case Kind::kCauchy: return p_[0] + p_[1] / (lambda * lambda);
+    }
+    return 0;
+}
+
+bool Spectrum::constant() const {
+    switch (kind_) {
+        case Kind::kTabulated:
+            return std::all_of(table_.value().begin(), table_.value().end(),
+                               [&](float v) { return v == table_.value().front(); });
+        case Kind::kBlackbody: return false;
+        case Kind::kSellmeier: return p_[0] == 0 && p_[1] == 0 && p_[2] == 0;
+        case Kind::kCauchy: return p_[1] == 0;
+    }
+    return true;
+}
+
+const PiecewiseLinearSpectrum* named_spectrum(std::string_view name) {
+    const auto& t = named_table();
+    for (std::size_t i = 0; i < std::size(kNamedSpectra); ++i)
+        if (kNamedSpectra[i].name == name) return &t.spectra[i];
+    return nullptr;
+}
+
+std::vector<std::string_view> named_spectrum_names() {
+    std::vector<std::string_view> names;
+    for (const NamedSpectrumData& d : kNamedSpectra) names.push_back(d.name);
+    return names;
+}
+
+Color d65_at(const Wavelengths& wl) {
+    static const std::vector<float> table = [] {
+        std::vector<float> t(kCieSamples);
+        for (int i = 0; i < kCieSamples; ++i) t[std::size_t(i)] = d65()(kLambdaMin + float(i));
+        return t;
+    }();
+    const auto at = [&](float lambda) {
+        const float x = std::clamp(lambda - kLambdaMin, 0.0f, float(kCieSamples - 1));
+        const int i = std::min(int(x), kCieSamples - 2);
+        const float t = x - float(i);
+        return table[std::size_t(i)] + t * (table[std::size_t(i) + 1] - table[std::size_t(i)]);
+    };
+    return {at(wl.lambda[0]), at(wl.lambda[1]), at(wl.lambda[2])};
+}
+
+const PiecewiseLinearSpectrum& d65() {
+    static const PiecewiseLinearSpectrum& s = *named_spectrum("stdillum-D65");
+    return s;
+}
+
+}  // namespace glint
