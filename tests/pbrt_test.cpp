@@ -44,9 +44,13 @@ Material "diffuse" "rgb reflectance" [ 0 0 0 ]
 }
 
 // Builds and renders a parsed scene with its own film and sampler.
+// In RGB (pbrt files default to spectral mode): the tests here check geometry and transport
+// against exact values; tests/../spectra/spectrum_test.cpp checks spectral mode.
 Film render_description(const SceneDescription& d) {
     auto sources = std::make_shared<SourceFiles>();
-    const RenderJob job = build(d, {}, sources);
+    Overrides rgb;
+    rgb.spectral = false;
+    const RenderJob job = build(d, rgb, sources);
     Film film(job.film_width, job.film_height);
     render(job.scene, job.camera, *job.integrator, job.options, film);
     return film;
@@ -406,6 +410,7 @@ TEST(Pbrt, CornellBoxRendersBitIdenticalToTheYamlScene) {
     o.width = 48;
     o.height = 48;
     o.spp = 4;
+    o.spectral = false;  // the YAML scene is RGB
     const auto render_file = [&](const std::filesystem::path& p) {
         auto sources = std::make_shared<SourceFiles>();
         const RenderJob job = build(load_scene_file(p.string(), sources), o, sources);
@@ -442,6 +447,7 @@ TEST(Pbrt, ConvertedScenesRenderTheSame) {
     o.width = 40;
     o.height = 40;
     o.spp = 4;
+    o.spectral = false;
     const auto render_desc = [&](const SceneDescription& d, const std::shared_ptr<SourceFiles>& sources) {
         const RenderJob job = build(d, o, sources);
         Film film(job.film_width, job.film_height);

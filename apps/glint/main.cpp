@@ -250,6 +250,13 @@ int main(int argc, char** argv) {
     render->add_option("--texture-filter", args.texture_filter,
                        "How the path tracer reads textures over a pixel's footprint: ewa (the default), "
                        "trilinear, or none (one point per sample, as before filtering)");
+    auto* spectral = render->add_flag_function(
+        "--spectral", [&args](std::int64_t) { args.spectral = true; },
+        "Trace light by wavelength (the path tracer; the default for pbrt-v4 files): RGB values become "
+        "spectra, metals and glasses given by their measured spectra, glass disperses");
+    render->add_flag_function("--rgb", [&args](std::int64_t) { args.spectral = false; },
+                              "Trace light in RGB even where the scene asks for spectral rendering")
+        ->excludes(spectral);
     render->add_option("--time", args.time,
                        "Time budget for rendering (90s, 10m, 1h30m): stops after the last sample pass "
                        "that fits and writes the image with the spp reached");

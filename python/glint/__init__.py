@@ -212,7 +212,7 @@ def _scene_of(scene):
 
 
 def _options(spp, width, height, threads, seed, max_depth, aovs, time, denoise, noise_threshold, min_spp,
-             checkpoint, checkpoint_every, resume, accel, light_sampler, texture_filter, progress):
+             checkpoint, checkpoint_every, resume, accel, light_sampler, texture_filter, progress, spectral=None):
     aovs = list(aovs or ())
     for name in aovs:
         if name not in _AOVS:
@@ -229,12 +229,13 @@ def _options(spp, width, height, threads, seed, max_depth, aovs, time, denoise, 
         "aovs": any(a in aovs for a in ("albedo", "normal", "depth")), "denoise": bool(denoise), "time": time,
         "noise_threshold": noise_threshold, "min_spp": min_spp, "checkpoint": fspath(checkpoint),
         "checkpoint_every": checkpoint_every, "resume": fspath(resume), "accel": accel,
-        "light_sampler": light_sampler, "texture_filter": texture_filter, "progress": progress}
+        "light_sampler": light_sampler, "texture_filter": texture_filter, "progress": progress,
+        "spectral": spectral}
 
 
 def render(scene=None, *, spp=None, width=None, height=None, threads=None, seed=None, max_depth=None, aovs=(),
            time=None, denoise=False, noise_threshold=None, min_spp=None, checkpoint=None, checkpoint_every="5m",
-           resume=None, accel=None, light_sampler=None, texture_filter=None, progress=False):
+           resume=None, accel=None, light_sampler=None, texture_filter=None, progress=False, spectral=None):
     """Renders a scene and returns the image (glint.Image: float32, height x width x 3, linear).
 
     scene: a glint.Scene, a file path, a dict (load_dict) or None (the built-in demo).
@@ -247,14 +248,15 @@ def render(scene=None, *, spp=None, width=None, height=None, threads=None, seed=
     noise_threshold, min_spp: adaptive sampling. checkpoint, checkpoint_every, resume: long
     renders saved and continued, as the command line's flags. accel ("bvh", "sbvh", "embree"),
     light_sampler ("bvh", "power"), texture_filter ("ewa", "trilinear", "none").
-    progress: the progress bar on stderr.
+    progress: the progress bar on stderr. spectral: True traces wavelengths (the path tracer),
+    False RGB, None the scene's choice (docs/spectral.md).
 
     The GIL is released while rendering. Ctrl-C stops the render at the next tile and returns the
     completed passes (image.interrupted is then True); with none completed, KeyboardInterrupt is
     raised. Raises SceneError or GlintError."""
     names, options = _options(spp, width, height, threads, seed, max_depth, aovs, time, denoise, noise_threshold,
                               min_spp, checkpoint, checkpoint_every, resume, accel, light_sampler, texture_filter,
-                              progress)
+                              progress, spectral)
     s = _scene_of(scene)
     return _image(_glint.render(s._core, s.name, options), names)
 

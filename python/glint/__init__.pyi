@@ -70,6 +70,7 @@ def render(
     light_sampler: str | None = ...,
     texture_filter: str | None = ...,
     progress: bool = ...,
+    spectral: bool | None = ...,
 ) -> Image: ...
 def render_passes(
     scene: SceneLike = ...,
@@ -92,6 +93,7 @@ def render_passes(
     light_sampler: str | None = ...,
     texture_filter: str | None = ...,
     progress: bool = ...,
+    spectral: bool | None = ...,
 ) -> Iterator[Image]: ...
 def write(path: PathLike, image: npt.ArrayLike, *, metadata: Mapping[str, str] | None = ...) -> None: ...
 def read(path: PathLike, *, linear: bool = ...) -> Image: ...

@@ -141,6 +141,7 @@ SessionOptions options_of(const py::dict& o) {
     if (auto v = get("accel")) s.accel = v->cast<std::string>();
     if (auto v = get("light_sampler")) s.light_sampler = v->cast<std::string>();
     if (auto v = get("texture_filter")) s.texture_filter = v->cast<std::string>();
+    if (auto v = get("spectral")) s.spectral = v->cast<bool>();
     if (auto v = get("time")) s.time = v->cast<std::string>();
     if (auto v = get("checkpoint")) s.checkpoint = v->cast<std::string>();
     if (auto v = get("checkpoint_every")) s.checkpoint_every = v->cast<std::string>();

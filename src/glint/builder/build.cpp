@@ -135,7 +135,7 @@ public:
             case K::kDiffuse: scene_.materials.push_back(DiffuseMaterial{add_texture(d.color)}); break;
             case K::kConductor: {
                 ConductorMaterial c{make_conductor(ConductorLobe::FresnelKind::kComplex, d.eta, d.k, alpha),
-                                    std::nullopt};
+                                    std::nullopt, d.eta_spectrum, d.k_spectrum};
                 if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
                 scene_.materials.push_back(c);
                 break;
@@ -146,7 +146,7 @@ public:
                 lobe.ggx = Ggx{alpha};
                 lobe.thin = d.thin;
                 lobe.tint = d.tint;
-                scene_.materials.push_back(DielectricMaterial{lobe});
+                scene_.materials.push_back(DielectricMaterial{lobe, d.ior_spectrum});
                 break;
             }
             case K::kPlastic:
@@ -164,6 +164,8 @@ public:
                     c.layer.metal = Ggx{alpha};
                     c.eta = d.eta / d.ior;
                     c.k = d.k / d.ior;
+                    c.eta_spectrum = d.eta_spectrum;
+                    c.k_spectrum = d.k_spectrum;
                     if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
                 } else {
                     c.base = add_texture(d.color);
@@ -590,6 +592,8 @@ void build_camera(const SceneDescription& d, RenderJob& job, Diagnostics& diagno
 void build_integrator(const SceneDescription& d, const Overrides& overrides, RenderJob& job,
                       Diagnostics& diagnostics) {
     job.scene.light_sampling = LightSamplerKind::kPower;  // the other integrators sample no light
+    if (overrides.spectral.value_or(false) && d.integrator.kind != IntegratorKind::kPath)
+        diagnostics.error(kCommandLine, "--spectral: only the path tracer renders spectrally (this scene's integrator is not `path`)");
     switch (d.integrator.kind) {
         case IntegratorKind::kFlat: job.integrator = std::make_unique<FlatIntegrator>(); break;
         case IntegratorKind::kNormals: job.integrator = std::make_unique<NormalsIntegrator>(); break;
@@ -611,6 +615,8 @@ void build_integrator(const SceneDescription& d, const Overrides& overrides, Ren
             job.scene.light_sampling = s.light_sampler;
             if (overrides.texture_filter) s.texture_filter = *overrides.texture_filter;
             job.texture_filter = s.texture_filter;
+            if (overrides.spectral) s.spectral = *overrides.spectral;
+            job.spectral = s.spectral;
             job.integrator = std::make_unique<PathIntegrator>(s);
             break;
         }

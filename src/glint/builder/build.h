@@ -26,6 +26,7 @@ struct Overrides {
     std::optional<AccelKind> accel;  ///< --accel
     std::optional<LightSamplerKind> light_sampler;  ///< --light-sampler
     std::optional<TextureFilter> texture_filter;     ///< --texture-filter
+    std::optional<bool> spectral;                    ///< --spectral / --rgb
 };
 
 struct RenderJob {
@@ -43,6 +44,7 @@ struct RenderJob {
     /// kBilinear (the other integrators, or `none`): one point per sample.
     TextureFilter texture_filter = TextureFilter::kBilinear;
     bool filter_textures() const { return texture_filter != TextureFilter::kBilinear; }
+    bool spectral = false;  ///< the path tracer traces wavelengths (PathSettings::spectral)
     /// Whether the render keeps the AOVs and the half images: to write them, or to denoise.
     bool features() const { return aovs || denoise; }
     std::string filename;  ///< the scene's film.filename, or empty

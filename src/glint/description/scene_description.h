@@ -168,6 +168,9 @@ struct MaterialDesc {
     // conductor: a complex index (a named metal or eta + k), or a Schlick reflectance texture
     Color eta{0.2f, 0.92f, 1.1f}, k{3.9f, 2.45f, 2.14f};
     std::optional<TextureDesc> reflectance;
+    /// Spectral mode: a measured metal's eta and k (eta and k above: their values at 650, 550 and
+    /// 450 nm), and a dispersive glass's index (ior: its value at 587.56 nm).
+    std::shared_ptr<const Spectrum> eta_spectrum, k_spectrum, ior_spectrum;
     // dielectric, plastic, pbr
     float ior = 1.5f;
     bool thin = false;

@@ -562,6 +562,7 @@ SceneDescription parse_pbrt(const std::string& text, const std::string& path, st
     // 1280x720 film, a Gaussian filter, a black background, a perspective camera of fov 90.
     d.integrator.kind = IntegratorKind::kPath;
     d.integrator.max_depth.value = 5;
+    d.integrator.path.spectral = true;  // pbrt-v4 traces wavelengths; so does glint for its files
     d.sampler.spp.value = 16;
     d.film.width.value = 1280;
     d.film.height.value = 720;

@@ -81,6 +81,11 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
                 if (p.name == "copper") m.eta = p.eta, m.k = p.k;  // pbrt's default conductor is copper
             if (const auto eta = get_color(pl, prefix + "eta", false)) m.eta = *eta;
             if (const auto k = get_color(pl, prefix + "k", false)) m.k = *k;
+            // Spectral mode: the measured spectra (pbrt's default conductor: copper's).
+            m.eta_spectrum = pl.find(prefix + "eta") ? get_spectrum(pl, prefix + "eta")
+                                                      : std::make_shared<const Spectrum>(Spectrum::tabulated(*named_spectrum("metal-Cu-eta")));
+            m.k_spectrum = pl.find(prefix + "k") ? get_spectrum(pl, prefix + "k")
+                                                  : std::make_shared<const Spectrum>(Spectrum::tabulated(*named_spectrum("metal-Cu-k")));
         }
         m.roughness = roughness(0, prefix);
     } else if (type == "dielectric" || type == "thindielectric") {
@@ -89,6 +94,8 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
         if (pl.find("eta")) {
             const auto c = get_color(pl, "eta", false);
             m.ior = c ? c->g : 1.5f;
+            m.ior_spectrum = get_spectrum(pl, "eta");  // a glass or a table: dispersion in spectral mode
+            if (m.ior_spectrum) m.ior = (*m.ior_spectrum)(587.56f);
         }
         m.roughness = roughness(0);
     } else if (type == "interface") {

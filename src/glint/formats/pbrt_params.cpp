@@ -6,10 +6,13 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 
 #include "glint/base/limits.h"
 #include "glint/formats/pbrt_parser.h"
 #include "glint/materials/metals.h"
+#include "glint/spectra/spectrum.h"
 
 namespace glint::pbrt_detail {
 
@@ -200,6 +203,74 @@ constexpr std::array kNamedSpectra{
 
 float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
+// A "spectrum" parameter's values: a name pbrt-v4 knows, a file of wavelength-value pairs (pbrt's
+// .spd files, relative to the main file, '#' comments), or the pairs inline. Located errors for a
+// missing file, an odd count, wavelengths that do not increase and negative values.
+std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, const std::string& name) {
+    std::vector<double> numbers = p.numbers;
+    if (p.strings.size() == 1) {
+        if (const PiecewiseLinearSpectrum* s = named_spectrum(p.strings[0])) return *s;
+        std::filesystem::path file = p.strings[0];
+        if (file.is_relative()) file = dir_ / file;
+        std::ifstream in(file);
+        if (!in) {
+            diag_.error(p.loc, fmt::format("\"{}\": \"{}\" is neither a spectrum pbrt-v4 names nor a file that can be read ({})",
+                                           name, p.strings[0], file.string()));
+            return std::nullopt;
+        }
+        numbers.clear();
+        std::string line;
+        while (std::getline(in, line)) {
+            line = line.substr(0, line.find('#'));
+            std::istringstream words(line);
+            std::string w;
+            while (words >> w) {
+                char* end = nullptr;
+                const double v = std::strtod(w.c_str(), &end);
+                if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) {
+                    diag_.error(p.loc, fmt::format("\"{}\": {}: \"{}\" is not a number", name, file.string(), w));
+                    return std::nullopt;
+                }
+                numbers.push_back(v);
+                if (numbers.size() > 1'000'000) {
+                    diag_.error(p.loc, fmt::format("\"{}\": {}: more than a million values", name, file.string()));
+                    return std::nullopt;
+                }
+            }
+        }
+    }
+    if (numbers.size() < 2 || numbers.size() % 2 != 0) {
+        diag_.error(p.loc, fmt::format("\"{}\": a spectrum is wavelength-value pairs; got {} values", name, numbers.size()));
+        return std::nullopt;
+    }
+    std::vector<float> lambda, value;
+    for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) {
+        if (!lambda.empty() && !(numbers[i] > lambda.back())) {
+            diag_.error(p.loc, fmt::format("\"{}\": the wavelengths of a spectrum must increase ({} after {})", name,
+                                           numbers[i], lambda.back()));
+            return std::nullopt;
+        }
+        if (!(numbers[i + 1] >= 0) || !std::isfinite(numbers[i + 1])) {
+            diag_.error(p.loc, fmt::format("\"{}\": value {} at {} nm; a spectrum's values are finite and not negative",
+                                           name, numbers[i + 1], numbers[i]));
+            return std::nullopt;
+        }
+        lambda.push_back(float(numbers[i]));
+        value.push_back(float(numbers[i + 1]));
+    }
+    return PiecewiseLinearSpectrum(std::move(lambda), std::move(value));
+}
+
+std::shared_ptr<const Spectrum> Parser::get_spectrum(ParamList& pl, const std::string& name) {
+    Param* p = pl.find(name);
+    if (!p || p->type != "spectrum" || p->numbers.size() == 1) return nullptr;
+    auto values = spectrum_values(*p, name);
+    if (!values) return nullptr;
+    Spectrum t = Spectrum::tabulated(std::move(*values));
+    if (p->strings.size() == 1) t.set_name(p->strings[0]);
+    return std::make_shared<const Spectrum>(std::move(t));
+}
+
 // A colour parameter: rgb, blackbody (for lights normalised to luminance 1, as pbrt-v4 normalises
 // light spectra photometrically), a named metal spectrum, or a constant spectrum value.
 std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, bool illuminant) {
@@ -230,19 +301,23 @@ std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, b
                 for (const MetalPreset& m : kMetals)
                     if (m.name == n.metal) return n.k ? m.k : m.eta;
             }
-            if (p->strings[0].rfind("glass-", 0) == 0) {
-                warn(p->loc, fmt::format("spectrum \"{}\": dispersion is not rendered; using 1.5", p->strings[0]));
-                return Color{1.5f};
-            }
-            warn(p->loc, fmt::format("named spectrum \"{}\" not known to glint; using 1", p->strings[0]));
-            return Color{1};
         }
         if (p->numbers.size() == 1) return Color{float(p->numbers[0])};
-        warn(p->loc, fmt::format("\"{}\": tabulated spectra are not converted; using their mean", name));
-        double sum = 0;
-        int n = 0;
-        for (std::size_t i = 1; i < p->numbers.size(); i += 2) sum += p->numbers[i], ++n;
-        return Color{n > 0 ? float(sum / n) : 1.0f};
+        // RGB mode's stand-in for a spectrum: an illuminant by its colour (luminance 1), a glass
+        // by its index at 587.56 nm, a reflectance (values in [0, 1]) by its colour under D65,
+        // anything else (a metal's eta or k) by its values at 650, 550 and 450 nm. Spectral mode
+        // reads the spectrum itself where it can (get_spectrum).
+        const auto s = spectrum_values(*p, name);
+        if (!s) return std::nullopt;
+        const std::string named = p->strings.size() == 1 ? p->strings[0] : "";
+        if (named.rfind("glass-", 0) == 0) return Color{(*s)(587.56f)};
+        if (illuminant || named.rfind("stdillum-", 0) == 0) {
+            const Color c = xyz_to_linear_srgb(spectrum_to_xyz(*s));
+            return illuminant && luminance(c) > 0 ? c / luminance(c) : c;
+        }
+        if (std::all_of(s->value().begin(), s->value().end(), [](float v) { return v <= 1; }))
+            return xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return (*s)(l) * d65()(l); }));
+        return Color{(*s)(650), (*s)(550), (*s)(450)};
     }
     diag_.error(p->loc, fmt::format("\"{}\" must be rgb, spectrum or blackbody, not {}", name, p->type));
     return std::nullopt;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "glint/formats/pbrt.h"
+#include "glint/spectra/spectrum.h"
 
 namespace glint::pbrt_detail {
 
@@ -288,6 +289,10 @@ private:
     /// The values (in the ParamList, not copied: meshes are large), or null.
     const std::vector<double>* get_floats(ParamList& pl, const std::string& name, const char* type, int multiple);
     std::optional<Color> get_color(ParamList& pl, const std::string& name, bool illuminant);
+    /// A "spectrum" parameter as a spectrum (a named one, or inline wavelength-value pairs) for
+    /// spectral mode; null when the parameter is absent or not a spectrum.
+    std::shared_ptr<const Spectrum> get_spectrum(ParamList& pl, const std::string& name);
+    std::optional<PiecewiseLinearSpectrum> spectrum_values(const Param& p, const std::string& name);
     std::optional<TextureDesc> get_texture(ParamList& pl, const std::string& name, bool is_float, float fallback);
 
     void camera(const Token& t, const std::string& type, ParamList pl);

@@ -26,6 +26,25 @@ std::string vec(Vector3 v) { return vec(v.x, v.y, v.z); }
 std::string vec(Normal3 n) { return vec(n.x, n.y, n.z); }
 std::string vec(Color c) { return vec(c.r, c.g, c.b); }
 
+// A dielectric's index as the reader takes it: a number, a named glass, Sellmeier's
+// coefficients, or a number with its Abbe number (after it, as `abbe`).
+std::string dispersive_ior(const MaterialDesc& m) {
+    const Spectrum* s = m.ior_spectrum.get();
+    if (!s) return num(m.ior);
+    const float* p = s->parameters();
+    switch (s->kind()) {
+        case Spectrum::Kind::kSellmeier:
+            return fmt::format("{{sellmeier: [{}, {}, {}, {}, {}, {}]}}", num(p[0]), num(p[1]), num(p[2]), num(p[3]),
+                               num(p[4]), num(p[5]));
+        case Spectrum::Kind::kCauchy: {
+            constexpr double l_f = 486.13, l_c = 656.27;
+            const double v_d = (m.ior - 1) / (p[1] * (1 / (l_f * l_f) - 1 / (l_c * l_c)));
+            return fmt::format("{}, abbe: {}", num(m.ior), num(float(v_d)));
+        }
+        default: return s->name().empty() ? num(m.ior) : s->name();
+    }
+}
+
 // YAML double-quoted string.
 std::string yaml_quoted(const std::string& s) {
     std::string out = "\"";
@@ -107,7 +126,7 @@ std::string Writer::material(const MaterialDesc& m) const {
             s += ", roughness: " + num(m.roughness);
             break;
         case K::kDielectric:
-            s = fmt::format("type: dielectric, ior: {}, roughness: {}", num(m.ior), num(m.roughness));
+            s = fmt::format("type: dielectric, ior: {}, roughness: {}", dispersive_ior(m), num(m.roughness));
             if (m.thin) s += ", thin: true";
             if (m.tint != Color{1}) s += ", tint: " + vec(m.tint);
             break;
@@ -289,6 +308,7 @@ WrittenScene Writer::run() {
             y += fmt::format(", light_sampler: {}", vocabulary_name(p.light_sampler));
         if (p.texture_filter != TextureFilter::kEwa)
             y += fmt::format(", texture_filter: {}", vocabulary_name(p.texture_filter));
+        if (p.spectral) y += ", spectral: true";
         y += "}\n";
     } else if (d_.integrator.kind == IntegratorKind::kFlat || d_.integrator.kind == IntegratorKind::kNormals) {
         y += fmt::format("integrator: {{type: {}}}\n", d_.integrator.kind == IntegratorKind::kFlat ? "flat" : "normals");

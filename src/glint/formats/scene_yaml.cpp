@@ -406,6 +406,7 @@ void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
                                                 {"none", TextureFilter::kBilinear}}))
                 d.path.texture_filter = *f;
         }
+        assign(m.get("spectral"), d.path.spectral, [this](const YAML::Node& v) { return r_.boolean(v); });
         return;
     }
     assign(m.get("ambient"), d.ambient,

@@ -168,9 +168,19 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
     }
     assign(m.get("metallic"), d.metallic, unit("metallic"));
     assign(m.get("transmission"), d.transmission, unit("transmission"));
-    assign(m.get("ior"), d.ior, [this](const YAML::Node& v) {
-        return r_.number_in(v, "ior", 0, 10, true);
-    });
+    if (const auto n = m.get("ior")) {
+        ior(*n, d);
+        if (d.ior_spectrum && d.kind != K::kDielectric)
+            r_.error(*n, fmt::format("{}: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric", context));
+    }
+    if (const auto n = m.get("abbe")) {
+        // Cauchy's dispersion through the index at 587.56 nm and the Abbe number.
+        if (!m.has("ior") || d.ior_spectrum) {
+            r_.error(*n, fmt::format("{}: 'abbe' goes with a number 'ior' (the index at 587.56 nm)", context));
+        } else if (const auto v = r_.number_in(*n, "abbe", 1, 1000)) {
+            d.ior_spectrum = std::make_shared<const Spectrum>(Spectrum::from_abbe(d.ior, float(*v)));
+        }
+    }
     assign(m.get("thin"), d.thin, [this](const YAML::Node& v) { return r_.boolean(v); });
     assign(m.get("tint"), d.tint, color());
     assign(m.get("emission"), d.emission.radiance, color());
@@ -211,6 +221,16 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
                 } else {
                     d.eta = it->eta;
                     d.k = it->k;
+                    // Spectral mode: the measured index where glint has its table.
+                    static constexpr std::pair<std::string_view, std::string_view> kMeasured[] = {
+                        {"silver", "Ag"}, {"aluminium", "Al"}, {"gold", "Au"}, {"copper", "Cu"}};
+                    for (const auto& [glint_name, element] : kMeasured) {
+                        if (*name != glint_name) continue;
+                        d.eta_spectrum = std::make_shared<const Spectrum>(
+                            Spectrum::tabulated(*named_spectrum(fmt::format("metal-{}-eta", element))));
+                        d.k_spectrum = std::make_shared<const Spectrum>(
+                            Spectrum::tabulated(*named_spectrum(fmt::format("metal-{}-k", element))));
+                    }
                 }
             }
         } else if (eta || k) {
@@ -226,6 +246,59 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
         }
     }
     return d;
+}
+
+// A dielectric's index: a number, a glass pbrt-v4 names ("glass-BK7", ...: a measured table), or
+// {sellmeier: [B1, B2, B3, C1, C2, C3]} (C in square micrometres). The number RGB mode uses is
+// the index at 587.56 nm (the helium d line glass catalogues quote).
+void SceneParser::ior(const YAML::Node& n, MaterialDesc& d) {
+    constexpr float kLambdaD = 587.56f;
+    const auto set = [&](Spectrum s) {
+        const float nd = s(kLambdaD);
+        if (!(nd > 0 && nd <= 10)) {
+            r_.error(n, fmt::format("ior: the index at {} nm is {}; it must be in (0, 10]", kLambdaD, nd));
+            return;
+        }
+        d.ior = nd;
+        d.ior_spectrum = std::make_shared<const Spectrum>(std::move(s));
+    };
+    if (n.IsMap()) {
+        MapReader m(r_, n, "ior", {"sellmeier"});
+        if (!m.valid()) return;
+        const auto c = m.require("sellmeier");
+        if (!c) return;
+        if (!c->IsSequence() || c->size() != 6) {
+            r_.error(*c, "sellmeier: expected 6 numbers [B1, B2, B3, C1, C2, C3]");
+            return;
+        }
+        float b[3], cc[3];
+        for (std::size_t i = 0; i < 6; ++i) {
+            const auto v = r_.number_in((*c)[i], "sellmeier coefficient", 0, 1e6);
+            if (!v) return;
+            (i < 3 ? b[i] : cc[i - 3]) = float(*v);
+        }
+        set(Spectrum::sellmeier(b, cc));
+        return;
+    }
+    if (n.IsScalar() && !n.Scalar().empty() && std::isalpha(static_cast<unsigned char>(n.Scalar()[0]))) {
+        const std::string name = n.Scalar();
+        if (name.rfind("glass-", 0) == 0) {
+            if (const PiecewiseLinearSpectrum* s = named_spectrum(name)) {
+                Spectrum t = Spectrum::tabulated(*s);
+                t.set_name(name);
+                set(std::move(t));
+                return;
+            }
+        }
+        std::vector<std::string> glasses;
+        for (const std::string_view g : named_spectrum_names())
+            if (g.rfind("glass-", 0) == 0) glasses.emplace_back(g);
+        const std::string guess = closest_match(name, glasses);
+        r_.error(n, fmt::format("ior: unknown glass '{}'{} (known: {})", name,
+                                guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess), join(glasses)));
+        return;
+    }
+    if (const auto v = r_.number_in(n, "ior", 0, 10, true)) d.ior = float(*v);
 }
 
 void SceneParser::materials(const YAML::Node& node, std::vector<NamedMaterial>& out) {

@@ -44,6 +44,7 @@ public:
         : r_(diagnostics, path), arrays_(arrays) {}
 
     void parse_root(const YAML::Node& root, SceneDescription& scene);
+    void ior(const YAML::Node& n, MaterialDesc& d);
 
 private:
     // Replaces, in place, every `{keyframes: [[frame, value], ...], interpolation: ...}` under

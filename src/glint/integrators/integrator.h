@@ -101,6 +101,8 @@ struct PathSettings {
     /// How image textures are read over a pixel's footprint (kBilinear: no filtering at all,
     /// checkers included).
     TextureFilter texture_filter = TextureFilter::kEwa;
+    /// Spectral rendering (spectra/spectrum.h): three wavelengths per path instead of RGB.
+    bool spectral = false;
 };
 
 /// Unidirectional path tracing with next-event estimation and multiple importance sampling

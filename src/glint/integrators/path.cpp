@@ -6,6 +6,7 @@
 #include "glint/materials/make_bsdf.h"
 #include "glint/media/transmittance.h"
 #include "glint/samplers/warp.h"
+#include "glint/spectra/rgb_spectrum.h"
 
 namespace glint {
 
@@ -43,13 +44,15 @@ constexpr int kMaxInterfaceCrossings = 256;
 // The transmittance along a shadow ray through interface surfaces and the media between them;
 // 0 when an opaque surface blocks it. `r` gathers the spectral-MIS ratios of ratio tracking.
 Color shadow_transmittance(const Scene& scene, Ray ray, MediumId medium, HashRng& rng, int hero,
-                           Color& r, std::uint64_t& rays) {
+                           Color& r, std::uint64_t& rays, const Wavelengths* wl) {
     Color tr{1};
     for (int crossings = 0; crossings <= kMaxInterfaceCrossings; ++crossings) {
         const auto hit = scene.intersect(ray);
         if (hit && !scene.is_interface(scene.material_of(*hit))) return Color{0};
         if (medium != kNoMedium) {
-            tr *= estimate_transmittance(scene.media[medium], ray, hit ? hit->t : ray.t_max, rng, hero, r);
+            const Medium& m = scene.media[medium];
+            const SpectralMedium sm = wl ? spectral_medium(m, *wl) : SpectralMedium{};
+            tr *= estimate_transmittance(m, ray, hit ? hit->t : ray.t_max, rng, hero, r, wl ? &sm : nullptr);
             if (!(tr.max_component() > 0)) return Color{0};
         }
         if (!hit) return tr;
@@ -102,6 +105,15 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     MediumId medium = scene.camera_medium;
     HashRng rng{media ? samples.stream_seed() : 0};
     const int hero = media ? std::min(2, static_cast<int>(rng.next() * 3)) : 0;
+    // Spectral mode (spectra/spectrum.h): three wavelengths in the channels of every Color, the
+    // scene's RGB values upsampled where the path reads them, the radiance to RGB at the end.
+    Wavelengths wl_storage;
+    const Wavelengths* wl = nullptr;
+    if (settings_.spectral) {
+        wl_storage = sample_wavelengths(samples.next_1d());
+        wl = &wl_storage;
+    }
+    const auto E = [&](Color rgb) { return wl ? upsample_illuminant(rgb, *wl) : rgb; };
 
     // Emission reached by a BSDF sample (or the camera): weighted against light sampling.
     const auto add_emission = [&](Color le, std::uint32_t light, Point3 on_light) {
@@ -130,6 +142,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!(pmf > 0)) return;
         const auto ls = lights.sample_li(scene, l, p, u_light, time);
         if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
+        const Color L = E(ls->L);
         const Color f = f_of(ls->wi);
         if (f.max_component() <= 0) return;
         ++counter.rays;
@@ -145,12 +158,12 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             if (scene.occluded(shadow)) return;
         } else {
             const MediumId start = ng && mi ? mi->side(dot(*ng, shadow.direction)) : medium;
-            tr = shadow_transmittance(scene, shadow, start, rng, hero, r_l, counter.rays);
+            tr = shadow_transmittance(scene, shadow, start, rng, hero, r_l, counter.rays, wl);
             if (tr.max_component() <= 0) return;
         }
         const float light_pdf = pmf * ls->pdf;
         const float w = ls->delta || !use_bsdf_hits ? 1 : power_heuristic(light_pdf, pdf_of(ls->wi));
-        radiance += path_beta * f * ls->L * tr * (w / light_pdf) / average(path_r * r_l);
+        radiance += path_beta * f * L * tr * (w / light_pdf) / average(path_r * r_l);
     };
 
     // The denoiser's features (`first`) come from the first surface that is not purely specular:
@@ -187,14 +200,19 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             bool scattered = false, terminated = false;
             const float t_max = hit ? hit->t : std::numeric_limits<float>::infinity();
             const Medium& m = scene.media[medium];
+            const SpectralMedium sm = wl ? spectral_medium(m, *wl) : SpectralMedium{};
+            const SpectralMedium* smp = wl ? &sm : nullptr;
             // In a homogeneous medium that does not emit, absorption factors out of the
             // transmittance, exp(-sigma_t t) = exp(-sigma_s t) exp(-sigma_a t): free flights are
             // drawn by sigma_s alone and the absorption weighs the path in closed form, so that
             // coloured glass (sigma_s = 0) is exact Beer's law, not a coin toss per path.
             const auto* hm = std::get_if<HomogeneousMedium>(&m);
+            // The homogeneous medium's coefficients at this path's wavelengths (its own in RGB).
+            const Color hm_sigma_a = hm ? (wl ? sm.sigma_a : hm->sigma_a) : Color{0};
+            const Color hm_sigma_s = hm ? (wl ? sm.sigma_s : hm->sigma_s) : Color{0};
             const bool weigh_absorption = hm && !(hm->Le.max_component() > 0);
             const Medium scattering_only =
-                weigh_absorption ? Medium{HomogeneousMedium{Color{0}, hm->sigma_s, Color{0}, hm->phase}} : Medium{};
+                weigh_absorption ? Medium{HomogeneousMedium{Color{0}, hm_sigma_s, Color{0}, hm->phase}} : Medium{};
             // Direct light along the whole segment, as Cycles does: in a homogeneous medium one
             // light sample at a point drawn from the free-flight density truncated to the
             // segment, whether or not the path scatters in it (the path's own scattering events
@@ -202,8 +220,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             // weights depending only on the directions; thin fog stops being a coin toss between
             // "scattered, lit" and "passed, dark".
             bool forced_nee = false;
-            if (hm && use_light && depth < settings_.max_depth && hm->sigma_s.max_component() > 0) {
-                const Color sigma = weigh_absorption ? hm->sigma_s : hm->sigma_a + hm->sigma_s;
+            if (hm && use_light && depth < settings_.max_depth && hm_sigma_s.max_component() > 0) {
+                const Color sigma = weigh_absorption ? hm_sigma_s : hm_sigma_a + hm_sigma_s;
                 const float s_h = sigma[hero];
                 if (s_h > 0) {
                     forced_nee = true;
@@ -234,8 +252,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                         return (p_hit[c] > 0 ? (1 - w_eq) * sigma[c] * T_s[c] / p_hit[c] : 0.0f) + eq_pdf;
                     };
                     const Color pdf{density(0), density(1), density(2)};
-                    Color beta_f = beta * T_s * hm->sigma_s / pdf[hero];
-                    if (weigh_absorption) beta_f *= transmittance(hm->sigma_a, t);
+                    Color beta_f = beta * T_s * hm_sigma_s / pdf[hero];
+                    if (weigh_absorption) beta_f *= transmittance(hm_sigma_a, t);
                     const Color r_f = r_u * pdf / pdf[hero];
                     const Vector3 wo = -ray.direction;
                     const HgPhase& phase = hm->phase;
@@ -267,7 +285,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                             return false;
                         }
                         const float pdf = T[hero] * mp.sigma_s[hero];
-                        if (weigh_absorption) beta *= transmittance(hm->sigma_a, length(p - ray.origin));
+                        if (weigh_absorption) beta *= transmittance(hm_sigma_a, length(p - ray.origin));
                         beta *= T * mp.sigma_s / pdf;
                         r_u *= T * mp.sigma_s / pdf;
                         if (beta.max_component() <= 0 || r_u.max_component() <= 0) {
@@ -309,7 +327,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                     beta *= T * sigma_n / pdf;
                     r_u *= T * sigma_n / pdf;
                     return beta.max_component() > 0 && r_u.max_component() > 0;
-                });
+                },
+                weigh_absorption ? nullptr : smp);
             if (want_features && (scattered || terminated)) {
                 *first = features_along(line, hit, feature_distance);
                 want_features = false;
@@ -322,7 +341,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 continue;
             }
             if (!(T_maj[hero] > 0)) break;
-            if (weigh_absorption) beta *= transmittance(hm->sigma_a, t_max);
+            if (weigh_absorption) beta *= transmittance(hm_sigma_a, t_max);
             beta *= T_maj / T_maj[hero];
             r_u *= T_maj / T_maj[hero];
         }
@@ -333,11 +352,11 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // Seen by the camera (through perfect mirrors and glass), the environment is read
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
-                add_emission(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction), l, {});
+                add_emission(E(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction)), l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.
             if (lights.environment() == kNoLight && depth == 0)
-                radiance += beta * scene.background_seen(ray.direction) / average(r_u);
+                radiance += beta * E(scene.background_seen(ray.direction)) / average(r_u);
             break;
         }
         const SurfaceInteraction si = scene.interaction(ray, *hit);
@@ -351,13 +370,15 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             continue;
         }
         const Vector3 wo = -ray.direction;
-        add_emission(scene.emitted(si, wo), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
+        add_emission(E(scene.emitted(si, wo)), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
         if (want_features) {
             *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), feature_distance + hit->t, true};
         }
         if (depth >= settings_.max_depth) break;
 
-        const Bsdf bsdf = make_bsdf(scene, si);
+        bool dispersive = false;
+        const Bsdf bsdf = make_bsdf(scene, si, wl, &dispersive);
+        if (dispersive) terminate_secondary(wl_storage);
         if (bsdf.has_smooth_part()) want_features = false;
         const Sample2 choices = samples.next_2d();
         const Sample2 u_light = samples.next_2d();
@@ -400,6 +421,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!roulette(beta, eta_scale, r_u, depth, u_rr)) break;
         ray = spawn_ray(si.p, si.n, bs->wi);
     }
+    if (wl) radiance = film_rgb(radiance, *wl);
     if (!is_finite(radiance)) return Color{0};
     return std::isinf(settings_.clamp) ? radiance : clamp_radiance(radiance, settings_.clamp);
 }

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "glint/materials/fresnel.h"
+#include "glint/spectra/rgb_spectrum.h"
 
 namespace glint {
 
@@ -16,58 +17,100 @@ Color clamp01(Color c) {
     return {std::clamp(c.r, 0.0f, 1.0f), std::clamp(c.g, 0.0f, 1.0f), std::clamp(c.b, 0.0f, 1.0f)};
 }
 
+// A conductor's Fresnel average 2 int F(mu) mu dmu for the multiple-scattering term, at the
+// path's wavelengths: 6-point Gauss-Legendre (F is smooth in mu; make_conductor's 256 midpoint
+// steps are for the build, not each hit).
+Color conductor_f_avg(const ConductorLobe& c) {
+    static constexpr float kX[6] = {0.0337652429f, 0.1693953068f, 0.3806904070f, 0.6193095930f, 0.8306046932f, 0.9662347571f};
+    static constexpr float kW[6] = {0.0856622462f, 0.1803807865f, 0.2339569673f, 0.2339569673f, 0.1803807865f, 0.0856622462f};
+    Color sum{0};
+    for (int i = 0; i < 6; ++i) sum += c.fresnel(kX[i]) * (2 * kX[i] * kW[i]);
+    return sum;
+}
+
 }  // namespace
 
-Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
+Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengths* wl, bool* dispersive) {
+    // A colour read where the path is: unchanged in RGB mode, a reflectance spectrum's values
+    // at the path's wavelengths in spectral mode.
+    const auto R = [wl](Color c) { return wl ? upsample_reflectance(c, *wl) : c; };
+    const auto tex = [&](TextureId id) { return R(scene.texture(id, si)); };
     return std::visit(
         [&](const auto& m) -> Bsdf {
             using T = std::decay_t<decltype(m)>;
             if constexpr (std::is_same_v<T, ArticleMaterial>) {
-                const Color k = scene.texture(m.color, si);
+                const Color k = tex(m.color);
                 const float s = m.shininess;
                 ConductorLobe mirror;  // smooth, constant reflectance K; weighted by s
                 mirror.eta = k;
                 return Bsdf(si.ns, {{DiffuseLobe{k}, 1 - s}, {mirror, s}});
             } else if constexpr (std::is_same_v<T, DiffuseMaterial>) {
-                return Bsdf(si.ns, {{DiffuseLobe{scene.texture(m.albedo, si)}, 1.0f}});
+                return Bsdf(si.ns, {{DiffuseLobe{tex(m.albedo)}, 1.0f}});
             } else if constexpr (std::is_same_v<T, ConductorMaterial>) {
-                if (!m.reflectance) return Bsdf(si.ns, {{m.lobe, 1.0f}});
+                if (!m.reflectance) {
+                    if (!wl || m.lobe.kind == ConductorLobe::FresnelKind::kSchlick) {
+                        ConductorLobe lobe = m.lobe;
+                        if (wl) lobe.eta = R(lobe.eta), lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);
+                        return Bsdf(si.ns, {{lobe, 1.0f}});
+                    }
+                    // The complex index at the path's wavelengths: measured, or the RGB upsampled.
+                    ConductorLobe lobe = m.lobe;
+                    if (lobe.kind == ConductorLobe::FresnelKind::kComplex) {
+                        lobe.eta = m.eta_spectrum ? m.eta_spectrum->at(*wl) : upsample_unbounded(m.lobe.eta, *wl);
+                        lobe.k = m.k_spectrum ? m.k_spectrum->at(*wl) : upsample_unbounded(m.lobe.k, *wl);
+                    } else {
+                        lobe.eta = R(lobe.eta);
+                    }
+                    if (!lobe.ggx.smooth()) lobe.f_avg = conductor_f_avg(lobe);
+                    return Bsdf(si.ns, {{lobe, 1.0f}});
+                }
                 ConductorLobe lobe = m.lobe;
                 lobe.kind = ConductorLobe::FresnelKind::kSchlick;
-                lobe.eta = scene.texture(*m.reflectance, si);
+                lobe.eta = tex(*m.reflectance);
                 lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);  // closed form
                 return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, DielectricMaterial>) {
-                return Bsdf(si.ns, {{m.lobe, 1.0f}});
+                if (!wl) return Bsdf(si.ns, {{m.lobe, 1.0f}});
+                DielectricLobe lobe = m.lobe;
+                lobe.tint = R(lobe.tint);
+                if (m.ior && !m.ior->constant()) {
+                    // Dispersion: the hero wavelength's index; the caller drops the others.
+                    lobe.eta = (*m.ior)(wl->lambda[0]);
+                    if (dispersive) *dispersive = true;
+                }
+                return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 PlasticLobe lobe = m.coat;
-                lobe.albedo = scene.texture(m.albedo, si);
+                lobe.albedo = tex(m.albedo);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
                 LayeredLobe lobe{&m.layer, m.eta, m.k};
                 if (!m.layer.conductor_base) {
-                    lobe.base = clamp01(scene.texture(m.base, si));
+                    lobe.base = clamp01(tex(m.base));
                 } else if (m.reflectance) {
                     // pbrt-v4's form: the complex index of eta 1 and k = 2 sqrt(r) / sqrt(1 - r),
                     // whose normal-incidence reflectance is r, relative to the coat (both
                     // divided by its index).
-                    const Color r = clamp01(scene.texture(*m.reflectance, si));
+                    const Color r = clamp01(tex(*m.reflectance));
                     const auto k = [](float v) { v = std::min(v, 0.9999f); return 2 * std::sqrt(v) / std::sqrt(1 - v); };
                     lobe.base = Color{1 / m.layer.eta};
                     lobe.k = Color{k(r.r), k(r.g), k(r.b)} / m.layer.eta;
+                } else if (wl) {
+                    lobe.base = (m.eta_spectrum ? m.eta_spectrum->at(*wl) : upsample_unbounded(m.eta * m.layer.eta, *wl)) / m.layer.eta;
+                    lobe.k = (m.k_spectrum ? m.k_spectrum->at(*wl) : upsample_unbounded(m.k * m.layer.eta, *wl)) / m.layer.eta;
                 }
                 return Bsdf(si.ns, {{lobe, 1.0f}});  // alone: see LayeredLobe
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return Bsdf();  // no lobes: nothing scatters (the integrators pass through)
             } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {
                 // Each lobe chosen in proportion to its largest channel.
-                const Color r = scene.texture(m.reflectance, si), t = scene.texture(m.transmittance, si);
+                const Color r = tex(m.reflectance), t = tex(m.transmittance);
                 const float wr = r.max_component(), wt = t.max_component();
                 return Bsdf(si.ns, {{DiffuseLobe{wr > 0 ? r / wr : Color{0}}, wr},
                                    {DiffuseTransmissionLobe{wt > 0 ? t / wt : Color{0}}, wt}});
             } else {
                 static_assert(std::is_same_v<T, PbrMaterial>);
-                const Color base = scene.texture(m.base_color, si);
+                const Color base = tex(m.base_color);
                 float metallic = m.metallic, roughness = m.roughness;
                 if (m.metallic_roughness) {
                     const Color mr = scene.texture(*m.metallic_roughness, si);
@@ -86,7 +129,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                 plastic.ggx = Ggx{alpha};
                 plastic.fdr_inside = m.fdr_inside;
                 if (m.specular) plastic.specular_weight = std::clamp(scene.texture(*m.specular, si).r, 0.0f, 1.0f);
-                if (m.specular_color) plastic.specular_color = scene.texture(*m.specular_color, si);
+                if (m.specular_color) plastic.specular_color = tex(*m.specular_color);
                 DielectricLobe glass;
                 glass.eta = m.ior;
                 glass.ggx = Ggx{alpha};
@@ -96,7 +139,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si) {
                                {plastic, dielectric * (1 - m.transmission)},
                                {glass, dielectric * m.transmission}});
                 if (m.sheen) {
-                    const Color c = scene.texture(*m.sheen, si);
+                    const Color c = tex(*m.sheen);
                     if (c.max_component() > 0)
                         b.set_sheen(c, m.sheen_roughness ? scene.texture(*m.sheen_roughness, si).r : 0);
                 }

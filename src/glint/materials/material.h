@@ -4,10 +4,12 @@
 // at a hit (make_bsdf in materials/make_bsdf.h). Emission is not a material kind: any material
 // may emit (Scene::emission, parallel to the materials).
 #include <array>
+#include <memory>
 #include <optional>
 #include <variant>
 
 #include "glint/materials/bsdf.h"
+#include "glint/spectra/spectrum.h"
 #include "glint/textures/texture.h"
 
 namespace glint {
@@ -28,14 +30,19 @@ struct DiffuseMaterial {
 
 /// A metal. `lobe` holds the complex index (a preset or eta/k) and the GGX width; when
 /// `reflectance` is set, the Fresnel term is Schlick's with that texture as f0 instead.
+/// In spectral mode, `eta_spectrum` and `k_spectrum` (a named metal's measured index) replace
+/// lobe.eta and lobe.k, which are then their values at 650, 550 and 450 nm.
 struct ConductorMaterial {
     ConductorLobe lobe;
     std::optional<TextureId> reflectance;
+    std::shared_ptr<const Spectrum> eta_spectrum, k_spectrum;
 };
 
-/// Glass (smooth or rough, optionally a thin sheet).
+/// Glass (smooth or rough, optionally a thin sheet). `ior`: the index by wavelength (spectral
+/// mode; a non-constant one disperses), lobe.eta its value at 587.56 nm for RGB mode.
 struct DielectricMaterial {
     DielectricLobe lobe;
+    std::shared_ptr<const Spectrum> ior;
 };
 
 /// A diffuse base under a dielectric coat.
@@ -53,6 +60,7 @@ struct CoatedMaterial {
     TextureId base = 0;
     Color eta{1}, k{0};
     std::optional<TextureId> reflectance;
+    std::shared_ptr<const Spectrum> eta_spectrum, k_spectrum;  ///< spectral mode, absolute (not over the coat)
 };
 
 /// glTF 2.0 metallic-roughness: mix(dielectric, metal, metallic), where the metal is GGX with

@@ -1,5 +1,9 @@
 #include "glint/media/medium.h"
 
+#include <type_traits>
+
+#include "glint/spectra/rgb_spectrum.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,17 +11,37 @@
 
 namespace glint {
 
-MediumPoint GridMedium::at(Point3 p) const {
+MediumPoint GridMedium::at(Point3 p, const SpectralMedium* sm) const {
     const float d = density.lookup(p);
-    MediumPoint mp{sigma_a * d, sigma_s * d, Color{0}};
+    MediumPoint mp = sm ? MediumPoint{sm->sigma_a * d, sm->sigma_s * d, Color{0}} : MediumPoint{sigma_a * d, sigma_s * d, Color{0}};
     switch (emission_kind) {
         case EmissionKind::kNone: break;
-        case EmissionKind::kGrid: mp.Le = emission_color * (emission.lookup(p) * emission_scale); break;
-        case EmissionKind::kTemperature:
-            mp.Le = blackbody_rgb(emission.lookup(p) * temperature_scale) * emission_scale;
+        case EmissionKind::kGrid: mp.Le = (sm ? sm->Le : emission_color) * (emission.lookup(p) * emission_scale); break;
+        case EmissionKind::kTemperature: {
+            const float kelvin = emission.lookup(p) * temperature_scale;
+            if (!sm) {
+                mp.Le = blackbody_rgb(kelvin) * emission_scale;
+            } else {
+                for (int i = 0; i < 3; ++i)
+                    (i == 0 ? mp.Le.r : i == 1 ? mp.Le.g : mp.Le.b) = blackbody_normalised(sm->wl->lambda[i], kelvin) * emission_scale;
+            }
             break;
+        }
     }
     return mp;
+}
+
+SpectralMedium spectral_medium(const Medium& m, const Wavelengths& wl) {
+    return std::visit(
+        [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            Color le;
+            if constexpr (std::is_same_v<T, HomogeneousMedium>) le = x.Le;
+            else le = x.emission_color;
+            return SpectralMedium{upsample_unbounded(x.sigma_a, wl), upsample_unbounded(x.sigma_s, wl),
+                                  upsample_illuminant(le, wl), &wl};
+        },
+        m);
 }
 
 namespace {

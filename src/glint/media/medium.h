@@ -44,6 +44,16 @@ struct MediumPoint {
     Color sigma_a, sigma_s, Le;
 };
 
+/// A medium's coefficients at a path's wavelengths (spectral mode, issue 36): sigma_a and
+/// sigma_s (per unit density in a grid) upsampled as unbounded spectra and the emission colour
+/// as an illuminant; `wl` for a grid's black-body emission. Where a function takes one, null
+/// means RGB mode (the medium's own colours).
+struct Wavelengths;
+struct SpectralMedium {
+    Color sigma_a, sigma_s, Le;
+    const Wavelengths* wl = nullptr;
+};
+
 /// Constant coefficients everywhere.
 struct HomogeneousMedium {
     Color sigma_a{0}, sigma_s{0}, Le{0};
@@ -69,7 +79,7 @@ struct GridMedium {
     float emission_scale = 1;
     float temperature_scale = 1;
 
-    MediumPoint at(Point3 p_index) const;
+    MediumPoint at(Point3 p_index, const SpectralMedium* sm = nullptr) const;
 };
 
 using Medium = std::variant<HomogeneousMedium, GridMedium>;
@@ -116,6 +126,8 @@ struct Equiangular {
 /// peaks at 1 (the spectrum integrated against the CIE 1931 observer, divided by the integral of
 /// y-bar, as an emission spectrum in pbrt-v4). 0 at or below 0 K.
 Color blackbody_rgb(float kelvin);
+/// The coefficients of `m` at the wavelengths `wl` (see SpectralMedium).
+SpectralMedium spectral_medium(const Medium& m, const Wavelengths& wl);
 
 /// Walks the majorant segments of `medium` along `ray` (unit direction, world units) over
 /// [0, t_max) and draws tentative collisions with the hero channel's majorant. At each one,
@@ -125,7 +137,7 @@ Color blackbody_rgb(float kelvin);
 /// number, `rng` supplies the rest. The ray is taken by value: f may change the caller's ray.
 template <typename F>
 Color sample_t_maj(const Medium& medium, const Ray ray, float t_max, float u, HashRng& rng,
-                   int hero, F&& f) {
+                   int hero, F&& f, const SpectralMedium* sm = nullptr) {
     Color T_maj{1};
     // One segment [t0, t1) of constant majorant; false when f stopped.
     const auto segment = [&](float t0, float t1, Color sigma_maj, const auto& point_at) {
@@ -151,17 +163,17 @@ Color sample_t_maj(const Medium& medium, const Ray ray, float t_max, float u, Ha
         }
     };
     if (const auto* h = std::get_if<HomogeneousMedium>(&medium)) {
-        const MediumPoint mp{h->sigma_a, h->sigma_s, h->Le};
+        const MediumPoint mp = sm ? MediumPoint{sm->sigma_a, sm->sigma_s, sm->Le} : MediumPoint{h->sigma_a, h->sigma_s, h->Le};
         segment(0, t_max, h->sigma_a + h->sigma_s, [&mp](float) { return mp; });
         return T_maj;
     }
     const auto& g = std::get<GridMedium>(medium);
     const Ray local = object_ray(g.transform, ray);
-    const Color sigma_t = g.sigma_a + g.sigma_s;
+    const Color sigma_t = sm ? sm->sigma_a + sm->sigma_s : g.sigma_a + g.sigma_s;
     MajorantWalk walk(g.majorant, local.origin, local.direction, 0, t_max);
     MajorantSegment seg;
     while (walk.next(seg)) {
-        const bool go_on = segment(seg.t0, seg.t1, sigma_t * seg.sigma, [&](float t) { return g.at(local.at(t)); });
+        const bool go_on = segment(seg.t0, seg.t1, sigma_t * seg.sigma, [&](float t) { return g.at(local.at(t), sm); });
         if (!go_on) return T_maj;
     }
     return T_maj;

@@ -6,7 +6,7 @@ namespace glint {
 
 
 Color ratio_tracking(const Medium& medium, const Ray& ray, float t_end, HashRng& rng, int hero,
-                     Color& r, float majorant_scale) {
+                     Color& r, float majorant_scale, const SpectralMedium* sm) {
     Color tr{1};
     const auto step = [&](Point3, const MediumPoint& mp, Color sigma_maj, Color T_maj) {
         const Color sigma_n{std::max(sigma_maj.r - mp.sigma_a.r - mp.sigma_s.r, 0.0f),
@@ -36,7 +36,7 @@ Color ratio_tracking(const Medium& medium, const Ray& ray, float t_end, HashRng&
                                  return step(p, truth, sigma_maj, T);
                              });
     } else {
-        T_maj = sample_t_maj(medium, ray, t_end, rng.next(), rng, hero, step);
+        T_maj = sample_t_maj(medium, ray, t_end, rng.next(), rng, hero, step, sm);
     }
     if (tr.max_component() <= 0 || !(T_maj[hero] > 0)) return Color{0};
     tr *= T_maj / T_maj[hero];
@@ -45,10 +45,10 @@ Color ratio_tracking(const Medium& medium, const Ray& ray, float t_end, HashRng&
 }
 
 Color estimate_transmittance(const Medium& medium, const Ray& ray, float t_end, HashRng& rng,
-                             int hero, Color& r) {
+                             int hero, Color& r, const SpectralMedium* sm) {
     if (const auto* h = std::get_if<HomogeneousMedium>(&medium))
-        return transmittance(h->sigma_a + h->sigma_s, t_end);
-    return ratio_tracking(medium, ray, t_end, rng, hero, r);
+        return transmittance(sm ? sm->sigma_a + sm->sigma_s : h->sigma_a + h->sigma_s, t_end);
+    return ratio_tracking(medium, ray, t_end, rng, hero, r, 1, sm);
 }
 
 }  // namespace glint

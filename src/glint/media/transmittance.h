@@ -13,11 +13,11 @@ namespace glint {
 /// 0.05 go through Russian roulette (kept with probability 1/4). `majorant_scale` >= 1 inflates
 /// the majorant (tests use it to make homogeneous media track; 1 otherwise).
 Color ratio_tracking(const Medium& medium, const Ray& ray, float t_end, HashRng& rng, int hero,
-                     Color& r, float majorant_scale = 1);
+                     Color& r, float majorant_scale = 1, const SpectralMedium* sm = nullptr);
 
 /// The transmittance a shadow ray needs: exp(-sigma_t d) in closed form in a homogeneous medium
-/// (no variance, r untouched), ratio tracking in a grid.
+/// (no variance, r untouched), ratio tracking in a grid. `sm`: spectral mode's coefficients.
 Color estimate_transmittance(const Medium& medium, const Ray& ray, float t_end, HashRng& rng,
-                             int hero, Color& r);
+                             int hero, Color& r, const SpectralMedium* sm = nullptr);
 
 }  // namespace glint

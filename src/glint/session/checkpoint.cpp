@@ -142,6 +142,7 @@ std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings
     add(&light_sampling, sizeof light_sampling);
     const int texture_filter = static_cast<int>(job.texture_filter);
     add(&texture_filter, sizeof texture_filter);
+    if (job.spectral) add("spectral", 8);  // only when on: RGB checkpoints keep their fingerprint
     return h;
 }
 

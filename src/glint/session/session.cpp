@@ -122,6 +122,7 @@ RenderJob load_job(const SessionOptions& args) {
     overrides.accel = parse_accel(args.accel);
     overrides.light_sampler = parse_light_sampler(args.light_sampler);
     overrides.texture_filter = parse_texture_filter(args.texture_filter);
+    overrides.spectral = args.spectral;
     RenderJob job = build(description, overrides, sources);
     if (mesh) {
         if (job.file_camera) {  // the file's own camera

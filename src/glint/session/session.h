@@ -50,6 +50,7 @@ struct SessionOptions {
     std::string accel;    ///< bvh, sbvh, embree; empty: the scene's or the default
     std::string light_sampler;  ///< bvh, power; empty: the scene's or the default
     std::string texture_filter;  ///< ewa, trilinear, none; empty: the scene's or the default
+    std::optional<bool> spectral;  ///< --spectral (true) / --rgb (false); unset: the scene's
     std::string camera;   ///< a glTF file rendered directly: its camera by name
     // Long renders.
     std::string time, checkpoint, checkpoint_every = "5m", resume, display;

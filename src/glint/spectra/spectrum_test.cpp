@@ -1,0 +1,289 @@
+// Spectral rendering (issue 36) against independent values: the CIE tables' published sums,
+// D65's chromaticity, Planck's and Stefan-Boltzmann's laws, Schott's catalogue indices of BK7,
+// RGB round trips through the upsampling, the sampled wavelengths' density, and through the
+// path tracer: white furnaces, a gold mirror against the closed-form Fresnel integrated over the
+// spectrum, the bits for one thread and two, and the RGB mode left as it was.
+#include "glint/spectra/spectrum.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "glint/builder/build.h"
+#include "glint/formats/scene_yaml.h"
+#include "glint/materials/bsdf.h"
+#include "glint/materials/fresnel.h"
+#include "glint/render/render.h"
+#include "glint/spectra/rgb_spectrum.h"
+
+namespace glint {
+namespace {
+
+float max_error(Color a, Color b) {
+    return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+}
+
+TEST(Spectra, CieTablesIntegrateToThePublishedSums) {
+    // The CIE 1931 2-degree functions at 1 nm over 360-830 nm: y-bar sums to 106.857, and x-bar
+    // and z-bar to the same within the table's rounding (equal energy is x = y = 1/3).
+    double x = 0, y = 0, z = 0;
+    for (int l = 360; l <= 830; ++l) {
+        const Xyz c = cie_xyz(float(l));
+        x += c.x, y += c.y, z += c.z;
+    }
+    EXPECT_NEAR(y, 106.857, 0.01);
+    EXPECT_NEAR(cie_y_integral(), 106.857, 0.01);
+    EXPECT_NEAR(x / y, 1, 5e-4);
+    EXPECT_NEAR(z / y, 1, 5e-4);
+    EXPECT_NEAR(cie_xyz(555).y, 1.0, 1e-4);  // y-bar peaks at 1 at 555 nm
+}
+
+TEST(Spectra, D65HasItsWhitePointAndImagesAsWhite) {
+    const Xyz w = spectrum_to_xyz(d65());
+    EXPECT_NEAR(w.y, 1, 1e-5);  // normalised to Y = 1
+    const double s = w.x + w.y + w.z;
+    EXPECT_NEAR(w.x / s, 0.31272, 2e-4);  // CIE 15: x = 0.31272, y = 0.32903
+    EXPECT_NEAR(w.y / s, 0.32903, 2e-4);
+    EXPECT_LT(max_error(xyz_to_linear_srgb(w), Color{1}), 1e-3f);
+}
+
+TEST(Spectra, BlackbodyFollowsPlanckAndStefanBoltzmann) {
+    // Planck at 5000 K and 500 nm, by hand: 2hc^2 / l^5 / (exp(hc / (l k T)) - 1) = 1.2107e13 W/(m^2 sr m).
+    EXPECT_NEAR(planck(500, 5000) / 1.2107e13, 1, 1e-3);
+    // pi times the radiance over all wavelengths is sigma T^4 (5.670374e-8 W m^-2 K^-4).
+    for (const float t : {3000.0f, 6500.0f}) {
+        double sum = 0;
+        for (double l = 50; l < 100000; l += 0.5) sum += planck(float(l), t) * 0.5e-9;
+        EXPECT_NEAR(std::numbers::pi * sum / (5.670374e-8 * std::pow(t, 4.0)), 1, 2e-3) << t;
+    }
+    // Normalised: 1 at Wien's peak (2897.77 um K / T), less on either side.
+    EXPECT_NEAR(blackbody_normalised(2897.7721f / 5.0f, 5000), 1, 1e-5);
+    EXPECT_LT(blackbody_normalised(500, 5000), 1);
+    EXPECT_LT(blackbody_normalised(700, 5000), 1);
+    EXPECT_EQ(blackbody_normalised(500, 0), 0);
+}
+
+TEST(Spectra, SellmeierGivesTheCatalogueIndicesOfBk7) {
+    // Schott N-BK7: B = 1.03961212, 0.231792344, 1.01046945; C = 0.00600069867, 0.0200179144,
+    // 103.560653 um^2. Catalogue: n_d (587.56) = 1.5168, n_F (486.13) = 1.52238, n_C (656.27) = 1.51432.
+    const float b[3] = {1.03961212f, 0.231792344f, 1.01046945f}, c[3] = {0.00600069867f, 0.0200179144f, 103.560653f};
+    const Spectrum bk7 = Spectrum::sellmeier(b, c);
+    EXPECT_NEAR(bk7(587.56f), 1.5168, 1e-4);
+    EXPECT_NEAR(bk7(486.13f), 1.52238, 1e-4);
+    EXPECT_NEAR(bk7(656.27f), 1.51432, 1e-4);
+    EXPECT_FALSE(bk7.constant());
+    // pbrt-v4's tabulated BK7 agrees with the formula.
+    EXPECT_NEAR((*named_spectrum("glass-BK7"))(587.56f), 1.5168, 5e-4);
+    // Cauchy through n_d and the Abbe number gives them back.
+    const Spectrum cauchy = Spectrum::from_abbe(1.5168f, 64.17f);
+    EXPECT_NEAR(cauchy(587.56f), 1.5168, 1e-5);
+    EXPECT_NEAR((1.5168 - 1) / (cauchy(486.13f) - cauchy(656.27f)), 64.17, 0.01);
+}
+
+TEST(Spectra, PrismDeviationFollowsSnellAtEachWavelength) {
+    // A 45-degree prism of F11 glass, a ray in at 50 degrees: each wavelength's index through the
+    // glass lobe twice (in at the first face, out at the second) against the closed form
+    // delta = theta1 + asin(n sin(A - asin(sin theta1 / n))) - A. Blue bends more than red.
+    const Spectrum glass = Spectrum::tabulated(*named_spectrum("glass-F11"));
+    const float apex = 45 * std::numbers::pi_v<float> / 180, theta1 = 50 * std::numbers::pi_v<float> / 180;
+    float previous = 0;
+    for (const float lambda : {450.0f, 500.0f, 550.0f, 600.0f, 650.0f}) {
+        const float n = glass(lambda);
+        DielectricLobe lobe;
+        lobe.eta = n;
+        // First face (normal +z): the incoming direction's reverse is wo.
+        const Vector3 wo1{std::sin(theta1), 0, std::cos(theta1)};
+        auto s1 = lobe.sample(wo1, 0.999f, {0.5f, 0.5f});  // uc near 1: the refracted branch
+        ASSERT_TRUE(s1 && s1->wi.z < 0) << lambda;
+        const float inside = std::atan2(-s1->wi.x, -s1->wi.z);  // angle from -z, in the xz plane
+        // Second face, tilted by the apex angle; inside the glass the lobe sees index 1 / n from
+        // the other side: wo is the reverse of the ray, in the face's frame (normal pointing out).
+        const float incidence2 = apex - std::abs(inside);
+        const Vector3 wo2{std::sin(incidence2), 0, -std::cos(incidence2)};  // below the face: inside
+        auto s2 = lobe.sample(wo2, 0.999f, {0.5f, 0.5f});
+        ASSERT_TRUE(s2 && s2->wi.z > 0) << lambda;
+        const float theta2 = std::atan2(std::abs(s2->wi.x), s2->wi.z);
+        const float deviation = theta1 + theta2 - apex;
+        const float closed = theta1 + std::asin(n * std::sin(apex - std::asin(std::sin(theta1) / n))) - apex;
+        EXPECT_NEAR(deviation, closed, 1e-4f) << lambda;
+        if (previous > 0) EXPECT_LT(deviation, previous) << lambda;  // longer waves bend less
+        previous = deviation;
+    }
+}
+
+TEST(Spectra, UpsampledReflectancesComeBackAsTheirRgb) {
+    // Every colour of a 0.1 grid over the sRGB cube, lit by D65 and integrated at 1 nm.
+    int inner = 0;
+    float worst_inner = 0, worst = 0;
+    for (int r = 0; r <= 10; ++r)
+        for (int g = 0; g <= 10; ++g)
+            for (int b = 0; b <= 10; ++b) {
+                const Color rgb{r / 10.0f, g / 10.0f, b / 10.0f};
+                const RgbSigmoid s = rgb_sigmoid(rgb);
+                const Color back = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return s(l) * d65()(l); }));
+                const float e = max_error(back, rgb);
+                worst = std::max(worst, e);
+                if (std::max({rgb.r, rgb.g, rgb.b}) <= 0.9f) worst_inner = std::max(worst_inner, e), ++inner;
+                for (float l = 360; l <= 830; l += 10) ASSERT_TRUE(s(l) >= 0 && s(l) <= 1);
+            }
+    EXPECT_EQ(inner, 1000);
+    EXPECT_LT(worst, 1e-3f);
+    // Between the grid's colours: random ones, where the table's interpolation errs most (near
+    // white and near the saturated edges; docs/spectral.md).
+    int over = 0;
+    float worst_random = 0;
+    constexpr int kRandom = 4000;
+    for (int i = 0; i < kRandom; ++i) {
+        const auto u = [&](int c) { return float((std::uint64_t(i) * 2654435761u * (c + 1) + 12345u * c) % 100003u) / 100003.0f; };
+        const Color rgb{u(0), u(1), u(2)};
+        const RgbSigmoid s = rgb_sigmoid(rgb);
+        const float e = max_error(xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return s(l) * d65()(l); })), rgb);
+        worst_random = std::max(worst_random, e);
+        over += e > 1e-3f;
+    }
+    EXPECT_LT(over, kRandom / 200);  // under 0.5 % of colours beyond 1e-3
+    EXPECT_LT(worst_random, 7e-3f);
+    std::printf("round trip: grid worst %.2e; random: worst %.2e, %d of %d beyond 1e-3\n", worst, worst_random, over,
+                kRandom);
+}
+
+TEST(Spectra, WavelengthsAreDrawnByTheirDensity) {
+    // The density integrates to 1; the three wavelengths of one draw are spread a third apart in
+    // the CDF; a histogram of many draws follows the density.
+    double integral = 0;
+    for (double l = 360; l < 830; l += 0.01) integral += visible_wavelength_pdf(float(l + 0.005)) * 0.01;
+    EXPECT_NEAR(integral, 1, 1e-4);
+    constexpr int kBins = 47, kDraws = 30000;
+    std::vector<double> hist(kBins, 0);
+    for (int i = 0; i < kDraws; ++i) {
+        const Wavelengths wl = sample_wavelengths((i + 0.5f) / kDraws);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(wl.pdf[c], visible_wavelength_pdf(wl.lambda[c]), 1e-6f);
+            hist[std::min(kBins - 1, int((wl.lambda[c] - 360) / 10))] += 1.0 / (3.0 * kDraws);
+        }
+    }
+    for (int b = 0; b < kBins; ++b) {
+        double p = 0;
+        for (double l = 360 + 10 * b; l < 370 + 10 * b; l += 0.01) p += visible_wavelength_pdf(float(l + 0.005)) * 0.01;
+        EXPECT_NEAR(hist[b], p, 2e-4) << b;
+    }
+}
+
+TEST(Spectra, TheFilmEstimateOfAnIlluminantIsItsColour) {
+    // Radiance of an RGB illuminant at sampled wavelengths, through film_rgb, averages to the RGB.
+    for (const Color rgb : {Color{1, 1, 1}, Color{0.8f, 0.3f, 0.1f}, Color{0.05f, 0.2f, 0.9f}}) {
+        Color sum{0};
+        constexpr int n = 20000;
+        for (int i = 0; i < n; ++i) {
+            const Wavelengths wl = sample_wavelengths((i + 0.5f) / n);
+            sum += film_rgb(upsample_illuminant(rgb, wl), wl);
+        }
+        EXPECT_LT(max_error(sum / n, rgb), 2e-3f) << rgb.r << " " << rgb.g << " " << rgb.b;
+    }
+    // After a dispersive event the hero alone carries the estimate: still unbiased.
+    Color sum{0};
+    constexpr int n = 20000;
+    for (int i = 0; i < n; ++i) {
+        Wavelengths wl = sample_wavelengths((i + 0.5f) / n);
+        terminate_secondary(wl);
+        sum += film_rgb(d65().at(wl), wl);
+    }
+    EXPECT_LT(max_error(sum / n, Color{1}), 5e-3f);
+}
+
+// --- Through the path tracer --------------------------------------------------------------
+
+RenderJob job_from(const std::string& yaml, Overrides o = {}) {
+    auto sources = std::make_shared<SourceFiles>();
+    return build(parse_scene(yaml, "scene.yaml", sources), o, sources);
+}
+
+Film render_job(const RenderJob& job, int spp, int threads = 0) {
+    Film film(job.film_width, job.film_height);
+    RenderOptions o = job.options;
+    o.spp = spp;
+    if (threads > 0) o.threads = threads;
+    render(job.scene, job.camera, *job.integrator, o, film);
+    return film;
+}
+
+std::string furnace(const std::string& material, int size = 24) {
+    return "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 45}\n"
+           "film: {width: " + std::to_string(size) + ", height: " + std::to_string(size) + "}\n"
+           "integrator: {type: path, max_depth: 64, spectral: true}\n"
+           "background: {type: constant, color: [1, 1, 1]}\n"
+           "objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: " + material + "}\n";
+}
+
+Color mean(const Film& film) {
+    Color sum{0};
+    for (const Color& c : film.pixels()) sum += c;
+    return sum / float(film.pixels().size());
+}
+
+TEST(Spectra, WhiteFurnacesReturnOneInSpectralMode) {
+    // Lossless materials in a white (D65) sky: every pixel's mean is white. Dispersive glass too.
+    for (const char* m : {"{type: diffuse, albedo: 1}", "{type: dielectric, ior: glass-F11}",
+                          "{type: dielectric, ior: 1.5, abbe: 20}",
+                          "{type: conductor, reflectance: 1, roughness: 0.5}"}) {
+        const Color c = mean(render_job(job_from(furnace(m)), 64));
+        EXPECT_LT(max_error(c, Color{1}), 0.01f) << m << ": " << c.r << " " << c.g << " " << c.b;
+    }
+}
+
+TEST(Spectra, GoldMirrorReflectsTheFresnelOfItsMeasuredIndex) {
+    // A smooth gold sphere in a D65 sky, seen at the centre (normal incidence): the pixel is the
+    // colour of R(lambda) D65(lambda), R = ((n-1)^2 + k^2) / ((n+1)^2 + k^2) from the tables.
+    const PiecewiseLinearSpectrum& n = *named_spectrum("metal-Au-eta");
+    const PiecewiseLinearSpectrum& k = *named_spectrum("metal-Au-k");
+    const Color expected = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) {
+        const double a = n(l), b = k(l);
+        return float(((a - 1) * (a - 1) + b * b) / ((a + 1) * (a + 1) + b * b)) * d65()(l);
+    }));
+    const std::string scene = "camera: {type: look_at, from: [0, 0, -30], to: [0, 0, 0], fov: 0.5}\n"
+                              "film: {width: 4, height: 4}\n"
+                              "integrator: {type: path, max_depth: 4, spectral: true}\n"
+                              "background: {type: constant, color: [1, 1, 1]}\n"
+                              "objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: conductor, metal: gold}}\n";
+    const Color c = mean(render_job(job_from(scene), 4096));
+    EXPECT_LT(max_error(c, expected), 0.01f) << c.r << " " << c.g << " " << c.b << " vs " << expected.r << " "
+                                             << expected.g << " " << expected.b;
+    // RGB mode's three-sample index gives a visibly different gold.
+    Overrides rgb;
+    rgb.spectral = false;
+    const Color c_rgb = mean(render_job(job_from(scene, rgb), 16));
+    EXPECT_GT(max_error(c_rgb, expected), 0.01f);
+}
+
+TEST(Spectra, OneThreadOrTwoGiveTheSameBits) {
+    const RenderJob job = job_from(furnace("{type: dielectric, ior: glass-F11}", 16));
+    EXPECT_EQ(render_job(job, 8, 1).pixels(), render_job(job, 8, 2).pixels());
+}
+
+std::string first_error(const std::string& yaml) {
+    try {
+        job_from(yaml);
+    } catch (const SceneError& e) {
+        const Diagnostic& d = e.diagnostics().front();
+        return std::to_string(d.loc.line) + ":" + std::to_string(d.loc.column) + ": " + d.message;
+    }
+    return "no error";
+}
+
+TEST(Spectra, MalformedSpectraAreLocatedErrors) {
+    const std::string head = "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 45}\nobjects:\n";
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, ior: glass-BK8}}\n"),
+              "3:84: ior: unknown glass 'glass-BK8'; did you mean 'glass-BK7'? (known: glass-BK7, glass-BAF10, "
+              "glass-FK51A, glass-LASF9, glass-F5, glass-F10, glass-F11)");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, ior: {sellmeier: [1, 2]}}}\n"),
+              "3:96: sellmeier: expected 6 numbers [B1, B2, B3, C1, C2, C3]");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: plastic, ior: glass-BK7}}\n"),
+              "3:81: material: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, abbe: 30}}\n"),
+              "3:85: material: 'abbe' goes with a number 'ior' (the index at 587.56 nm)");
+}
+
+}  // namespace
+}  // namespace glint
