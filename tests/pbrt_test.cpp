@@ -124,6 +124,33 @@ MakeNamedMaterial "gold" "string type" [ "conductor" ] "spectrum eta" "metal-Au-
     EXPECT_EQ(gold->material.k, kMetals[3].k);
 }
 
+// Spectra (issue 36): named glasses and metals are read as spectra for spectral mode (under
+// --strict, with no warning); inline pairs and .spd files too; malformed ones point at the value.
+TEST(Pbrt, SpectraAreReadOrAreLocatedErrors) {
+    const SceneDescription d = parse(R"(WorldBegin
+MakeNamedMaterial "glass" "string type" [ "dielectric" ] "spectrum eta" "glass-BK7"
+MakeNamedMaterial "brass" "string type" [ "conductor" ] "spectrum eta" "metal-CuZn-eta" "spectrum k" [ 300 3 800 4 ]
+)", true);
+    ASSERT_EQ(d.materials.size(), 2u);
+    const MaterialDesc& glass = d.materials[0].material;
+    ASSERT_TRUE(glass.ior_spectrum);
+    EXPECT_NEAR(glass.ior, 1.5168, 5e-4);  // BK7's n_d
+    EXPECT_FALSE(glass.ior_spectrum->constant());
+    const MaterialDesc& brass = d.materials[1].material;
+    ASSERT_TRUE(brass.eta_spectrum && brass.k_spectrum);
+    EXPECT_FLOAT_EQ((*brass.k_spectrum)(550), 3.5f);  // halfway along the inline pairs
+    EXPECT_FLOAT_EQ(brass.k.g, 3.5f);                 // RGB mode: the values at 650, 550, 450 nm
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" [ 400 1 300 2 ]\n"),
+              "test.pbrt:2:22: \"eta\": the wavelengths of a spectrum must increase (300 after 400)");
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" [ 400 -1 500 2 ]\n"),
+              "test.pbrt:2:22: \"eta\": value -1 at 400 nm; a spectrum's values are finite and not negative");
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" [ 400 1 500 ]\n"),
+              "test.pbrt:2:22: \"eta\": a spectrum is wavelength-value pairs; got 3 values");
+    EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" \"no.spd\"\n").rfind(
+                  "test.pbrt:2:22: \"eta\": \"no.spd\" is neither a spectrum pbrt-v4 names nor a file that can be read", 0),
+              0u);
+}
+
 TEST(Pbrt, UnsupportedIsAWarningOrUnderStrictAnError) {
     const std::string text = "WorldBegin\nMaterial \"measured\" \"string filename\" \"x.bsdf\"\nShape \"sphere\"\n";
     const SceneDescription d = parse(text);

@@ -206,7 +206,10 @@ float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 // A "spectrum" parameter's values: a name pbrt-v4 knows, a file of wavelength-value pairs (pbrt's
 // .spd files, relative to the main file, '#' comments), or the pairs inline. Located errors for a
 // missing file, an odd count, wavelengths that do not increase and negative values.
-std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, const std::string& name) {
+std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, const std::string& name, bool report) {
+    const auto error = [&](std::string message) {
+        if (report) diag_.error(p.loc, std::move(message));
+    };
     std::vector<double> numbers = p.numbers;
     if (p.strings.size() == 1) {
         if (const PiecewiseLinearSpectrum* s = named_spectrum(p.strings[0])) return *s;
@@ -214,7 +217,7 @@ std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, c
         if (file.is_relative()) file = dir_ / file;
         std::ifstream in(file);
         if (!in) {
-            diag_.error(p.loc, fmt::format("\"{}\": \"{}\" is neither a spectrum pbrt-v4 names nor a file that can be read ({})",
+            error(fmt::format("\"{}\": \"{}\" is neither a spectrum pbrt-v4 names nor a file that can be read ({})",
                                            name, p.strings[0], file.string()));
             return std::nullopt;
         }
@@ -228,30 +231,30 @@ std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, c
                 char* end = nullptr;
                 const double v = std::strtod(w.c_str(), &end);
                 if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) {
-                    diag_.error(p.loc, fmt::format("\"{}\": {}: \"{}\" is not a number", name, file.string(), w));
+                    error(fmt::format("\"{}\": {}: \"{}\" is not a number", name, file.string(), w));
                     return std::nullopt;
                 }
                 numbers.push_back(v);
                 if (numbers.size() > 1'000'000) {
-                    diag_.error(p.loc, fmt::format("\"{}\": {}: more than a million values", name, file.string()));
+                    error(fmt::format("\"{}\": {}: more than a million values", name, file.string()));
                     return std::nullopt;
                 }
             }
         }
     }
     if (numbers.size() < 2 || numbers.size() % 2 != 0) {
-        diag_.error(p.loc, fmt::format("\"{}\": a spectrum is wavelength-value pairs; got {} values", name, numbers.size()));
+        error(fmt::format("\"{}\": a spectrum is wavelength-value pairs; got {} values", name, numbers.size()));
         return std::nullopt;
     }
     std::vector<float> lambda, value;
     for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) {
         if (!lambda.empty() && !(numbers[i] > lambda.back())) {
-            diag_.error(p.loc, fmt::format("\"{}\": the wavelengths of a spectrum must increase ({} after {})", name,
+            error(fmt::format("\"{}\": the wavelengths of a spectrum must increase ({} after {})", name,
                                            numbers[i], lambda.back()));
             return std::nullopt;
         }
         if (!(numbers[i + 1] >= 0) || !std::isfinite(numbers[i + 1])) {
-            diag_.error(p.loc, fmt::format("\"{}\": value {} at {} nm; a spectrum's values are finite and not negative",
+            error(fmt::format("\"{}\": value {} at {} nm; a spectrum's values are finite and not negative",
                                            name, numbers[i + 1], numbers[i]));
             return std::nullopt;
         }
@@ -264,7 +267,7 @@ std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, c
 std::shared_ptr<const Spectrum> Parser::get_spectrum(ParamList& pl, const std::string& name) {
     Param* p = pl.find(name);
     if (!p || p->type != "spectrum" || p->numbers.size() == 1) return nullptr;
-    auto values = spectrum_values(*p, name);
+    auto values = spectrum_values(*p, name, false);  // get_color, read first, reported any error
     if (!values) return nullptr;
     Spectrum t = Spectrum::tabulated(std::move(*values));
     if (p->strings.size() == 1) t.set_name(p->strings[0]);
