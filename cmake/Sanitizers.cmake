@@ -1,7 +1,7 @@
 # GLINT_SANITIZE=address,undefined adds the sanitizers to every target (use with clang or gcc);
 # C++ only: the one assembler file (the spectral table) has nothing to instrument.
 if(GLINT_SANITIZE)
-  add_compile_options($<$<COMPILE_LANGUAGE:CXX>:-fsanitize=${GLINT_SANITIZE};-fno-omit-frame-pointer>)
+  add_compile_options($<$<COMPILE_LANGUAGE:CXX>:-fsanitize=${GLINT_SANITIZE}> $<$<COMPILE_LANGUAGE:CXX>:-fno-omit-frame-pointer>)
   add_link_options(-fsanitize=${GLINT_SANITIZE})
 endif()
 # UndefinedBehaviorSanitizer reports abort the process (as AddressSanitizer's do), so that a

@@ -86,6 +86,11 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Image> images;
     std::vector<Light> lights;
+    /// Spectral mode: per light of `lights` (may be shorter), its spectrum (Y = 1) or null.
+    std::vector<std::shared_ptr<const Spectrum>> light_spectra;
+    const Spectrum* light_spectrum(std::uint32_t light) const {
+        return light < light_spectra.size() ? light_spectra[light].get() : nullptr;
+    }
     /// Participating media, and the one the camera (and so everything no boundary encloses) is in.
     std::vector<Medium> media;
     MediumId camera_medium = kNoMedium;

@@ -163,7 +163,7 @@ MaterialDesc Importer::material(int index) {
     if (const auto it = ext.find("KHR_materials_sheen"); it != ext.end()) sheen(it->second, at, d);
     if (const auto it = ext.find("KHR_materials_specular"); it != ext.end()) specular(it->second, at, d);
     if (emissive.max_component() > 0) {
-        d.emission = Emission{emissive, m.doubleSided, std::nullopt};
+        d.emission = Emission{emissive, m.doubleSided, std::nullopt, nullptr};
         if (m.emissiveTexture.index >= 0)
             d.emission_map = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord,
                                      m.emissiveTexture.extensions, true, "emissiveTexture", at + "/emissiveTexture");

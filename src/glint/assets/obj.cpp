@@ -139,7 +139,7 @@ MaterialDesc map_material(const tinyobj::material_t& m, const std::filesystem::p
     } else {
         d.kind = MaterialDesc::Kind::kDiffuse;
     }
-    if (ke.max_component() > 0) d.emission = Emission{ke, false, std::nullopt};
+    if (ke.max_component() > 0) d.emission = Emission{ke, false, std::nullopt, nullptr};
     // `norm` (and `map_Bump` with -bm or a name containing "normal", the common export of
     // normal maps under the bump keyword): a tangent-space normal map. A height bump map proper
     // is not applied; the notes say so.

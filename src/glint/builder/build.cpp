@@ -645,6 +645,7 @@ public:
     void add_media_and_materials() {
         scene_.background = d_.background;
         scene_.lights = d_.lights;
+        scene_.light_spectra = d_.light_spectra;
         // Moving point and spot lights: stored where they are at the opening, moved by their path.
         for (std::size_t i = 0; i < d_.light_paths.size() && i < scene_.lights.size(); ++i) {
             const auto& path = d_.light_paths[i];

@@ -276,6 +276,8 @@ struct SceneDescription {
     Background background = SkyBackground{};
     std::optional<EnvironmentDesc> environment;  ///< a background loaded from an image by build
     std::vector<Light> lights;
+    /// Per light of `lights` (may be shorter): its spectrum for spectral mode (Y = 1), or null.
+    std::vector<std::shared_ptr<const Spectrum>> light_spectra;
     std::vector<NamedMaterial> materials;
     std::vector<NamedMedium> media;
     std::optional<Located<std::string>> medium;  ///< the camera's (the scene's) medium

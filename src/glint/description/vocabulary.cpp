@@ -9,7 +9,7 @@ namespace {
 // Keys every object takes, whatever its shape (after `type` and the shape's own).
 #define GLINT_OBJECT_KEYS "material", "transform", "interior", "exterior"
 // Keys every material takes.
-#define GLINT_MATERIAL_KEYS "type", "emission", "two_sided", "normal_map", "normal_scale"
+#define GLINT_MATERIAL_KEYS "type", "emission", "emission_spectrum", "two_sided", "normal_map", "normal_scale"
 // Keys of the coated materials' slab (pbrt-v4's LayeredBxDF).
 #define GLINT_LAYER_KEYS "ior", "thickness", "layer_albedo", "g", "max_depth", "samples"
 // Keys of both media.
@@ -58,9 +58,9 @@ const std::vector<VocabularyEntry>& table() {
         {"background", "sky", {"type", "horizon", "zenith"}},
         {"background", "constant", {"type", "color"}},
         {"background", "environment", {"type", "filename", "scale"}},
-        {"light", "directional", {"type", "direction", "intensity", "angular_diameter"}},
-        {"light", "point", {"type", "position", "intensity"}},
-        {"light", "spot", {"type", "position", "direction", "intensity", "cone_angle", "falloff_start"}},
+        {"light", "directional", {"type", "direction", "intensity", "spectrum", "angular_diameter"}},
+        {"light", "point", {"type", "position", "intensity", "spectrum"}},
+        {"light", "spot", {"type", "position", "direction", "intensity", "spectrum", "cone_angle", "falloff_start"}},
         {"material", "article", {GLINT_MATERIAL_KEYS, "color", "shininess"}},
         {"material", "diffuse", {GLINT_MATERIAL_KEYS, "albedo"}},
         {"material", "conductor", {GLINT_MATERIAL_KEYS, "metal", "eta", "k", "reflectance", "roughness"}},

@@ -147,6 +147,27 @@ std::optional<MaterialDesc> Parser::material(const Token& t, const std::string& 
     return m;
 }
 
+// Spectral mode's emission spectrum of a light parameter given as a black body or a spectrum
+// (pbrt-v4 normalises both to a luminance of 1; the colour read by get_color has that luminance).
+std::shared_ptr<const Spectrum> Parser::emission_spectrum(ParamList& pl, const std::string& name) {
+    const Param* p = pl.find(name);
+    if (!p) return nullptr;
+    if (p->type == "blackbody" && p->numbers.size() == 1 && p->numbers[0] > 0)
+        return std::make_shared<const Spectrum>(Spectrum::blackbody(float(p->numbers[0])).normalised_emission());
+    if (p->type != "spectrum" || p->numbers.size() == 1) return nullptr;
+    auto values = spectrum_values(*p, name, false);  // get_color reported any error
+    if (!values) return nullptr;
+    return std::make_shared<const Spectrum>(Spectrum::tabulated(std::move(*values)).normalised_emission());
+}
+
+// The spectrum of the light just added, if its colour parameter was one.
+void Parser::light_spectrum(ParamList& pl, const std::string& name) {
+    if (auto s = emission_spectrum(pl, name)) {
+        d_.light_spectra.resize(d_.lights.size());
+        d_.light_spectra.back() = std::move(s);
+    }
+}
+
 void Parser::light(const Token& t, const std::string& type, ParamList pl) {
     float s = float(get_float(pl, "scale").value_or(1));
     // pbrt-v4's "power" (point, spot) and "illuminance" (distant, infinite) scale the given
@@ -166,6 +187,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         const Color I = get_color(pl, "I", true).value_or(Color{1}) * s;
         const D3 f = pt("from", {0, 0, 0});
         d_.lights.push_back(PointLight{to_point(gs_.ctm.point(f[0], f[1], f[2])), I});
+        light_spectrum(pl, "I");
     } else if (type == "spot") {
         const D3 f = pt("from", {0, 0, 0}), to = pt("to", {0, 0, 1});
         const double cone = get_float(pl, "coneangle").value_or(30), delta = get_float(pl, "conedeltaangle").value_or(5);
@@ -186,6 +208,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         SpotLight l{to_point(wf), Vector3{Float(u[0]), Float(u[1]), Float(u[2])}, I,
                     Float(std::cos(std::max(0.0, cone - delta) * to_rad)), Float(std::cos(cone * to_rad))};
         d_.lights.push_back(l);
+        light_spectrum(pl, "I");
     } else if (type == "distant") {
         if (const auto e = target("illuminance")) s *= float(*e);
         const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
@@ -197,6 +220,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         }
         const D3 u = unit3(dir);
         d_.lights.push_back(DirectionalLight{Vector3{Float(u[0]), Float(u[1]), Float(u[2])}, L});
+        light_spectrum(pl, "L");
     } else if (type == "infinite") {
         if (auto file = get_string(pl, "filename")) {
             // pbrt-v4's environment maps are square, equal-area octahedral images with +z at
@@ -236,6 +260,7 @@ void Parser::area_light(const Token& t, const std::string& type, ParamList pl) {
     Emission e;
     e.radiance = get_color(pl, "L", true).value_or(Color{1}) * float(get_float(pl, "scale").value_or(1));
     e.two_sided = get_bool(pl, "twosided").value_or(false);
+    e.spectrum = emission_spectrum(pl, "L");
     gs_.area_power.reset();
     if (const auto p = get_float(pl, "power"); p && *p > 0) gs_.area_power = Located<double>{*p, pl.find("power")->loc};
     ignore(pl, "filename", "image area lights not supported; using L");

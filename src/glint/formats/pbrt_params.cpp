@@ -293,9 +293,9 @@ std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, b
             diag_.error(p->loc, fmt::format("\"{}\": blackbody takes one temperature in kelvin", name));
             return std::nullopt;
         }
-        Color c = blackbody_rgb(float(p->numbers[0]));
-        if (illuminant && luminance(c) > 0) c = c / luminance(c);
-        return c;
+        // A light's: the colour of its spectrum at luminance 1 (spectral mode uses the spectrum).
+        if (illuminant) return Spectrum::blackbody(float(p->numbers[0])).emission_rgb();
+        return blackbody_rgb(float(p->numbers[0]));
     }
     if (p->type == "spectrum") {
         if (p->strings.size() == 1) {

@@ -292,6 +292,8 @@ private:
     /// A "spectrum" parameter as a spectrum (a named one, or inline wavelength-value pairs) for
     /// spectral mode; null when the parameter is absent or not a spectrum.
     std::shared_ptr<const Spectrum> get_spectrum(ParamList& pl, const std::string& name);
+    std::shared_ptr<const Spectrum> emission_spectrum(ParamList& pl, const std::string& name);
+    void light_spectrum(ParamList& pl, const std::string& name);
     std::optional<PiecewiseLinearSpectrum> spectrum_values(const Param& p, const std::string& name, bool report = true);
     std::optional<TextureDesc> get_texture(ParamList& pl, const std::string& name, bool is_float, float fallback);
 

@@ -45,6 +45,17 @@ std::string dispersive_ior(const MaterialDesc& m) {
     }
 }
 
+// An emitter's spectrum as the reader takes it (the reader normalises it again).
+std::string spectrum_yaml(const Spectrum& s) {
+    if (s.kind() == Spectrum::Kind::kBlackbody) return fmt::format("{{blackbody: {}}}", num(s.kelvin()));
+    if (!s.name().empty()) return s.name();
+    std::string out = "[";
+    const auto& l = s.table().lambda();
+    const auto& v = s.table().value();
+    for (std::size_t i = 0; i < l.size(); ++i) out += fmt::format("{}{}, {}", i ? ", " : "", num(l[i]), num(v[i]));
+    return out + "]";
+}
+
 // YAML double-quoted string.
 std::string yaml_quoted(const std::string& s) {
     std::string out = "\"";
@@ -164,6 +175,7 @@ std::string Writer::material(const MaterialDesc& m) const {
     }
     if (m.emission.emits()) {
         s += ", emission: " + vec(m.emission.radiance);
+        if (m.emission.spectrum) s += ", emission_spectrum: " + spectrum_yaml(*m.emission.spectrum);
         if (m.emission.two_sided) s += ", two_sided: true";
     }
     if (m.normal_map) {
@@ -329,18 +341,22 @@ WrittenScene Writer::run() {
     if (!d_.lights.empty()) {
         y += "lights:\n";
         const auto deg = [](float c) { return num(float(std::acos(std::clamp(c, -1.0f, 1.0f)) * 180 / std::numbers::pi)); };
-        for (const Light& l : d_.lights) {
+        for (std::size_t i = 0; i < d_.lights.size(); ++i) {
+            const Light& l = d_.lights[i];
+            const std::string spectrum =
+                i < d_.light_spectra.size() && d_.light_spectra[i] ? ", spectrum: " + spectrum_yaml(*d_.light_spectra[i]) : "";
             if (const auto* p = std::get_if<PointLight>(&l)) {
-                y += fmt::format("  - {{type: point, position: {}, intensity: {}}}\n", vec(p->position), vec(p->intensity));
+                y += fmt::format("  - {{type: point, position: {}, intensity: {}{}}}\n", vec(p->position), vec(p->intensity), spectrum);
             } else if (const auto* s = std::get_if<SpotLight>(&l)) {
-                y += fmt::format("  - {{type: spot, position: {}, direction: {}, intensity: {}, cone_angle: {}, falloff_start: {}}}\n",
-                                 vec(s->position), vec(s->direction), vec(s->intensity), deg(s->cos_outer), deg(s->cos_inner));
+                y += fmt::format("  - {{type: spot, position: {}, direction: {}, intensity: {}, cone_angle: {}, falloff_start: {}{}}}\n",
+                                 vec(s->position), vec(s->direction), vec(s->intensity), deg(s->cos_outer), deg(s->cos_inner),
+                                 spectrum);
             } else if (const auto* dl = std::get_if<DirectionalLight>(&l)) {
                 y += fmt::format("  - {{type: directional, direction: {}, intensity: {}", vec(dl->direction), vec(dl->intensity));
                 if (dl->soft())
                     y += ", angular_diameter: " +
                          num(float(4 * std::asin(std::sqrt(dl->one_minus_cos / 2)) * 180 / std::numbers::pi));
-                y += "}\n";
+                y += spectrum + "}\n";
             }
         }
     }

@@ -54,7 +54,7 @@ void SceneParser::parse_root(const YAML::Node& root, SceneDescription& scene) {
     if (auto n = m.get("background")) {
         if (auto bg = background(*n, scene.environment)) scene.background = *bg;
     }
-    if (auto n = m.get("lights")) lights(*n, scene.lights);
+    if (auto n = m.get("lights")) lights(*n, scene.lights, scene.light_spectra);
     if (auto n = m.get("materials")) materials(*n, scene.materials);
     if (auto n = m.get("media")) media(*n, scene.media);
     if (auto n = m.get("medium")) scene.medium = located_name(*n);
@@ -443,13 +443,72 @@ std::optional<Background> SceneParser::background(const YAML::Node& node,
     return c;
 }
 
-void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out) {
+std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& n, Color& rgb) {
+    std::optional<Spectrum> s;
+    if (n.IsMap()) {
+        MapReader m(r_, n, "spectrum", {"blackbody"});
+        if (!m.valid()) return nullptr;
+        if (const auto k = m.require("blackbody"))
+            if (const auto t = r_.number_in(*k, "blackbody", 0, 1e6, true)) s = Spectrum::blackbody(float(*t));
+    } else if (n.IsScalar() && !n.Scalar().empty() && std::isalpha(static_cast<unsigned char>(n.Scalar()[0]))) {
+        if (const PiecewiseLinearSpectrum* named = named_spectrum(n.Scalar())) {
+            s = Spectrum::tabulated(*named);
+            s->set_name(n.Scalar());
+        } else {
+            std::vector<std::string> names;
+            for (const std::string_view v : named_spectrum_names()) names.emplace_back(v);
+            const std::string guess = closest_match(n.Scalar(), names);
+            r_.error(n, fmt::format("spectrum: unknown name '{}'{}", n.Scalar(),
+                                    guess.empty() ? "" : fmt::format("; did you mean '{}'?", guess)));
+        }
+    } else if (n.IsSequence()) {
+        if (n.size() < 2 || n.size() % 2 != 0 || n.size() > 100000) {
+            r_.error(n, fmt::format("spectrum: expected pairs [nm, value, nm, value, ...], got {} numbers", n.size()));
+            return nullptr;
+        }
+        std::vector<float> lambda, value;
+        for (std::size_t i = 0; i < n.size(); i += 2) {
+            const auto l = r_.number_in(n[i], "spectrum wavelength", 1, 1e5);
+            const auto v = r_.number_in(n[i + 1], "spectrum value", 0, 1e30);
+            if (!l || !v) return nullptr;
+            if (!lambda.empty() && !(*l > lambda.back())) {
+                r_.error(n[i], fmt::format("spectrum: the wavelengths must increase ({} after {})", *l, lambda.back()));
+                return nullptr;
+            }
+            lambda.push_back(float(*l));
+            value.push_back(float(*v));
+        }
+        s = Spectrum::tabulated(PiecewiseLinearSpectrum(std::move(lambda), std::move(value)));
+    } else {
+        r_.error(n, fmt::format("spectrum: expected {{blackbody: kelvin}}, a name or [nm, value, ...], got {}", describe(n)));
+    }
+    if (!s) return nullptr;
+    const Spectrum e = s->normalised_emission();
+    if (!(spectrum_to_xyz(e).y > 0)) {
+        r_.error(n, "spectrum: it emits nothing visible (360-830 nm)");
+        return nullptr;
+    }
+    rgb = e.emission_rgb() * (0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b);
+    return std::make_shared<const Spectrum>(e);
+}
+
+void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out,
+                         std::vector<std::shared_ptr<const Spectrum>>& spectra) {
     if (!node.IsSequence()) {
         r_.error(node, fmt::format("lights: expected a list, got {}", describe(node)));
         return;
     }
     const auto degrees = [this](const char* what, double hi) {
         return [this, what, hi](const YAML::Node& n) { return r_.number_in(n, what, 0, hi); };
+    };
+    // A light's `spectrum` (spectral mode), at the index the light is about to take.
+    const auto with_spectrum = [&](const MapReader& m, Color& intensity) {
+        if (const auto n = m.get("spectrum")) {
+            if (auto s = emitter_spectrum(*n, intensity)) {
+                spectra.resize(out.size() + 1);
+                spectra.back() = std::move(s);
+            }
+        }
     };
     for (const YAML::Node& item : node) {
         const auto type = type_of(item, "light", vocabulary_types("light"));
@@ -464,12 +523,14 @@ void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out) {
             assign(m.get("angular_diameter"), diameter, degrees("angular_diameter", 179));
             const float s = std::sin(diameter * std::numbers::pi_v<float> / 720);  // sin(d/4)
             l.one_minus_cos = 2 * s * s;
+            with_spectrum(m, l.intensity);
             out.emplace_back(l);
         } else if (*type == "point") {
             PointLight l{{0, 0, 0}, Color{1}};
             MapReader m(r_, item, "point light", vocabulary_keys("light", "point"));
             assign(m.require("position"), l.position, point());
             assign(m.get("intensity"), l.intensity, color());
+            with_spectrum(m, l.intensity);
             out.emplace_back(l);
         } else {
             SpotLight l{{0, 0, 0}, {0, -1, 0}, Color{1}, 1, 0};
@@ -490,6 +551,7 @@ void SceneParser::lights(const YAML::Node& node, std::vector<Light>& out) {
             l.cos_outer = std::cos(cone * to_rad);
             l.cos_inner = std::cos(std::min(start, cone) * to_rad);
             if (l.cos_inner <= l.cos_outer) l.cos_inner = l.cos_outer + 1e-6f;
+            with_spectrum(m, l.intensity);
             out.emplace_back(l);
         }
     }

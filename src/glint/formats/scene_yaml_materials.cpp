@@ -184,6 +184,10 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
     assign(m.get("thin"), d.thin, [this](const YAML::Node& v) { return r_.boolean(v); });
     assign(m.get("tint"), d.tint, color());
     assign(m.get("emission"), d.emission.radiance, color());
+    if (const auto n = m.get("emission_spectrum")) {
+        if (!m.has("emission")) r_.error(*n, fmt::format("{}: 'emission_spectrum' goes with an 'emission' (its strength)", context));
+        else d.emission.spectrum = emitter_spectrum(*n, d.emission.radiance);
+    }
     assign(m.get("two_sided"), d.emission.two_sided,
            [this](const YAML::Node& v) { return r_.boolean(v); });
     if (const auto n = m.get("normal_map")) {

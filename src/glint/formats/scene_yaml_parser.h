@@ -138,7 +138,11 @@ private:
     std::optional<Background> background(const YAML::Node& node,
                                          std::optional<EnvironmentDesc>& environment);
 
-    void lights(const YAML::Node& node, std::vector<Light>& out);
+    void lights(const YAML::Node& node, std::vector<Light>& out, std::vector<std::shared_ptr<const Spectrum>>& spectra);
+    /// An emitter's `spectrum`: {blackbody: kelvin}, a name ("stdillum-A"), or [nm, value, ...];
+    /// normalised to Y = 1. `rgb` (the colour given beside it) becomes the spectrum's colour at
+    /// the same luminance.
+    std::shared_ptr<const Spectrum> emitter_spectrum(const YAML::Node& n, Color& rgb);
 
     // A texture: a number (grey), a colour [r, g, b], or a map with a type.
     std::optional<TextureDesc> texture(const YAML::Node& node);

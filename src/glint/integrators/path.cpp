@@ -113,7 +113,13 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         wl_storage = sample_wavelengths(samples.next_1d());
         wl = &wl_storage;
     }
-    const auto E = [&](Color rgb) { return wl ? upsample_illuminant(rgb, *wl) : rgb; };
+    // An emitter's radiance at the path's wavelengths: its own spectrum (Y = 1) times its RGB
+    // stand-in's luminance, or its RGB upsampled as an illuminant.
+    const auto E = [&](Color rgb, const Spectrum* s = nullptr) {
+        if (!wl) return rgb;
+        if (s) return s->at(*wl) * (0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b);
+        return upsample_illuminant(rgb, *wl);
+    };
 
     // Emission reached by a BSDF sample (or the camera): weighted against light sampling.
     const auto add_emission = [&](Color le, std::uint32_t light, Point3 on_light) {
@@ -142,7 +148,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!(pmf > 0)) return;
         const auto ls = lights.sample_li(scene, l, p, u_light, time);
         if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
-        const Color L = E(ls->L);
+        const Color L = E(ls->L, ls->spectrum);
         const Color f = f_of(ls->wi);
         if (f.max_component() <= 0) return;
         ++counter.rays;
@@ -352,7 +358,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // Seen by the camera (through perfect mirrors and glass), the environment is read
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
-                add_emission(E(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction)), l, {});
+                add_emission(E(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction),
+                               scene.light_spectrum(l)),
+                             l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.
             if (lights.environment() == kNoLight && depth == 0)
@@ -370,7 +378,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             continue;
         }
         const Vector3 wo = -ray.direction;
-        add_emission(E(scene.emitted(si, wo)), lights.light_of(si.shape, si.shape_index, si.prim), si.p);
+        add_emission(E(scene.emitted(si, wo), scene.emission_of(si.material).spectrum.get()),
+                     lights.light_of(si.shape, si.shape_index, si.prim), si.p);
         if (want_features) {
             *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), feature_distance + hit->t, true};
         }

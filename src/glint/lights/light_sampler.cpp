@@ -354,7 +354,7 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
             },
             scene.background);
     }
-    return std::visit(
+    auto ls = std::visit(
         [&](const auto& l) -> std::optional<LightLiSample> {
             using T = std::decay_t<decltype(l)>;
             if constexpr (std::is_same_v<T, DirectionalLight>) {
@@ -382,7 +382,8 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
                         n = normalize(Normal3(q - s.center));
                         pdf = uniform_cone_pdf(omc);
                         if (!(scene.emission_of(material).two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, length(q - p), false, true, q, n};
+                        return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, length(q - p), false, true, q, n,
+                                             scene.emission_of(material).spectrum.get()};
                     }
                 }
                 float area = 1;
@@ -410,13 +411,16 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
                 const Emission& e = scene.emission_of(material);
                 if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
                 pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, dist, false, true, q, n};
+                return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, dist, false, true, q, n,
+                                     e.spectrum.get()};
             } else {
                 const LightSample s = l.sample(p);
                 return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};
             }
         },
         *chosen);
+    if (ls && !ls->spectrum) ls->spectrum = scene.light_spectrum(light);
+    return ls;
 }
 
 float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,

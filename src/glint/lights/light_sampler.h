@@ -16,6 +16,7 @@
 namespace glint {
 
 struct Scene;
+class Spectrum;
 
 /// Radiance L arriving at the shaded point from direction wi, with the density of wi by solid
 /// angle (for a delta light: 1, and delta set).
@@ -30,6 +31,8 @@ struct LightLiSample {
     bool on_surface = false;
     Point3 p_light{0, 0, 0};
     Normal3 n_light{0, 1, 0};
+    /// Spectral mode: the light's own spectrum (Y = 1; L is its colour), or null (L upsampled).
+    const Spectrum* spectrum = nullptr;
 };
 
 inline constexpr std::uint32_t kNoLight = 0xffffffffU;

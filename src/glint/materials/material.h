@@ -111,6 +111,9 @@ struct Emission {
     Color radiance{0};
     bool two_sided = false;
     std::optional<TextureId> texture;  ///< multiplies radiance (glTF's emissiveTexture)
+    /// Spectral mode: the emitted spectrum (Y = 1) times luminance(radiance), instead of the
+    /// radiance upsampled (a black body, a standard illuminant); radiance is then its colour.
+    std::shared_ptr<const Spectrum> spectrum;
     bool emits() const { return radiance.max_component() > 0; }
 };
 

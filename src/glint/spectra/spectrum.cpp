@@ -169,10 +169,23 @@ Spectrum Spectrum::from_abbe(float n_d, float v_d) {
     return s;
 }
 
+Spectrum Spectrum::normalised_emission() const {
+    Spectrum s = *this;
+    const float y = spectrum_to_xyz(s).y;
+    if (y > 0) s.scale_ /= y;
+    return s;
+}
+
+Color Spectrum::emission_rgb() const {
+    const Color c = xyz_to_linear_srgb(spectrum_to_xyz(*this));
+    const float y = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+    return y > 0 ? c / y : c;
+}
+
 float Spectrum::operator()(float lambda) const {
     switch (kind_) {
-        case Kind::kTabulated: return table_(lambda);
-        case Kind::kBlackbody: return blackbody_normalised(lambda, p_[0]);
+        case Kind::kTabulated: return scale_ * table_(lambda);
+        case Kind::kBlackbody: return scale_ * blackbody_normalised(lambda, p_[0]);
         case Kind::kSellmeier: {
             const double l2 = double(lambda) * lambda * 1e-6;  // micrometres squared
             double n2 = 1;

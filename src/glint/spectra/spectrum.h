@@ -107,6 +107,12 @@ public:
     Color at(const Wavelengths& wl) const { return {(*this)(wl.lambda[0]), (*this)(wl.lambda[1]), (*this)(wl.lambda[2])}; }
     /// Whether the value is the same at every wavelength (a dielectric then does not disperse).
     bool constant() const;
+    /// An emitter's spectrum: this one scaled to Y = 1, so that an emitter's strength is the
+    /// luminance of its RGB stand-in (as pbrt-v4 divides a light's spectrum by its photometric
+    /// value). Its RGB stand-in is emission_rgb.
+    Spectrum normalised_emission() const;
+    /// The linear sRGB colour of this spectrum as an emitter, normalised to luminance 1.
+    Color emission_rgb() const;
     Kind kind() const { return kind_; }
     float kelvin() const { return p_[0]; }
     /// The parameters: Sellmeier's B1..B3, C1..C3; Cauchy's A, B.
@@ -120,6 +126,7 @@ private:
     Kind kind_ = Kind::kTabulated;
     PiecewiseLinearSpectrum table_;
     float p_[6]{};
+    float scale_ = 1;
     std::string name_;
 };
 

@@ -262,6 +262,42 @@ TEST(Spectra, OneThreadOrTwoGiveTheSameBits) {
     EXPECT_EQ(render_job(job, 8, 1).pixels(), render_job(job, 8, 2).pixels());
 }
 
+TEST(Spectra, EmittersGivenAsSpectraImageAsTheirColour) {
+    // An emitting sphere filling the view, of strength 2 (luminance) and a black body's or
+    // illuminant A's spectrum: spectral mode sees the spectrum itself through the film, RGB mode
+    // its colour (computed from the spectrum at 1 nm); they agree, and the luminance is 2.
+    for (const char* spectrum : {"{blackbody: 3000}", "stdillum-A", "[400, 1, 700, 3]"}) {
+        const std::string scene = std::string("camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
+                                              "film: {width: 8, height: 8}\n"
+                                              "integrator: {type: path, max_depth: 1, spectral: true}\n"
+                                              "background: {type: constant, color: [0, 0, 0]}\n"
+                                              "objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: "
+                                              "{type: diffuse, albedo: 0, emission: [2, 2, 2], emission_spectrum: ") +
+                                  spectrum + "}}\n";
+        const Color spectral = mean(render_job(job_from(scene), 256));
+        Overrides rgb;
+        rgb.spectral = false;
+        const Color colour = mean(render_job(job_from(scene, rgb), 1));
+        EXPECT_NEAR(0.2126f * colour.r + 0.7152f * colour.g + 0.0722f * colour.b, 2, 1e-4) << spectrum;
+        EXPECT_LT(max_error(spectral, colour), 0.01f * 2) << spectrum << ": " << spectral.r << " " << spectral.g << " "
+                                                          << spectral.b << " vs " << colour.r << " " << colour.g << " "
+                                                          << colour.b;
+    }
+    // A point light too: its spectrum reaches the shaded point through next-event estimation.
+    const std::string lit = "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
+                            "film: {width: 8, height: 8}\n"
+                            "integrator: {type: path, max_depth: 1, spectral: true}\n"
+                            "background: {type: constant, color: [0, 0, 0]}\n"
+                            "lights:\n  - {type: point, position: [0, 0, -3], intensity: [9, 9, 9], spectrum: {blackbody: 2000}}\n"
+                            "objects:\n  - {type: quad, corner: [-5, -5, 0], edge1: [10, 0, 0], edge2: [0, 10, 0], "
+                            "material: {type: diffuse, albedo: 1}}\n";
+    Overrides rgb;
+    rgb.spectral = false;
+    const Color a = mean(render_job(job_from(lit), 256)), b = mean(render_job(job_from(lit, rgb), 1));
+    EXPECT_LT(max_error(a, b), 0.01f * b.max_component()) << a.r << " " << a.g << " " << a.b << " vs " << b.r << " " << b.g << " " << b.b;
+    EXPECT_GT(b.r, 2 * b.b);  // 2000 K is red
+}
+
 std::string first_error(const std::string& yaml) {
     try {
         job_from(yaml);
@@ -281,6 +317,12 @@ TEST(Spectra, MalformedSpectraAreLocatedErrors) {
               "3:96: sellmeier: expected 6 numbers [B1, B2, B3, C1, C2, C3]");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: plastic, ior: glass-BK7}}\n"),
               "3:81: material: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, emission: [1, 1, 1], "
+                                 "emission_spectrum: [500, 1, 400, 1]}}\n"),
+              "3:125: spectrum: the wavelengths must increase (400 after 500)");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, emission: [1, 1, 1], "
+                                 "emission_spectrum: stdillum-D66}}\n"),
+              "3:116: spectrum: unknown name 'stdillum-D66'; did you mean 'stdillum-D65'?");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, abbe: 30}}\n"),
               "3:85: material: 'abbe' goes with a number 'ior' (the index at 587.56 nm)");
 }
