@@ -135,7 +135,17 @@ public:
             case K::kDiffuse: scene_.materials.push_back(DiffuseMaterial{add_texture(d.color)}); break;
             case K::kConductor: {
                 ConductorMaterial c{make_conductor(ConductorLobe::FresnelKind::kComplex, d.eta, d.k, alpha),
-                                    std::nullopt, d.eta_spectrum, d.k_spectrum};
+                                    std::nullopt, d.eta_spectrum, d.k_spectrum, nullptr};
+                if (d.eta_spectrum && d.k_spectrum && !c.lobe.ggx.smooth()) {
+                    // Spectral mode's multiple-scattering term: F_avg every 5 nm, read per hit.
+                    std::vector<float> lambda, value;
+                    for (float l = kLambdaMin; l <= kLambdaMax; l += 5) {
+                        lambda.push_back(l);
+                        value.push_back(make_conductor(ConductorLobe::FresnelKind::kComplex, Color{(*d.eta_spectrum)(l)},
+                                                       Color{(*d.k_spectrum)(l)}, alpha).f_avg.r);
+                    }
+                    c.f_avg_spectrum = std::make_shared<const PiecewiseLinearSpectrum>(std::move(lambda), std::move(value));
+                }
                 if (d.reflectance) c.reflectance = add_texture(*d.reflectance);
                 scene_.materials.push_back(c);
                 break;

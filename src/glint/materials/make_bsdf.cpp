@@ -61,7 +61,8 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                     } else {
                         lobe.eta = R(lobe.eta);
                     }
-                    if (!lobe.ggx.smooth()) lobe.f_avg = conductor_f_avg(lobe);
+                    if (!lobe.ggx.smooth())
+                        lobe.f_avg = m.f_avg_spectrum ? m.f_avg_spectrum->at(*wl) : conductor_f_avg(lobe);
                     return Bsdf(si.ns, {{lobe, 1.0f}});
                 }
                 ConductorLobe lobe = m.lobe;

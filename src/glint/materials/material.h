@@ -36,6 +36,8 @@ struct ConductorMaterial {
     ConductorLobe lobe;
     std::optional<TextureId> reflectance;
     std::shared_ptr<const Spectrum> eta_spectrum, k_spectrum;
+    /// With them: the Fresnel average (multiple scattering) by wavelength, tabulated at build.
+    std::shared_ptr<const PiecewiseLinearSpectrum> f_avg_spectrum;
 };
 
 /// Glass (smooth or rough, optionally a thin sheet). `ior`: the index by wavelength (spectral
