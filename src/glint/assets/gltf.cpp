@@ -394,7 +394,8 @@ void Importer::mesh(int index) {
 void Importer::check_extensions() {
     static const std::set<std::string> supported = {
         "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
-        "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+        "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_dispersion",
+        "KHR_materials_emissive_strength",
         "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
         "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
         "KHR_texture_transform"};

@@ -158,6 +158,12 @@ MaterialDesc Importer::material(int index) {
     if (const auto it = ext.find("KHR_materials_transmission"); it != ext.end())
         d.transmission = float(number(it->second, "transmissionFactor", 0));
     if (const auto it = ext.find("KHR_materials_ior"); it != ext.end()) d.ior = float(number(it->second, "ior", 1.5));
+    if (const auto it = ext.find("KHR_materials_dispersion"); it != ext.end()) {
+        // dispersion = 20 / V_d (the Abbe number), about the index at 587.56 nm; spectral mode only.
+        const double dispersion = number(it->second, "dispersion", 0);
+        if (!(dispersion >= 0)) fail_at(at + "/extensions/KHR_materials_dispersion/dispersion", "KHR_materials_dispersion: dispersion must be >= 0");
+        if (dispersion > 0) d.ior_spectrum = std::make_shared<const Spectrum>(Spectrum::from_abbe(d.ior, float(20 / dispersion)));
+    }
     if (const auto it = ext.find("KHR_materials_volume"); it != ext.end()) volume(it->second, at, d);
     if (const auto it = ext.find("KHR_materials_clearcoat"); it != ext.end()) clearcoat(it->second, at, d);
     if (const auto it = ext.find("KHR_materials_sheen"); it != ext.end()) sheen(it->second, at, d);

@@ -95,6 +95,22 @@ TEST_F(Gltf, MaterialsMapOntoPbrWithTheirTexturesAndExtensions) {
     EXPECT_FALSE(named(f, "tiles").desc.normal_map);
 }
 
+TEST_F(Gltf, DispersionIsAnAbbeNumberAboutTheIor) {
+    // KHR_materials_dispersion: dispersion = 20 / V_d, about KHR_materials_ior's index at 587.56 nm.
+    std::string text = read("textured.gltf");
+    const auto at = text.find("\"KHR_materials_ior\":");  // in the glass material (not extensionsUsed)
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, "\"KHR_materials_dispersion\": {\"dispersion\": 0.5}, ");
+    write("dispersive.gltf", text);
+    const ImportedFile f = import_gltf(dir_ / "dispersive.gltf");
+    const MaterialDesc& glass = named(f, "glass").desc;
+    ASSERT_TRUE(glass.ior_spectrum);
+    const Spectrum& n = *glass.ior_spectrum;
+    EXPECT_NEAR(n(587.56f), glass.ior, 1e-5);
+    EXPECT_NEAR((glass.ior - 1) / (n(486.13f) - n(656.27f)), 20 / 0.5, 1e-3);
+    EXPECT_FALSE(named(f, "tiles").desc.ior_spectrum);
+}
+
 TEST_F(Gltf, NodeHierarchyCameraAndLightArePlacedInGlintsFrame) {
     const ImportedFile f = import_gltf(dir_ / "textured.gltf");
     ASSERT_EQ(f.nodes.size(), 5u);

@@ -204,7 +204,7 @@ public:
             }
             case K::kPbr: {
                 PbrMaterial p{add_texture(d.color), d.metallic, d.roughness, d.transmission, d.ior,
-                              diffuse_fresnel_inside(d.ior), std::nullopt, {}, {}, {}, {}, {}, {}};
+                              diffuse_fresnel_inside(d.ior), std::nullopt, {}, {}, {}, {}, {}, {}, d.ior_spectrum};
                 if (d.metallic_roughness) p.metallic_roughness = add_texture(*d.metallic_roughness);
                 const auto optional = [&](const std::optional<TextureDesc>& t) {
                     return t ? std::optional<TextureId>(add_texture(*t)) : std::nullopt;

@@ -66,7 +66,7 @@ const std::vector<VocabularyEntry>& table() {
         {"material", "conductor", {GLINT_MATERIAL_KEYS, "metal", "eta", "k", "reflectance", "roughness"}},
         {"material", "dielectric", {GLINT_MATERIAL_KEYS, "ior", "abbe", "roughness", "thin", "tint"}},
         {"material", "plastic", {GLINT_MATERIAL_KEYS, "albedo", "ior", "roughness"}},
-        {"material", "pbr", {GLINT_MATERIAL_KEYS, "base_color", "metallic", "roughness", "transmission", "ior",
+        {"material", "pbr", {GLINT_MATERIAL_KEYS, "base_color", "metallic", "roughness", "transmission", "ior", "abbe",
                              "clearcoat", "clearcoat_roughness", "sheen", "sheen_roughness", "specular",
                              "specular_color"}},
         {"material", "interface", {"type"}},

@@ -146,7 +146,7 @@ std::string Writer::material(const MaterialDesc& m) const {
             break;
         case K::kPbr:
             s = fmt::format("type: pbr, base_color: {}, metallic: {}, roughness: {}, transmission: {}, ior: {}",
-                            texture(m.color), num(m.metallic), num(m.roughness), num(m.transmission), num(m.ior));
+                            texture(m.color), num(m.metallic), num(m.roughness), num(m.transmission), dispersive_ior(m));
             for (const auto& [key, layer] : {std::pair{"clearcoat", &m.clearcoat}, {"clearcoat_roughness", &m.clearcoat_roughness},
                                              {"sheen", &m.sheen}, {"sheen_roughness", &m.sheen_roughness},
                                              {"specular", &m.specular}, {"specular_color", &m.specular_color}})

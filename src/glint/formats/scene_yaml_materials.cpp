@@ -170,8 +170,8 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
     assign(m.get("transmission"), d.transmission, unit("transmission"));
     if (const auto n = m.get("ior")) {
         ior(*n, d);
-        if (d.ior_spectrum && d.kind != K::kDielectric)
-            r_.error(*n, fmt::format("{}: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric", context));
+        if (d.ior_spectrum && d.kind != K::kDielectric && d.kind != K::kPbr)
+            r_.error(*n, fmt::format("{}: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric or pbr", context));
     }
     if (const auto n = m.get("abbe")) {
         // Cauchy's dispersion through the index at 587.56 nm and the Abbe number.

@@ -133,6 +133,10 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                 if (m.specular_color) plastic.specular_color = tex(*m.specular_color);
                 DielectricLobe glass;
                 glass.eta = m.ior;
+                if (wl && m.ior_spectrum && m.transmission > 0 && metallic < 1) {
+                    glass.eta = (*m.ior_spectrum)(wl->lambda[0]);  // the hero's; the caller drops the rest
+                    if (dispersive) *dispersive = true;
+                }
                 glass.ggx = Ggx{alpha};
                 glass.tint = base;
                 const float dielectric = 1 - metallic;

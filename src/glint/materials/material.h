@@ -82,6 +82,8 @@ struct PbrMaterial {
     /// (colour; roughness in red) and KHR_materials_specular (weight in red; colour), factors
     /// folded into the textures. Absent: no coat, no sheen, specular 1 and white.
     std::optional<TextureId> clearcoat, clearcoat_roughness, sheen, sheen_roughness, specular, specular_color;
+    /// Spectral mode: the transmitted part's index by wavelength (KHR_materials_dispersion).
+    std::shared_ptr<const Spectrum> ior_spectrum;
 };
 
 /// pbrt's diffusetransmission: Lambertian reflection of `reflectance` on the side light comes

@@ -227,6 +227,7 @@ TEST(Spectra, WhiteFurnacesReturnOneInSpectralMode) {
     // Lossless materials in a white (D65) sky: every pixel's mean is white. Dispersive glass too.
     for (const char* m : {"{type: diffuse, albedo: 1}", "{type: dielectric, ior: glass-F11}",
                           "{type: dielectric, ior: 1.5, abbe: 20}",
+                          "{type: pbr, base_color: 1, metallic: 0, roughness: 0, transmission: 1, ior: glass-F11}",
                           "{type: conductor, reflectance: 1, roughness: 0.5}"}) {
         const Color c = mean(render_job(job_from(furnace(m)), 64));
         EXPECT_LT(max_error(c, Color{1}), 0.01f) << m << ": " << c.r << " " << c.g << " " << c.b;
@@ -316,7 +317,7 @@ TEST(Spectra, MalformedSpectraAreLocatedErrors) {
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, ior: {sellmeier: [1, 2]}}}\n"),
               "3:96: sellmeier: expected 6 numbers [B1, B2, B3, C1, C2, C3]");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: plastic, ior: glass-BK7}}\n"),
-              "3:81: material: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric");
+              "3:81: material: a dispersive 'ior' (a glass or Sellmeier's coefficients) is for a dielectric or pbr");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, emission: [1, 1, 1], "
                                  "emission_spectrum: [500, 1, 400, 1]}}\n"),
               "3:125: spectrum: the wavelengths must increase (400 after 500)");
