@@ -146,6 +146,13 @@ MakeNamedMaterial "brass" "string type" [ "conductor" ] "spectrum eta" "metal-Cu
               "test.pbrt:2:22: \"eta\": value -1 at 400 nm; a spectrum's values are finite and not negative");
     EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" [ 400 1 500 ]\n"),
               "test.pbrt:2:22: \"eta\": a spectrum is wavelength-value pairs; got 3 values");
+    // A .spd file (pbrt's form: pairs, '#' comments), as killeroo-gold.pbrt names spds/Au.eta.spd.
+    const testing::TempDir tmp;
+    const std::string spd = (tmp.path() / "k.spd").string();
+    std::ofstream(spd) << "# wavelength k\n400 1.5\n600 2.5 # a comment\n";
+    const SceneDescription f = parse("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" [ \"conductor\" ] \"spectrum k\" \"" + spd + "\"\n", true);
+    ASSERT_TRUE(f.materials.at(0).material.k_spectrum);
+    EXPECT_FLOAT_EQ((*f.materials[0].material.k_spectrum)(500), 2.0f);
     EXPECT_EQ(first_error("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" \"no.spd\"\n").rfind(
                   "test.pbrt:2:22: \"eta\": \"no.spd\" is neither a spectrum pbrt-v4 names nor a file that can be read", 0),
               0u);
