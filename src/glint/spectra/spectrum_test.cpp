@@ -258,6 +258,34 @@ TEST(Spectra, GoldMirrorReflectsTheFresnelOfItsMeasuredIndex) {
     EXPECT_GT(max_error(c_rgb, expected), 0.01f);
 }
 
+TEST(Spectra, MediaAbsorbByWavelength) {
+    // A sphere of absorbing medium behind an interface (no refraction), radius 1, seen through its
+    // centre against a white sky: a grey sigma_a of 0.5 leaves exp(-1) at every wavelength; a
+    // coloured one leaves, per channel, the colour of exp(-2 sigma_a(lambda)) D65(lambda), with
+    // sigma_a(lambda) the upsampled spectrum, integrated here at 1 nm.
+    const auto scene = [](const char* sigma_a) {
+        return std::string("camera: {type: look_at, from: [0, 0, -30], to: [0, 0, 0], fov: 0.05}\n"
+                           "film: {width: 4, height: 4}\n"
+                           "integrator: {type: path, max_depth: 8, spectral: true}\n"
+                           "background: {type: constant, color: [1, 1, 1]}\n"
+                           "media:\n  ink: {type: homogeneous, sigma_a: ") +
+               sigma_a + ", sigma_s: [0, 0, 0]}\n"
+                         "objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: interface}, "
+                         "interior: ink}\n";
+    };
+    const Color grey = mean(render_job(job_from(scene("[0.5, 0.5, 0.5]")), 64));
+    EXPECT_LT(max_error(grey, Color{std::exp(-1.0f)}), 3e-3f) << grey.r << " " << grey.g << " " << grey.b;
+    const Color sigma{0.9f, 0.3f, 0.1f};
+    const Color expected = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) {
+        Wavelengths one;
+        one.lambda[0] = one.lambda[1] = one.lambda[2] = l;
+        return std::exp(-2 * upsample_unbounded(sigma, one).r) * d65()(l);
+    }));
+    const Color c = mean(render_job(job_from(scene("[0.9, 0.3, 0.1]")), 1024));
+    EXPECT_LT(max_error(c, expected), 0.01f) << c.r << " " << c.g << " " << c.b << " vs " << expected.r << " "
+                                             << expected.g << " " << expected.b;
+}
+
 TEST(Spectra, OneThreadOrTwoGiveTheSameBits) {
     const RenderJob job = job_from(furnace("{type: dielectric, ior: glass-F11}", 16));
     EXPECT_EQ(render_job(job, 8, 1).pixels(), render_job(job, 8, 2).pixels());
