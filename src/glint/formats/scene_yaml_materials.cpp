@@ -258,11 +258,16 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
 void SceneParser::ior(const YAML::Node& n, MaterialDesc& d) {
     constexpr float kLambdaD = 587.56f;
     const auto set = [&](Spectrum s) {
-        const float nd = s(kLambdaD);
-        if (!(nd > 0 && nd <= 10)) {
-            r_.error(n, fmt::format("ior: the index at {} nm is {}; it must be in (0, 10]", kLambdaD, nd));
-            return;
+        // In (0, 10] over the whole visible range (a Sellmeier resonance inside it is refused).
+        for (float l = kLambdaMin; l <= kLambdaMax; l += 1) {
+            const float v = l == kLambdaMin ? s(kLambdaD) : s(l);
+            const float at = l == kLambdaMin ? kLambdaD : l;
+            if (!(v > 0 && v <= 10)) {
+                r_.error(n, fmt::format("ior: the index at {} nm is {}; it must be in (0, 10] from 360 to 830 nm", at, v));
+                return;
+            }
         }
+        const float nd = s(kLambdaD);
         d.ior = nd;
         d.ior_spectrum = std::make_shared<const Spectrum>(std::move(s));
     };

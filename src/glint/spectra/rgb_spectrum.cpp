@@ -31,7 +31,9 @@ const ZNodes& z_nodes() {
 float RgbSigmoid::operator()(float lambda) const { return evaluate(c, lambda); }
 
 RgbSigmoid rgb_sigmoid(Color rgb) {
-    const float v[3] = {std::clamp(rgb.r, 0.0f, 1.0f), std::clamp(rgb.g, 0.0f, 1.0f), std::clamp(rgb.b, 0.0f, 1.0f)};
+    // Into [0, 1]; NaN to 0 (no index is computed from a NaN).
+    const auto unit = [](float x) { return x > 0 ? (x < 1 ? x : 1.0f) : 0.0f; };
+    const float v[3] = {unit(rgb.r), unit(rgb.g), unit(rgb.b)};
     RgbSigmoid s;
     if (v[0] == v[1] && v[1] == v[2]) {
         // A grey is a constant: the sigmoid's inverse at it (infinite at 0 and 1).

@@ -352,6 +352,9 @@ TEST(Spectra, MalformedSpectraAreLocatedErrors) {
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, emission: [1, 1, 1], "
                                  "emission_spectrum: stdillum-D66}}\n"),
               "3:116: spectrum: unknown name 'stdillum-D66'; did you mean 'stdillum-D65'?");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, "
+                                 "ior: {sellmeier: [1, 0, 0, 0.25, 0, 0]}}}\n"),
+              "3:84: ior: the index at 361 nm is 0; it must be in (0, 10] from 360 to 830 nm");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, abbe: 30}}\n"),
               "3:85: material: 'abbe' goes with a number 'ior' (the index at 587.56 nm)");
 }
