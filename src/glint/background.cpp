@@ -5,7 +5,6 @@
 namespace glint {
 
 namespace {
-float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 int wrap_column(int x, int width) { return ((x % width) + width) % width; }
 }  // namespace
 

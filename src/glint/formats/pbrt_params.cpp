@@ -201,7 +201,6 @@ constexpr std::array kNamedSpectra{
     NamedSpectrum{"metal-Cu-eta", "copper", false}, NamedSpectrum{"metal-Cu-k", "copper", true},
 };
 
-float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
 // A "spectrum" parameter's values: a name pbrt-v4 knows, a file of wavelength-value pairs (pbrt's
 // .spd files, relative to the main file, '#' comments), or the pairs inline. Located errors for a

@@ -488,7 +488,7 @@ std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& 
         r_.error(n, "spectrum: it emits nothing visible (360-830 nm)");
         return nullptr;
     }
-    rgb = e.emission_rgb() * (0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b);
+    rgb = e.emission_rgb() * luminance(rgb);
     return std::make_shared<const Spectrum>(e);
 }
 

@@ -117,7 +117,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     // stand-in's luminance, or its RGB upsampled as an illuminant.
     const auto E = [&](Color rgb, const Spectrum* s = nullptr) {
         if (!wl) return rgb;
-        if (s) return s->at(*wl) * (0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b);
+        if (s) return s->at(*wl) * luminance(rgb);
         return upsample_illuminant(rgb, *wl);
     };
 

@@ -16,7 +16,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
 // v expressed in the frame whose z axis is the unit vector `axis`, mapped to world space.
 Vector3 from_frame(Vector3 axis, Vector3 v) {

@@ -30,6 +30,9 @@ inline bool is_finite(Color c) {
     return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
 }
 
+/// Luminance (Y) of a linear sRGB / Rec.709 colour.
+constexpr float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 /// The mean of the three channels (hero-channel MIS weights, a texture read as a number).
 constexpr float average(Color c) { return (c.r + c.g + c.b) / 3; }
 

@@ -178,7 +178,7 @@ Spectrum Spectrum::normalised_emission() const {
 
 Color Spectrum::emission_rgb() const {
     const Color c = xyz_to_linear_srgb(spectrum_to_xyz(*this));
-    const float y = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+    const float y = luminance(c);
     return y > 0 ? c / y : c;
 }
 
