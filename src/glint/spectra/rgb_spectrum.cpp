@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <xmmintrin.h>
+
 #include "glint/spectra/rgb_spectrum_model.h"
 
 // The table glint_rgb2spec wrote at build time, assembled into the library (rgb_spectrum_table.S).
@@ -62,8 +64,23 @@ RgbSigmoid rgb_sigmoid(Color rgb) {
 }
 
 Color upsample_reflectance(Color rgb, const Wavelengths& wl) {
+    // A grey is its own value at every wavelength (its sigmoid is a constant).
+    if (rgb.r == rgb.g && rgb.g == rgb.b) {
+        const float g = rgb.r > 0 ? (rgb.r < 1 ? rgb.r : 1.0f) : 0.0f;
+        return Color{g};
+    }
     const RgbSigmoid s = rgb_sigmoid(rgb);
-    return {s(wl.lambda[0]), s(wl.lambda[1]), s(wl.lambda[2])};
+    // The three sigmoids at once (four lanes, one spare): the polynomial, then
+    // 1/2 + x / (2 sqrt(1 + x^2)) with one square root and one division for all.
+    const auto t = [&](int i) { return wavelength_t(wl.lambda[i]); };
+    const __m128 tv = _mm_setr_ps(t(0), t(1), t(2), 0);
+    const __m128 x = _mm_add_ps(_mm_mul_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(s.c[0]), tv), _mm_set1_ps(s.c[1])), tv),
+                                _mm_set1_ps(s.c[2]));
+    const __m128 root = _mm_sqrt_ps(_mm_add_ps(_mm_set1_ps(1), _mm_mul_ps(x, x)));
+    const __m128 half = _mm_set1_ps(0.5f);
+    alignas(16) float v[4];
+    _mm_store_ps(v, _mm_add_ps(half, _mm_div_ps(_mm_mul_ps(half, x), root)));
+    return {v[0], v[1], v[2]};
 }
 
 Color upsample_unbounded(Color rgb, const Wavelengths& wl) {

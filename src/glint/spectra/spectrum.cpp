@@ -46,13 +46,18 @@ float visible_wavelength_pdf(float lambda) {
 }
 
 Wavelengths sample_wavelengths(float u) {
+    // lambda = 538 + atanh(t) / B with t uniform over [tanh lo, tanh hi]; then
+    // cosh^-2(B (lambda - 538)) = 1 - t^2, so the density needs no cosh, and atanh is one log.
+    constexpr float kHalfOverB = float(0.5 / kB);
+    const float lo = float(kTanhLo), span = float(kTanhHi - kTanhLo), a = float(kB / (kTanhHi - kTanhLo));
     Wavelengths wl;
     for (int i = 0; i < 3; ++i) {
-        double ui = u + i / 3.0;
+        float ui = u + float(i) * (1.0f / 3);
         if (ui >= 1) ui -= 1;
-        const double lambda = 538 + std::atanh(kTanhLo + ui * (kTanhHi - kTanhLo)) / kB;
-        wl.lambda[i] = std::clamp(float(lambda), kLambdaMin, kLambdaMax);
-        wl.pdf[i] = visible_wavelength_pdf(wl.lambda[i]);
+        const float t = lo + ui * span;
+        const float lambda = 538 + std::log((1 + t) / (1 - t)) * kHalfOverB;
+        wl.lambda[i] = std::clamp(lambda, kLambdaMin, kLambdaMax);
+        wl.pdf[i] = wl.lambda[i] == lambda ? a * (1 - t * t) : visible_wavelength_pdf(wl.lambda[i]);
     }
     return wl;
 }
