@@ -121,8 +121,26 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         return upsample_illuminant(rgb, *wl);
     };
 
+    int depth = 0;
+    // Emission the camera sees directly, through nothing that scatters or attenuates: in spectral
+    // mode its expectation over the wavelengths is known, the colour the film records for the
+    // emitter's spectrum, so it is added as that colour after the film conversion. A light or a
+    // sky seen directly then has no colour noise, as in RGB mode (docs/spectral.md).
+    Color seen_rgb{0};
+    const auto seen_exactly = [&](Color rgb, const Spectrum* s) {
+        if (!wl || depth != 0 || !(beta == Color{1}) || !(r_u == Color{1})) return false;
+        // An RGB emitter shines its colour upsampled as an illuminant, whose film colour is the
+        // colour (within the upsampling's round trip, 1e-3); negative channels upsample as 0.
+        const auto pos = [](float v) { return v > 0 ? v : 0.0f; };
+        seen_rgb += s ? s->film_colour() * luminance(rgb) : Color{pos(rgb.r), pos(rgb.g), pos(rgb.b)};
+        return true;
+    };
+
     // Emission reached by a BSDF sample (or the camera): weighted against light sampling.
-    const auto add_emission = [&](Color le, std::uint32_t light, Point3 on_light) {
+    // `rgb` and `s`: the emitter's colour and spectrum (null: its colour upsampled).
+    const auto add_emission = [&](Color rgb, const Spectrum* s, std::uint32_t light, Point3 on_light) {
+        if (specular && seen_exactly(rgb, s)) return;
+        const Color le = E(rgb, s);
         if (le.max_component() <= 0) return;
         if (specular) {
             radiance += beta * le / average(r_u);
@@ -193,7 +211,6 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         return FirstHit{};
     };
 
-    int depth = 0;
     int crossings = 0;  // interface surfaces passed since the last scattering event
     for (;;) {
         ++counter.rays;
@@ -358,12 +375,11 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // Seen by the camera (through perfect mirrors and glass), the environment is read
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
-                add_emission(E(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction),
-                               scene.light_spectrum(l)),
-                             l, {});
+                add_emission(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction),
+                             scene.light_spectrum(l), l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.
-            if (lights.environment() == kNoLight && depth == 0)
+            if (lights.environment() == kNoLight && depth == 0 && !seen_exactly(scene.background_seen(ray.direction), nullptr))
                 radiance += beta * E(scene.background_seen(ray.direction)) / average(r_u);
             break;
         }
@@ -378,7 +394,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
             continue;
         }
         const Vector3 wo = -ray.direction;
-        add_emission(E(scene.emitted(si, wo), scene.emission_of(si.material).spectrum.get()),
+        add_emission(scene.emitted(si, wo), scene.emission_of(si.material).spectrum.get(),
                      lights.light_of(si.shape, si.shape_index, si.prim), si.p);
         if (want_features) {
             *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), feature_distance + hit->t, true};
@@ -430,7 +446,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!roulette(beta, eta_scale, r_u, depth, u_rr)) break;
         ray = spawn_ray(si.p, si.n, bs->wi);
     }
-    if (wl) radiance = film_rgb(radiance, *wl);
+    if (wl) radiance = film_rgb(radiance, *wl) + seen_rgb;
     if (!is_finite(radiance)) return Color{0};
     return std::isinf(settings_.clamp) ? radiance : clamp_radiance(radiance, settings_.clamp);
 }

@@ -178,6 +178,8 @@ Spectrum Spectrum::normalised_emission() const {
     Spectrum s = *this;
     const float y = spectrum_to_xyz(s).y;
     if (y > 0) s.scale_ /= y;
+    s.film_colour_ = s.film_colour();
+    s.has_film_colour_ = true;
     return s;
 }
 

@@ -113,6 +113,10 @@ public:
     Spectrum normalised_emission() const;
     /// The linear sRGB colour of this spectrum as an emitter, normalised to luminance 1.
     Color emission_rgb() const;
+    /// The colour the film records for this spectrum seen directly (its XYZ at 1 nm in linear
+    /// sRGB): the expectation of film_rgb over the sampled wavelengths. Kept by
+    /// normalised_emission, so that an emitter's costs nothing to read.
+    Color film_colour() const { return has_film_colour_ ? film_colour_ : xyz_to_linear_srgb(spectrum_to_xyz(*this)); }
     Kind kind() const { return kind_; }
     float kelvin() const { return p_[0]; }
     /// The parameters: Sellmeier's B1..B3, C1..C3; Cauchy's A, B.
@@ -127,6 +131,8 @@ private:
     PiecewiseLinearSpectrum table_;
     float p_[6]{};
     float scale_ = 1;
+    bool has_film_colour_ = false;
+    Color film_colour_{0};
     std::string name_;
 };
 

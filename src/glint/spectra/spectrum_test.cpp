@@ -191,6 +191,21 @@ TEST(Spectra, TheFilmEstimateOfAnIlluminantIsItsColour) {
         sum += film_rgb(d65().at(wl), wl);
     }
     EXPECT_LT(max_error(sum / n, Color{1}), 5e-3f);
+    // An emitter's spectrum: the colour added for it when the camera sees it directly
+    // (film_colour) is the expectation of the estimate it replaces.
+    for (const Spectrum& e : {Spectrum::blackbody(3000).normalised_emission(),
+                              Spectrum::tabulated(*named_spectrum("stdillum-F4")).normalised_emission(),
+                              Spectrum::tabulated(PiecewiseLinearSpectrum({400, 700}, {1, 3})).normalised_emission()}) {
+        Color mc{0};
+        for (int i = 0; i < n; ++i) {
+            const Wavelengths wl = sample_wavelengths((i + 0.5f) / n);
+            mc += film_rgb(e.at(wl), wl);
+        }
+        const Color exact = e.film_colour();
+        EXPECT_LT(max_error(mc / n, exact), 3e-3f * exact.max_component())
+            << mc.r / n << " " << mc.g / n << " " << mc.b / n << " vs " << exact.r << " " << exact.g << " " << exact.b;
+        EXPECT_NEAR(luminance(exact), 1, 1e-3);
+    }
 }
 
 // --- Through the path tracer --------------------------------------------------------------
@@ -291,10 +306,36 @@ TEST(Spectra, OneThreadOrTwoGiveTheSameBits) {
     EXPECT_EQ(render_job(job, 8, 1).pixels(), render_job(job, 8, 2).pixels());
 }
 
+TEST(Spectra, LightsSeenDirectlyHaveNoColourNoise) {
+    // An RGB emitter and a sky filling the view, one sample per pixel: spectral mode records the
+    // expectation over the wavelengths, the colour itself (within the upsampling's round trip),
+    // so every pixel is the same; seen in a mirror (one bounce), it is estimated and noisy.
+    const std::string head = "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
+                             "film: {width: 8, height: 8}\n"
+                             "integrator: {type: path, max_depth: 4, spectral: true}\n";
+    const Color colour{3, 1.5f, 0.25f};
+    for (const std::string& scene :
+         {head + "background: {type: constant, color: [0, 0, 0]}\nobjects:\n  - {type: sphere, center: [0, 0, 0], "
+                 "radius: 1, material: {type: diffuse, albedo: 0, emission: [3, 1.5, 0.25]}}\n",
+          head + "background: {type: constant, color: [3, 1.5, 0.25]}\n"}) {
+        const Film film = render_job(job_from(scene), 1);
+        for (const Color& c : film.pixels())
+            ASSERT_LT(max_error(c, colour), 2e-3f * 3) << scene << c.r << " " << c.g << " " << c.b;
+    }
+    const Film mirror = render_job(job_from(head + "background: {type: constant, color: [3, 1.5, 0.25]}\nobjects:\n"
+                                                   "  - {type: sphere, center: [0, 0, 0], radius: 1, material: "
+                                                   "{type: conductor, reflectance: 1, roughness: 0}}\n"),
+                                   1);
+    float spread = 0;
+    for (const Color& c : mirror.pixels()) spread = std::max(spread, max_error(c, mirror.pixels().front()));
+    EXPECT_GT(spread, 0.05f);
+}
+
 TEST(Spectra, EmittersGivenAsSpectraImageAsTheirColour) {
     // An emitting sphere filling the view, of strength 2 (luminance) and a black body's or
-    // illuminant A's spectrum: spectral mode sees the spectrum itself through the film, RGB mode
-    // its colour (computed from the spectrum at 1 nm); they agree, and the luminance is 2.
+    // illuminant A's spectrum: spectral mode records the spectrum's colour through the film
+    // (the estimate's expectation, above), RGB mode its colour (computed from the spectrum at
+    // 1 nm); they agree, and the luminance is 2.
     for (const char* spectrum : {"{blackbody: 3000}", "stdillum-A", "[400, 1, 700, 3]"}) {
         const std::string scene = std::string("camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
                                               "film: {width: 8, height: 8}\n"
