@@ -184,7 +184,10 @@ Spectrum Spectrum::normalised_emission() const {
 }
 
 Color Spectrum::emission_rgb() const {
-    const Color c = xyz_to_linear_srgb(spectrum_to_xyz(*this));
+    // Out of the sRGB gamut (a narrow band, a deep red black body) a channel is negative: no
+    // emitter gives negative light, so that channel is 0 and the luminance is made 1 again.
+    Color c = xyz_to_linear_srgb(spectrum_to_xyz(*this));
+    c = {std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
     const float y = luminance(c);
     return y > 0 ? c / y : c;
 }

@@ -111,7 +111,8 @@ public:
     /// luminance of its RGB stand-in (as pbrt-v4 divides a light's spectrum by its photometric
     /// value). Its RGB stand-in is emission_rgb.
     Spectrum normalised_emission() const;
-    /// The linear sRGB colour of this spectrum as an emitter, normalised to luminance 1.
+    /// The linear sRGB colour of this spectrum as an emitter (RGB mode's stand-in, and its power),
+    /// normalised to luminance 1; a channel out of the gamut (negative) is 0.
     Color emission_rgb() const;
     /// The colour the film records for this spectrum seen directly (its XYZ at 1 nm in linear
     /// sRGB): the expectation of film_rgb over the sampled wavelengths. Kept by

@@ -206,6 +206,13 @@ TEST(Spectra, TheFilmEstimateOfAnIlluminantIsItsColour) {
             << mc.r / n << " " << mc.g / n << " " << mc.b / n << " vs " << exact.r << " " << exact.g << " " << exact.b;
         EXPECT_NEAR(luminance(exact), 1, 1e-3);
     }
+    // A narrow band at 600 nm is out of the sRGB gamut (its blue is negative); as an emitter's
+    // RGB stand-in it is clipped to the gamut and keeps luminance 1.
+    const Spectrum band = Spectrum::tabulated(PiecewiseLinearSpectrum({590, 600, 610}, {0, 1, 0})).normalised_emission();
+    EXPECT_LT(band.film_colour().b, -0.01f);
+    const Color stand_in = band.emission_rgb();
+    EXPECT_GE(std::min({stand_in.r, stand_in.g, stand_in.b}), 0.0f);
+    EXPECT_NEAR(luminance(stand_in), 1, 1e-5);
 }
 
 // --- Through the path tracer --------------------------------------------------------------
