@@ -171,6 +171,12 @@ struct Scene {
         if (const auto* k = std::get_if<CheckerTexture>(&t); k && !footprint) return k->eval(si.p);
         return texture_general(id, si);
     }
+    /// The reflectance spectrum of texture `id`, if it is a constant given as one (spectral mode
+    /// reads it instead of upsampling the colour).
+    const Spectrum* texture_spectrum(TextureId id) const {
+        const auto* c = std::get_if<ConstantTexture>(&textures[id]);
+        return c ? c->spectrum.get() : nullptr;
+    }
     const Emission& emission_of(MaterialId m) const {
         static const Emission kNone;
         return m < emission.size() ? emission[m] : kNone;

@@ -343,7 +343,7 @@ public:
 private:
     // Children first, so a texture's ids always point at earlier entries (a tree, no cycles).
     TextureId add_texture(const TextureDesc& d) {
-        Texture t = ConstantTexture{d.value};
+        Texture t = ConstantTexture{d.value, d.spectrum};
         switch (d.kind) {
             case TextureDesc::Kind::kConstant: break;
             case TextureDesc::Kind::kChecker: t = d.checker; break;

@@ -122,6 +122,7 @@ struct TextureDesc {
     enum class Kind { kConstant, kChecker, kImage, kScale, kMix, kVertexColor };
     Kind kind = Kind::kConstant;
     Color value{0.8f};                             ///< constant
+    std::shared_ptr<const Spectrum> spectrum;      ///< constant: a reflectance spectrum (value: its colour)
     CheckerTexture checker{1, Color{1}, Color{0}};  ///< checker
     Located<std::string> filename;                 ///< image, as written in the file
     ImageEncoding encoding = ImageEncoding::kAuto;

@@ -82,7 +82,7 @@ const std::vector<VocabularyEntry>& table() {
         {"metal", "iron", {}},
         {"metal", "platinum", {}},
         {"metal", "silver", {}},
-        {"texture", "constant", {"type", "color"}},
+        {"texture", "constant", {"type", "color", "spectrum"}},
         {"texture", "checker", {"type", "size", "even", "odd"}},
         {"texture", "image", {"type", "filename", "encoding", "wrap", "size"}},
         {"texture", "scale", {"type", "texture", "factor"}},

@@ -313,10 +313,9 @@ std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, b
         if (!s) return std::nullopt;
         const std::string named = p->strings.size() == 1 ? p->strings[0] : "";
         if (named.rfind("glass-", 0) == 0) return Color{(*s)(587.56f)};
-        if (illuminant || named.rfind("stdillum-", 0) == 0) {
-            const Color c = xyz_to_linear_srgb(spectrum_to_xyz(*s));
-            return illuminant && luminance(c) > 0 ? c / luminance(c) : c;
-        }
+        // A light's colour: luminance 1, clipped to the gamut (Spectrum::emission_rgb).
+        if (illuminant) return Spectrum::tabulated(*s).emission_rgb();
+        if (named.rfind("stdillum-", 0) == 0) return xyz_to_linear_srgb(spectrum_to_xyz(*s));
         if (std::all_of(s->value().begin(), s->value().end(), [](float v) { return v <= 1; }))
             return xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return (*s)(l) * d65()(l); }));
         return Color{(*s)(650), (*s)(550), (*s)(450)};
@@ -349,6 +348,16 @@ std::optional<TextureDesc> Parser::get_texture(ParamList& pl, const std::string&
     }
     TextureDesc t;
     t.value = c.value_or(Color{fallback});
+    // A reflectance given as a spectrum (values in [0, 1], not a metal's, a glass's or an
+    // illuminant's): spectral mode reads the spectrum itself, RGB mode its colour under D65.
+    if (c && !is_float && p->type == "spectrum") {
+        const std::string named = p->strings.size() == 1 ? p->strings[0] : "";
+        const bool other = named.rfind("metal-", 0) == 0 || named.rfind("glass-", 0) == 0 || named.rfind("stdillum-", 0) == 0;
+        if (auto s = other ? nullptr : get_spectrum(pl, name)) {
+            const auto& v = s->table().value();
+            if (std::all_of(v.begin(), v.end(), [](float x) { return x <= 1; })) t.spectrum = std::move(s);
+        }
+    }
     return t;
 }
 

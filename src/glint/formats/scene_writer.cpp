@@ -102,7 +102,8 @@ private:
 std::string Writer::texture(const TextureDesc& t) const {
     using K = TextureDesc::Kind;
     switch (t.kind) {
-        case K::kConstant: return vec(t.value);
+        case K::kConstant:
+            return t.spectrum ? fmt::format("{{type: constant, spectrum: {}}}", spectrum_yaml(*t.spectrum)) : vec(t.value);
         case K::kChecker:
             return fmt::format("{{type: checker, size: {}, even: {}, odd: {}}}", num(t.checker.size), vec(t.checker.even),
                                vec(t.checker.odd));

@@ -443,11 +443,11 @@ std::optional<Background> SceneParser::background(const YAML::Node& node,
     return c;
 }
 
-std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& n, Color& rgb) {
+std::optional<Spectrum> SceneParser::spectrum(const YAML::Node& n) {
     std::optional<Spectrum> s;
     if (n.IsMap()) {
         MapReader m(r_, n, "spectrum", {"blackbody"});
-        if (!m.valid()) return nullptr;
+        if (!m.valid()) return std::nullopt;
         if (const auto k = m.require("blackbody"))
             if (const auto t = r_.number_in(*k, "blackbody", 0, 1e6, true)) s = Spectrum::blackbody(float(*t));
     } else if (n.IsScalar() && !n.Scalar().empty() && std::isalpha(static_cast<unsigned char>(n.Scalar()[0]))) {
@@ -464,16 +464,16 @@ std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& 
     } else if (n.IsSequence()) {
         if (n.size() < 2 || n.size() % 2 != 0 || n.size() > 100000) {
             r_.error(n, fmt::format("spectrum: expected pairs [nm, value, nm, value, ...], got {} numbers", n.size()));
-            return nullptr;
+            return std::nullopt;
         }
         std::vector<float> lambda, value;
         for (std::size_t i = 0; i < n.size(); i += 2) {
             const auto l = r_.number_in(n[i], "spectrum wavelength", 1, 1e5);
             const auto v = r_.number_in(n[i + 1], "spectrum value", 0, 1e30);
-            if (!l || !v) return nullptr;
+            if (!l || !v) return std::nullopt;
             if (!lambda.empty() && !(*l > lambda.back())) {
                 r_.error(n[i], fmt::format("spectrum: the wavelengths must increase ({} after {})", *l, lambda.back()));
-                return nullptr;
+                return std::nullopt;
             }
             lambda.push_back(float(*l));
             value.push_back(float(*v));
@@ -482,6 +482,11 @@ std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& 
     } else {
         r_.error(n, fmt::format("spectrum: expected {{blackbody: kelvin}}, a name or [nm, value, ...], got {}", describe(n)));
     }
+    return s;
+}
+
+std::shared_ptr<const Spectrum> SceneParser::emitter_spectrum(const YAML::Node& n, Color& rgb) {
+    const std::optional<Spectrum> s = spectrum(n);
     if (!s) return nullptr;
     const Spectrum e = s->normalised_emission();
     if (!(spectrum_to_xyz(e).y > 0)) {

@@ -39,7 +39,24 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
         t.kind = TextureDesc::Kind::kVertexColor;
     } else if (*type == "constant") {
         MapReader m(r_, node, "constant texture", vocabulary_keys("texture", "constant"));
-        assign(m.require("color"), t.value, color());
+        const auto s = m.get("spectrum");
+        if (!s) {
+            assign(m.require("color"), t.value, color());
+        } else if (m.has("color")) {
+            r_.error(*s, "constant texture: give 'color' or 'spectrum', not both");
+        } else if (const auto r = spectrum(*s)) {
+            // A reflectance: at most 1 at every wavelength. RGB mode uses its colour under D65.
+            int peak = 360;
+            for (int l = 361; l <= 830; ++l)
+                if ((*r)(float(l)) > (*r)(float(peak))) peak = l;
+            if ((*r)(float(peak)) > 1 + 1e-6f) {
+                r_.error(*s, fmt::format("constant texture: a reflectance spectrum is at most 1; it is {} at {} nm",
+                                         (*r)(float(peak)), peak));
+            } else {
+                t.value = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return (*r)(l) * d65()(l); }));
+                t.spectrum = std::make_shared<const Spectrum>(*r);
+            }
+        }
     } else if (*type == "checker") {
         t.kind = TextureDesc::Kind::kChecker;
         MapReader m(r_, node, "checker texture", vocabulary_keys("texture", "checker"));

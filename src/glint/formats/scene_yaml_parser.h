@@ -139,9 +139,10 @@ private:
                                          std::optional<EnvironmentDesc>& environment);
 
     void lights(const YAML::Node& node, std::vector<Light>& out, std::vector<std::shared_ptr<const Spectrum>>& spectra);
-    /// An emitter's `spectrum`: {blackbody: kelvin}, a name ("stdillum-A"), or [nm, value, ...];
-    /// normalised to Y = 1. `rgb` (the colour given beside it) becomes the spectrum's colour at
-    /// the same luminance.
+    /// A spectrum value: {blackbody: kelvin}, a name pbrt-v4 knows, or [nm, value, ...].
+    std::optional<Spectrum> spectrum(const YAML::Node& n);
+    /// An emitter's `spectrum` (as spectrum() reads it), normalised to Y = 1. `rgb` (the colour
+    /// given beside it) becomes the spectrum's colour at the same luminance.
     std::shared_ptr<const Spectrum> emitter_spectrum(const YAML::Node& n, Color& rgb);
 
     // A texture: a number (grey), a colour [r, g, b], or a map with a type.

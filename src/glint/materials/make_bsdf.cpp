@@ -34,7 +34,12 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
     // A colour read where the path is: unchanged in RGB mode, a reflectance spectrum's values
     // at the path's wavelengths in spectral mode.
     const auto R = [wl](Color c) { return wl ? upsample_reflectance(c, *wl) : c; };
-    const auto tex = [&](TextureId id) { return R(scene.texture(id, si)); };
+    // A constant given as a reflectance spectrum is read as it is.
+    const auto tex = [&](TextureId id) {
+        if (wl)
+            if (const Spectrum* s = scene.texture_spectrum(id)) return s->at(*wl);
+        return R(scene.texture(id, si));
+    };
     return std::visit(
         [&](const auto& m) -> Bsdf {
             using T = std::decay_t<decltype(m)>;

@@ -12,6 +12,8 @@
 #include <string>
 
 #include "glint/builder/build.h"
+#include "glint/formats/pbrt.h"
+#include "glint/formats/scene_writer.h"
 #include "glint/formats/scene_yaml.h"
 #include "glint/materials/bsdf.h"
 #include "glint/materials/fresnel.h"
@@ -375,6 +377,77 @@ TEST(Spectra, EmittersGivenAsSpectraImageAsTheirColour) {
     EXPECT_GT(b.r, 2 * b.b);  // 2000 K is red
 }
 
+TEST(Spectra, ReflectanceSpectraAreReadAsTheyAre) {
+    // A quad of a two-band (magenta) reflectance spectrum lit by a green point light (a narrow
+    // band about 550 nm, where the magenta reflects 0.05). Its colour
+    // is the film's integral of reflectance x light at 1 nm, times the geometry, which RGB mode
+    // gives for a white quad (luminance(light colour) = 1). The spectrum's RGB upsampled again
+    // would give another colour under this light: the test tells the two apart.
+    const std::string band = "[380, 0.9, 480, 0.9, 500, 0.05, 600, 0.05, 620, 0.9, 780, 0.9]";
+    const auto scene = [](const std::string& albedo) {
+        return "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
+               "film: {width: 8, height: 8}\n"
+               "integrator: {type: path, max_depth: 1, spectral: true}\n"
+               "background: {type: constant, color: [0, 0, 0]}\n"
+               "lights:\n  - {type: point, position: [0, 0, -3], intensity: [9, 9, 9], spectrum: [530, 0, 550, 1, 570, 0]}\n"
+               "objects:\n  - {type: quad, corner: [-5, -5, 0], edge1: [10, 0, 0], edge2: [0, 10, 0], "
+               "material: {type: diffuse, albedo: " + albedo + "}}\n";
+    };
+    Overrides rgb;
+    rgb.spectral = false;
+    const float geometry = luminance(mean(render_job(job_from(scene("1"), rgb), 1)));
+    const PiecewiseLinearSpectrum r({380, 480, 500, 600, 620, 780}, {0.9f, 0.9f, 0.05f, 0.05f, 0.9f, 0.9f});
+    const Spectrum light = Spectrum::tabulated(PiecewiseLinearSpectrum({530, 550, 570}, {0, 1, 0})).normalised_emission();
+    const Color exact = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return r(l) * light(l); })) * geometry;
+    const Color under_d65 = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return r(l) * d65()(l); }));
+    const Color upsampled = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) {
+                                Wavelengths wl;
+                                wl.lambda[0] = wl.lambda[1] = wl.lambda[2] = l;
+                                return upsample_reflectance(under_d65, wl).r * light(l);
+                            })) * geometry;
+    const float tolerance = 0.01f * exact.max_component();
+    ASSERT_GT(max_error(exact, upsampled), 3 * tolerance);
+    const Color c = mean(render_job(job_from(scene("{type: constant, spectrum: " + band + "}")), 256));
+    EXPECT_LT(max_error(c, exact), tolerance) << c.r << " " << c.g << " " << c.b << " vs " << exact.r << " " << exact.g
+                                              << " " << exact.b << " (upsampled: " << upsampled.r << " " << upsampled.g
+                                              << " " << upsampled.b << ")";
+    // RGB mode uses the colour under D65.
+    const Color in_rgb = mean(render_job(job_from(scene("{type: constant, spectrum: " + band + "}"), rgb), 1));
+    const Color white = mean(render_job(job_from(scene("1"), rgb), 1));
+    EXPECT_LT(max_error(in_rgb, white * under_d65), 1e-4f * white.max_component());
+}
+
+TEST(Spectra, PbrtReflectanceSpectraAreKeptAndWritten) {
+    // pbrt-v4's "spectrum reflectance" becomes a constant texture holding the spectrum, and the
+    // YAML writer writes it so that it renders the same image.
+    const std::string pbrt = R"(LookAt 0 0 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 10 ]
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+WorldBegin
+LightSource "point" "point3 from" [ 0 0 -3 ] "spectrum I" [ 530 0 550 1 570 0 ]
+Material "diffuse" "spectrum reflectance" [ 380 0.9 480 0.9 500 0.05 600 0.05 620 0.9 780 0.9 ]
+Shape "bilinearmesh" "point3 P" [ -5 -5 0  5 -5 0  -5 5 0  5 5 0 ]
+)";
+    const auto dir = std::filesystem::temp_directory_path() / "glint_spectra_writer";
+    std::filesystem::create_directories(dir);
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_pbrt(pbrt, (dir / "s.pbrt").string(), sources);
+    ASSERT_EQ(d.materials.size(), 1u);
+    const TextureDesc& texture = d.materials.front().material.color;
+    ASSERT_TRUE(texture.spectrum != nullptr);
+    EXPECT_FLOAT_EQ((*texture.spectrum)(550), 0.05f);
+    const WrittenScene w = write_scene_yaml(d, dir / "s.yaml");
+    EXPECT_NE(w.yaml.find("spectrum: [380, 0.9, 480, 0.9, 500, 0.05"), std::string::npos) << w.yaml;
+    const SceneDescription back = parse_scene(w.yaml, (dir / "s.yaml").string(), sources);
+    // The same image: the light's strength, its luminance, is re-derived from the written colour,
+    // so the last bits may differ.
+    const Film a = render_job(build(d, {}, sources), 16), b = render_job(build(back, {}, sources), 16);
+    ASSERT_EQ(a.pixels().size(), b.pixels().size());
+    for (std::size_t i = 0; i < a.pixels().size(); ++i)
+        ASSERT_LT(max_error(a.pixels()[i], b.pixels()[i]), 1e-5f * a.pixels()[i].max_component() + 1e-9f) << i;
+    std::filesystem::remove_all(dir);
+}
+
 std::string first_error(const std::string& yaml) {
     try {
         job_from(yaml);
@@ -405,6 +478,12 @@ TEST(Spectra, MalformedSpectraAreLocatedErrors) {
               "3:84: ior: the index at 361 nm is 0; it must be in (0, 10] from 360 to 830 nm");
     EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: dielectric, abbe: 30}}\n"),
               "3:85: material: 'abbe' goes with a number 'ior' (the index at 587.56 nm)");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, albedo: "
+                                 "{type: constant, spectrum: [400, 0.5, 700, 1.5]}}}\n"),
+              "3:111: constant texture: a reflectance spectrum is at most 1; it is 1.5 at 700 nm");
+    EXPECT_EQ(first_error(head + "  - {type: sphere, center: [0, 0, 0], radius: 1, material: {type: diffuse, albedo: "
+                                 "{type: constant, color: 1, spectrum: metal-Au-eta}}}\n"),
+              "3:121: constant texture: give 'color' or 'spectrum', not both");
 }
 
 }  // namespace

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <variant>
 #include <vector>
 
 #include "glint/math/color.h"
 #include "glint/math/vector.h"
+#include "glint/spectra/spectrum.h"
 
 namespace glint {
 
@@ -67,6 +69,9 @@ float bilinear_alpha(const Image& image, Point2 uv, WrapMode wrap_u, WrapMode wr
 
 struct ConstantTexture {
     Color value;
+    /// A reflectance spectrum (values in [0, 1]) that spectral mode reads instead of upsampling
+    /// `value` (its colour under D65); null for a colour.
+    std::shared_ptr<const Spectrum> spectrum;
 };
 
 /// A 3D checkerboard of cubes of side `size`: `even` where floor(x/s)+floor(y/s)+floor(z/s) is
