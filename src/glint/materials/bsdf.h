@@ -154,12 +154,13 @@ struct LayeredParams {
 /// random walks seeded by a hash of the directions, so every call with the same arguments
 /// returns the same value; sample() follows one walk and marks its pdf as proportional. A Bsdf
 /// holding a LayeredLobe must hold it alone (a mixture would weigh a walk's sample by the noisy
-/// pdf estimate). Per hit it carries only the base's colours (the lobe stays as small as the
+/// pdf estimate). Per hit it carries only the colours (the lobe stays as small as the
 /// others); the rest is the material's, which outlives every Bsdf made from it.
 struct LayeredLobe {
     const LayeredParams* layer = nullptr;
     Color base{0.5f};  ///< the diffuse base's albedo, or the metal's eta relative to the coat
     Color k{0};        ///< the metal's k relative to the coat
+    Color albedo{0};   ///< the slab medium's albedo (the layer's, at the path's wavelengths)
     Color eval(Vector3 wo, Vector3 wi) const;
     float pdf(Vector3 wo, Vector3 wi) const;
     std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const;

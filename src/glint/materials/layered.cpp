@@ -159,7 +159,7 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
     Color f = top.f(wo, wi, Mode::kRadiance) * float(n);
     WalkRng r(hash_vector(0x6c61796bU, wo), hash_vector(0x65726564U, wi));
     const HgPhase phase{p.g};
-    const bool scatters = p.albedo.max_component() > 0;
+    const bool scatters = albedo.max_component() > 0;
     for (int s = 0; s < n; ++s) {
         // Into the slab through the coat, from wo; and the virtual light's way in from wi.
         const auto wos = top.sample(wo, r(), r.two(), Mode::kRadiance, Part::kTransmission);
@@ -186,11 +186,11 @@ Color LayeredLobe::eval(Vector3 wo, Vector3 wi) const {
                     // Scattering in the slab: next-event estimation out through the coat along wis.
                     float wt = 1;
                     if (!top.smooth()) wt = power_heuristic(wis->pdf, phase.pdf(-w, -wis->wi));
-                    f += beta * p.albedo * phase.p(-w, -wis->wi) * wt * slab_tr(zp - p.thickness, wis->wi) *
+                    f += beta * albedo * phase.p(-w, -wis->wi) * wt * slab_tr(zp - p.thickness, wis->wi) *
                          wis->f / wis->pdf;
                     const PhaseSample ps = phase.sample(-w, r.two());
                     if (!(ps.pdf > 0) || ps.wi.z == 0) continue;
-                    beta *= p.albedo * ps.p / ps.pdf;
+                    beta *= albedo * ps.p / ps.pdf;
                     w = ps.wi;
                     z = zp;
                     // The phase sample itself may leave through the coat towards wi.
@@ -297,7 +297,7 @@ std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) c
     float pdf = bs->pdf;
     float z = p.thickness;
     const HgPhase phase{p.g};
-    const bool scatters = p.albedo.max_component() > 0;
+    const bool scatters = albedo.max_component() > 0;
     for (int depth = 0; depth < p.max_depth; ++depth) {
         const float rr_beta = f.max_component() / pdf;
         if (depth > 3 && rr_beta < 0.25f) {
@@ -313,7 +313,7 @@ std::optional<BsdfSample> LayeredLobe::sample(Vector3 wo, float uc, Sample2 u) c
             if (0 < zp && zp < p.thickness) {
                 const PhaseSample ps = phase.sample(-w, r.two());
                 if (!(ps.pdf > 0) || ps.wi.z == 0) return std::nullopt;
-                f *= p.albedo * ps.p;
+                f *= albedo * ps.p;
                 pdf *= ps.pdf;
                 specular_path = false;
                 w = ps.wi;

@@ -43,7 +43,7 @@ Vector3 sample_uniform_hemisphere(Sample2 u) {
 struct Coated {
     std::shared_ptr<LayeredParams> p = std::make_shared<LayeredParams>();
     Color base{0.5f}, k{0};
-    LayeredLobe lobe() const { return {p.get(), base, k}; }
+    LayeredLobe lobe() const { return {p.get(), base, k, p->albedo}; }
     Color eval(Vector3 wo, Vector3 wi) const { return lobe().eval(wo, wi); }
     float pdf(Vector3 wo, Vector3 wi) const { return lobe().pdf(wo, wi); }
     std::optional<BsdfSample> sample(Vector3 wo, float uc, Sample2 u) const { return lobe().sample(wo, uc, u); }

@@ -90,7 +90,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                 lobe.albedo = tex(m.albedo);
                 return Bsdf(si.ns, {{lobe, 1.0f}});
             } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
-                LayeredLobe lobe{&m.layer, m.eta, m.k};
+                LayeredLobe lobe{&m.layer, m.eta, m.k, wl ? R(m.layer.albedo) : m.layer.albedo};
                 if (!m.layer.conductor_base) {
                     lobe.base = clamp01(tex(m.base));
                 } else if (m.reflectance) {
