@@ -188,18 +188,6 @@ const std::vector<double>* Parser::get_floats(ParamList& pl, const std::string& 
     return &p->numbers;
 }
 
-// pbrt-v4's named spectra that glint knows as metals (the rest are reported).
-struct NamedSpectrum {
-    const char* name;
-    const char* metal;
-    bool k;
-};
-constexpr std::array kNamedSpectra{
-    NamedSpectrum{"metal-Ag-eta", "silver", false}, NamedSpectrum{"metal-Ag-k", "silver", true},
-    NamedSpectrum{"metal-Al-eta", "aluminium", false}, NamedSpectrum{"metal-Al-k", "aluminium", true},
-    NamedSpectrum{"metal-Au-eta", "gold", false}, NamedSpectrum{"metal-Au-k", "gold", true},
-    NamedSpectrum{"metal-Cu-eta", "copper", false}, NamedSpectrum{"metal-Cu-k", "copper", true},
-};
 
 
 // A "spectrum" parameter's values: a name pbrt-v4 knows, a file of wavelength-value pairs (pbrt's
@@ -297,13 +285,8 @@ std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, b
         return blackbody_rgb(float(p->numbers[0]));
     }
     if (p->type == "spectrum") {
-        if (p->strings.size() == 1) {
-            for (const NamedSpectrum& n : kNamedSpectra) {
-                if (p->strings[0] != n.name) continue;
-                for (const MetalPreset& m : kMetals)
-                    if (m.name == n.metal) return n.k ? m.k : m.eta;
-            }
-        }
+        if (p->strings.size() == 1)
+            if (const Color* rgb = named_metal_rgb(p->strings[0])) return *rgb;
         if (p->numbers.size() == 1) return Color{float(p->numbers[0])};
         // RGB mode's stand-in for a spectrum: an illuminant by its colour (luminance 1), a glass
         // by its index at 587.56 nm, a reflectance (values in [0, 1]) by its colour under D65,

@@ -48,13 +48,16 @@ std::string dispersive_ior(const MaterialDesc& m) {
 // An emitter's spectrum as the reader takes it (the reader normalises it again).
 std::string spectrum_yaml(const Spectrum& s) {
     if (s.kind() == Spectrum::Kind::kBlackbody) return fmt::format("{{blackbody: {}}}", num(s.kelvin()));
-    if (!s.name().empty()) return s.name();
+    if (!s.name().empty() && named_spectrum(s.name())) return s.name();  // not a file's name
     std::string out = "[";
     const auto& l = s.table().lambda();
     const auto& v = s.table().value();
     for (std::size_t i = 0; i < l.size(); ++i) out += fmt::format("{}{}, {}", i ? ", " : "", num(l[i]), num(v[i]));
     return out + "]";
 }
+
+// A metal's eta or k: its spectrum (measured, named) where it has one, else the colour.
+std::string eta_k(Color rgb, const std::shared_ptr<const Spectrum>& s) { return s ? spectrum_yaml(*s) : vec(rgb); }
 
 // YAML double-quoted string.
 std::string yaml_quoted(const std::string& s) {
@@ -134,7 +137,7 @@ std::string Writer::material(const MaterialDesc& m) const {
         case K::kDiffuse: s = fmt::format("type: diffuse, albedo: {}", texture(m.color)); break;
         case K::kConductor:
             s = m.reflectance ? fmt::format("type: conductor, reflectance: {}", texture(*m.reflectance))
-                              : fmt::format("type: conductor, eta: {}, k: {}", vec(m.eta), vec(m.k));
+                              : fmt::format("type: conductor, eta: {}, k: {}", eta_k(m.eta, m.eta_spectrum), eta_k(m.k, m.k_spectrum));
             s += ", roughness: " + num(m.roughness);
             break;
         case K::kDielectric:
@@ -157,7 +160,8 @@ std::string Writer::material(const MaterialDesc& m) const {
         case K::kCoated:
             if (m.coated_conductor) {
                 s = m.reflectance ? fmt::format("type: coated_conductor, reflectance: {}", texture(*m.reflectance))
-                                  : fmt::format("type: coated_conductor, eta: {}, k: {}", vec(m.eta), vec(m.k));
+                                  : fmt::format("type: coated_conductor, eta: {}, k: {}", eta_k(m.eta, m.eta_spectrum),
+                                                eta_k(m.k, m.k_spectrum));
                 s += fmt::format(", roughness: {}, coat_roughness: {}", num(m.roughness), num(m.coat_roughness));
             } else {
                 s = fmt::format("type: coated_diffuse, albedo: {}, roughness: {}", texture(m.color), num(m.coat_roughness));

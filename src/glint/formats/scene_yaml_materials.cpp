@@ -247,17 +247,32 @@ MaterialDesc SceneParser::material(const YAML::Node& node, const std::string& co
                         {"silver", "Ag"}, {"aluminium", "Al"}, {"gold", "Au"}, {"copper", "Cu"}};
                     for (const auto& [glint_name, element] : kMeasured) {
                         if (*name != glint_name) continue;
-                        d.eta_spectrum = std::make_shared<const Spectrum>(
-                            Spectrum::tabulated(*named_spectrum(fmt::format("metal-{}-eta", element))));
-                        d.k_spectrum = std::make_shared<const Spectrum>(
-                            Spectrum::tabulated(*named_spectrum(fmt::format("metal-{}-k", element))));
+                        const auto named = [](std::string n) {
+                            Spectrum s = Spectrum::tabulated(*named_spectrum(n));
+                            s.set_name(std::move(n));
+                            return std::make_shared<const Spectrum>(std::move(s));
+                        };
+                        d.eta_spectrum = named(fmt::format("metal-{}-eta", element));
+                        d.k_spectrum = named(fmt::format("metal-{}-k", element));
                     }
                 }
             }
         } else if (eta || k) {
             if (!(eta && k)) r_.error(node, fmt::format("{}: 'eta' and 'k' go together", context));
-            assign(eta, d.eta, color());
-            assign(k, d.k, color());
+            // Each a colour [r, g, b], or a spectrum (a name such as metal-Au-eta, [nm, value, ...])
+            // read as it is in spectral mode; RGB mode's stand-in is a named metal's preset or the
+            // values at 650, 550 and 450 nm.
+            const auto part = [&](const std::optional<YAML::Node>& n, Color& rgb, std::shared_ptr<const Spectrum>& out) {
+                if (!n) return;
+                if (n->IsSequence() && n->size() == 3) return assign(n, rgb, color());
+                if (auto s = spectrum(*n)) {
+                    const Color* named = named_metal_rgb(s->name());
+                    rgb = named ? *named : Color{(*s)(650), (*s)(550), (*s)(450)};
+                    out = std::make_shared<const Spectrum>(std::move(*s));
+                }
+            };
+            part(eta, d.eta, d.eta_spectrum);
+            part(k, d.k, d.k_spectrum);
         } else if (reflectance) {
             if (auto t = texture(*reflectance)) d.reflectance = *t;
         } else {

@@ -5,6 +5,7 @@
 // (0.94, 0.78, 0.37), for instance (a test checks the table against that formula).
 #include <array>
 #include <string_view>
+#include <utility>
 
 #include "glint/math/color.h"
 
@@ -24,5 +25,23 @@ inline constexpr std::array<MetalPreset, 7> kMetals{{
     {"platinum", {2.4390f, 2.0847f, 1.7998f}, {4.3677f, 3.7153f, 3.0211f}},
     {"silver", {0.16262f, 0.14512f, 0.13550f}, {4.0728f, 3.1900f, 2.1997f}},
 }};
+
+/// The RGB stand-in of a measured metal spectrum pbrt-v4 names ("metal-Au-eta", "metal-Au-k"):
+/// the preset's eta or k where glint has the metal (silver, aluminium, gold, copper), so that a
+/// named metal looks the same in RGB mode from every reader; null for any other name.
+inline const Color* named_metal_rgb(std::string_view spectrum_name) {
+    static constexpr std::pair<std::string_view, std::string_view> kElements[] = {
+        {"Ag", "silver"}, {"Al", "aluminium"}, {"Au", "gold"}, {"Cu", "copper"}};
+    if (!spectrum_name.starts_with("metal-")) return nullptr;
+    for (const auto& [element, metal] : kElements) {
+        const std::string_view rest = spectrum_name.substr(6);
+        if (!rest.starts_with(element) || rest.size() <= element.size() || rest[element.size()] != '-') continue;
+        const std::string_view part = rest.substr(element.size() + 1);
+        if (part != "eta" && part != "k") return nullptr;
+        for (const MetalPreset& p : kMetals)
+            if (p.name == metal) return part == "k" ? &p.k : &p.eta;
+    }
+    return nullptr;
+}
 
 }  // namespace glint

@@ -448,6 +448,47 @@ Shape "bilinearmesh" "point3 P" [ -5 -5 0  5 -5 0  -5 5 0  5 5 0 ]
     std::filesystem::remove_all(dir);
 }
 
+TEST(Spectra, MeasuredMetalsAreWrittenAsTheirSpectra) {
+    // A conductor of pbrt-v4's named gold and of brass (CuZn, which has no RGB preset) becomes
+    // YAML eta/k by name, and the YAML renders the same image in both modes; YAML takes a metal's
+    // spectra by name, as a table, or as `metal: gold`.
+    const std::string pbrt = R"(LookAt 0 0 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+AttributeBegin
+Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" 0.2
+Shape "sphere" "float radius" 0.5
+AttributeEnd
+Translate 0.6 0 0
+Material "conductor" "spectrum eta" "metal-CuZn-eta" "spectrum k" "metal-CuZn-k" "float roughness" 0.2
+Shape "sphere" "float radius" 0.4
+)";
+    const auto dir = std::filesystem::temp_directory_path() / "glint_spectra_metals";
+    std::filesystem::create_directories(dir);
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_pbrt(pbrt, (dir / "m.pbrt").string(), sources);
+    const WrittenScene w = write_scene_yaml(d, dir / "m.yaml");
+    EXPECT_NE(w.yaml.find("eta: metal-Au-eta, k: metal-Au-k"), std::string::npos) << w.yaml;
+    EXPECT_NE(w.yaml.find("eta: metal-CuZn-eta, k: metal-CuZn-k"), std::string::npos) << w.yaml;
+    const SceneDescription back = parse_scene(w.yaml, (dir / "m.yaml").string(), sources);
+    for (const bool spectral : {true, false}) {
+        Overrides o;
+        o.spectral = spectral;
+        EXPECT_EQ(render_job(build(d, o, sources), 4).pixels(), render_job(build(back, o, sources), 4).pixels()) << spectral;
+    }
+    // In YAML: by name, as `metal: gold`, and as a table (gold's own values at 1 nm steps would
+    // do; three points of it here) give gold's spectra in spectral mode.
+    const Color by_name = mean(render_job(job_from(furnace("{type: conductor, eta: metal-Au-eta, k: metal-Au-k}")), 16));
+    const Color preset = mean(render_job(job_from(furnace("{type: conductor, metal: gold}")), 16));
+    EXPECT_EQ(by_name, preset);
+    const Color table = mean(render_job(job_from(furnace("{type: conductor, eta: [400, 1.5, 550, 0.4, 700, 0.15], "
+                                                         "k: [400, 1.9, 550, 2.4, 700, 4]}")), 16));
+    EXPECT_GT(table.r, table.b + 0.2f);  // gold-like: reflects red, absorbs blue
+    std::filesystem::remove_all(dir);
+}
+
 std::string first_error(const std::string& yaml) {
     try {
         job_from(yaml);
