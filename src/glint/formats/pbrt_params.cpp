@@ -11,6 +11,7 @@
 
 #include "glint/base/limits.h"
 #include "glint/formats/pbrt_parser.h"
+#include "glint/formats/spectrum_file.h"
 #include "glint/materials/metals.h"
 #include "glint/spectra/spectrum.h"
 
@@ -194,61 +195,23 @@ const std::vector<double>* Parser::get_floats(ParamList& pl, const std::string& 
 // .spd files, relative to the main file, '#' comments), or the pairs inline. Located errors for a
 // missing file, an odd count, wavelengths that do not increase and negative values.
 std::optional<PiecewiseLinearSpectrum> Parser::spectrum_values(const Param& p, const std::string& name, bool report) {
-    const auto error = [&](std::string message) {
-        if (report) diag_.error(p.loc, std::move(message));
-    };
-    std::vector<double> numbers = p.numbers;
+    std::string message;
+    std::optional<PiecewiseLinearSpectrum> s;
     if (p.strings.size() == 1) {
-        if (const PiecewiseLinearSpectrum* s = named_spectrum(p.strings[0])) return *s;
+        if (const PiecewiseLinearSpectrum* named = named_spectrum(p.strings[0])) return *named;
         std::filesystem::path file = p.strings[0];
         if (file.is_relative()) file = dir_ / file;
-        std::ifstream in(file);
-        if (!in) {
-            error(fmt::format("\"{}\": \"{}\" is neither a spectrum pbrt-v4 names nor a file that can be read ({})",
-                                           name, p.strings[0], file.string()));
-            return std::nullopt;
+        if (!std::ifstream(file)) {
+            message = fmt::format("\"{}\" is neither a spectrum pbrt-v4 names nor a file that can be read ({})",
+                                  p.strings[0], file.string());
+        } else if (const auto numbers = read_spectrum_file(file, message)) {
+            s = spectrum_from_pairs(*numbers, message);
         }
-        numbers.clear();
-        std::string line;
-        while (std::getline(in, line)) {
-            line = line.substr(0, line.find('#'));
-            std::istringstream words(line);
-            std::string w;
-            while (words >> w) {
-                char* end = nullptr;
-                const double v = std::strtod(w.c_str(), &end);
-                if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) {
-                    error(fmt::format("\"{}\": {}: \"{}\" is not a number", name, file.string(), w));
-                    return std::nullopt;
-                }
-                numbers.push_back(v);
-                if (numbers.size() > 1'000'000) {
-                    error(fmt::format("\"{}\": {}: more than a million values", name, file.string()));
-                    return std::nullopt;
-                }
-            }
-        }
+    } else {
+        s = spectrum_from_pairs(p.numbers, message);
     }
-    if (numbers.size() < 2 || numbers.size() % 2 != 0) {
-        error(fmt::format("\"{}\": a spectrum is wavelength-value pairs; got {} values", name, numbers.size()));
-        return std::nullopt;
-    }
-    std::vector<float> lambda, value;
-    for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) {
-        if (!lambda.empty() && !(numbers[i] > lambda.back())) {
-            error(fmt::format("\"{}\": the wavelengths of a spectrum must increase ({} after {})", name,
-                                           numbers[i], lambda.back()));
-            return std::nullopt;
-        }
-        if (!(numbers[i + 1] >= 0) || !std::isfinite(numbers[i + 1])) {
-            error(fmt::format("\"{}\": value {} at {} nm; a spectrum's values are finite and not negative",
-                                           name, numbers[i + 1], numbers[i]));
-            return std::nullopt;
-        }
-        lambda.push_back(float(numbers[i]));
-        value.push_back(float(numbers[i + 1]));
-    }
-    return PiecewiseLinearSpectrum(std::move(lambda), std::move(value));
+    if (!s && report) diag_.error(p.loc, fmt::format("\"{}\": {}", name, message));
+    return s;
 }
 
 std::shared_ptr<const Spectrum> Parser::get_spectrum(ParamList& pl, const std::string& name) {

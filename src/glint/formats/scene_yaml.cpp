@@ -20,6 +20,7 @@
 #include "glint/formats/yaml_reader.h"
 #include "glint/description/vocabulary.h"
 #include "glint/formats/scene_yaml_parser.h"
+#include "glint/formats/spectrum_file.h"
 #include "glint/materials/metals.h"
 
 namespace glint {
@@ -446,8 +447,24 @@ std::optional<Background> SceneParser::background(const YAML::Node& node,
 std::optional<Spectrum> SceneParser::spectrum(const YAML::Node& n) {
     std::optional<Spectrum> s;
     if (n.IsMap()) {
-        MapReader m(r_, n, "spectrum", {"blackbody"});
+        MapReader m(r_, n, "spectrum", {"blackbody", "file"});
         if (!m.valid()) return std::nullopt;
+        if (const auto f = m.get("file")) {
+            // pbrt-v4's .spd format (wavelength-value pairs, '#' comments), relative to this file.
+            if (m.has("blackbody")) r_.error(n, "spectrum: give 'blackbody' or 'file', not both");
+            const auto name = r_.string(*f);
+            if (!name) return std::nullopt;
+            std::filesystem::path file = *name;
+            if (file.is_relative()) file = std::filesystem::path(r_.file()).parent_path() / file;
+            std::string message;
+            std::optional<PiecewiseLinearSpectrum> table;
+            if (const auto numbers = read_spectrum_file(file, message)) table = spectrum_from_pairs(*numbers, message);
+            if (!table) {
+                r_.error(*f, fmt::format("spectrum: {}", message));
+                return std::nullopt;
+            }
+            return Spectrum::tabulated(std::move(*table));
+        }
         if (const auto k = m.require("blackbody"))
             if (const auto t = r_.number_in(*k, "blackbody", 0, 1e6, true)) s = Spectrum::blackbody(float(*t));
     } else if (n.IsScalar() && !n.Scalar().empty() && std::isalpha(static_cast<unsigned char>(n.Scalar()[0]))) {

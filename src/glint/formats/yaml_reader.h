@@ -20,6 +20,8 @@ class YamlReader {
 public:
     YamlReader(Diagnostics& diagnostics, std::string file)
         : diagnostics_(diagnostics), file_(std::move(file)) {}
+    /// The file being read (as given), which relative paths in it are relative to.
+    const std::string& file() const { return file_; }
 
     SourceLoc loc(const YAML::Node& node) const;
     /// Errors about `node` (a value made by the parser, e.g. a keyframed value at one frame, which

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 
@@ -248,11 +250,15 @@ Color mean(const Film& film) {
 }
 
 TEST(Spectra, WhiteFurnacesReturnOneInSpectralMode) {
-    // Lossless materials in a white (D65) sky: every pixel's mean is white. Dispersive glass too.
+    // Lossless materials in a white (D65) sky: every pixel's mean is white. Dispersive glass too,
+    // and a smooth coat over a white base and a scattering, non-absorbing slab (light leaves
+    // again after however many passes).
     for (const char* m : {"{type: diffuse, albedo: 1}", "{type: dielectric, ior: glass-F11}",
                           "{type: dielectric, ior: 1.5, abbe: 20}",
                           "{type: pbr, base_color: 1, metallic: 0, roughness: 0, transmission: 1, ior: glass-F11}",
-                          "{type: conductor, reflectance: 1, roughness: 0.5}"}) {
+                          "{type: conductor, reflectance: 1, roughness: 0.5}",
+                          "{type: diffuse_transmission, reflectance: 0.5, transmittance: 0.5}",
+                          "{type: coated_diffuse, albedo: 1, ior: 1.5, thickness: 0.5, layer_albedo: [1, 1, 1], max_depth: 1000}"}) {
         const Color c = mean(render_job(job_from(furnace(m)), 64));
         EXPECT_LT(max_error(c, Color{1}), 0.01f) << m << ": " << c.r << " " << c.g << " " << c.b;
     }
@@ -486,6 +492,52 @@ Shape "sphere" "float radius" 0.4
     const Color table = mean(render_job(job_from(furnace("{type: conductor, eta: [400, 1.5, 550, 0.4, 700, 0.15], "
                                                          "k: [400, 1.9, 550, 2.4, 700, 4]}")), 16));
     EXPECT_GT(table.r, table.b + 0.2f);  // gold-like: reflects red, absorbs blue
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Spectra, YamlReadsSpectraFromFiles) {
+    // `{file: name.spd}` (pbrt-v4's format: pairs, '#' comments, relative to the scene file) is
+    // the same spectrum as the pairs inline, for an emitter, a reflectance and a metal's k.
+    const auto dir = std::filesystem::temp_directory_path() / "glint_spectra_files";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "warm.spd") << "# a warm light\n400 0.5\n550 1.0 700 2.0\n";
+    std::ofstream(dir / "bad.spd") << "400 0.5 550 x\n";
+    const auto scene = [&](const std::string& emission, const std::string& albedo, const std::string& k) {
+        return "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 30}\n"
+               "film: {width: 8, height: 8}\n"
+               "integrator: {type: path, max_depth: 3, spectral: true}\n"
+               "background: {type: constant, color: [0.2, 0.2, 0.2]}\n"
+               "objects:\n"
+               "  - {type: sphere, center: [0, 1.2, 1], radius: 0.5, material: {type: diffuse, albedo: 0, "
+               "emission: [4, 4, 4], emission_spectrum: " + emission + "}}\n"
+               "  - {type: sphere, center: [-0.5, 0, 0], radius: 0.5, material: {type: diffuse, albedo: " + albedo + "}}\n"
+               "  - {type: sphere, center: [0.5, 0, 0], radius: 0.5, material: {type: conductor, eta: metal-Au-eta, k: " +
+               k + "}}\n";
+    };
+    const std::string path = (dir / "s.yaml").string();
+    const auto render_text = [&](const std::string& text) {
+        auto sources = std::make_shared<SourceFiles>();
+        return render_job(build(parse_scene(text, path, sources), {}, sources), 4).pixels();
+    };
+    const std::string warm = "[400, 0.5, 550, 1.0, 700, 2.0]";
+    const std::string warm_reflectance = "[400, 0.25, 550, 0.5, 700, 1.0]";
+    std::ofstream(dir / "reflect.spd") << "400 0.25 550 0.5 700 1.0\n";
+    EXPECT_EQ(render_text(scene("{file: warm.spd}", "{type: constant, spectrum: {file: reflect.spd}}", "{file: warm.spd}")),
+              render_text(scene(warm, "{type: constant, spectrum: " + warm_reflectance + "}", warm)));
+    const auto error = [&](const std::string& text) {
+        try {
+            auto sources = std::make_shared<SourceFiles>();
+            parse_scene(text, path, sources);
+        } catch (const SceneError& e) {
+            const Diagnostic& d = e.diagnostics().front();
+            return std::to_string(d.loc.line) + ":" + std::to_string(d.loc.column) + ": " + d.message;
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(error(scene("{file: missing.spd}", "1", warm)),
+              "6:138: spectrum: " + (dir / "missing.spd").string() + " cannot be read");
+    EXPECT_EQ(error(scene("{file: bad.spd}", "1", warm)),
+              "6:138: spectrum: " + (dir / "bad.spd").string() + ": \"x\" is not a number");
     std::filesystem::remove_all(dir);
 }
 
