@@ -627,6 +627,7 @@ void build_integrator(const SceneDescription& d, const Overrides& overrides, Ren
             job.texture_filter = s.texture_filter;
             if (overrides.spectral) s.spectral = *overrides.spectral;
             job.spectral = s.spectral;
+            job.white_balance = s.white_balance;
             job.integrator = std::make_unique<PathIntegrator>(s);
             break;
         }

@@ -45,6 +45,7 @@ struct RenderJob {
     TextureFilter texture_filter = TextureFilter::kBilinear;
     bool filter_textures() const { return texture_filter != TextureFilter::kBilinear; }
     bool spectral = false;  ///< the path tracer traces wavelengths (PathSettings::spectral)
+    float white_balance = 0;  ///< PathSettings::white_balance
     /// Whether the render keeps the AOVs and the half images: to write them, or to denoise.
     bool features() const { return aovs || denoise; }
     std::string filename;  ///< the scene's film.filename, or empty

@@ -46,7 +46,7 @@ const std::vector<VocabularyEntry>& table() {
         {"integrator", "flat", {"type"}},
         {"integrator", "normals", {"type"}},
         {"integrator", "whitted", {"type", "max_depth", "ambient", "shadows"}},
-        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy", "light_sampler", "texture_filter", "spectral"}},
+        {"integrator", "path", {"type", "max_depth", "rr_depth", "clamp", "strategy", "light_sampler", "texture_filter", "spectral", "white_balance"}},
         {"strategy", "mis", {}},
         {"strategy", "light", {}},
         {"strategy", "bsdf", {}},

@@ -517,8 +517,10 @@ void Parser::film(const Token& t, const std::string& type, ParamList pl) {
         film_ratio_ = iso / 100;
     if (auto sensor = get_string(pl, "sensor"); sensor && *sensor != "cie1931")
         warn(pl.find("sensor")->loc, fmt::format("sensor \"{}\" not simulated; using cie1931 (plain RGB)", *sensor));
-    if (get_float(pl, "whitebalance").value_or(0) != 0)
-        warn(pl.find("whitebalance")->loc, "whitebalance not applied");
+    if (const auto wb = get_float(pl, "whitebalance"); wb && *wb != 0) {
+        if (*wb >= 1000 && *wb <= 100000) d_.integrator.path.white_balance = float(*wb);
+        else diag_.error(pl.find("whitebalance")->loc, fmt::format("\"whitebalance\": {} K is outside 1000-100000 K", *wb));
+    }
     ignore_rest(pl, "Film: parameter \"{}\" ignored (glint writes linear radiance)");
 }
 

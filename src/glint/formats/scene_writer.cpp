@@ -326,6 +326,7 @@ WrittenScene Writer::run() {
         if (p.texture_filter != TextureFilter::kEwa)
             y += fmt::format(", texture_filter: {}", vocabulary_name(p.texture_filter));
         if (p.spectral) y += ", spectral: true";
+        if (p.white_balance > 0) y += ", white_balance: " + num(p.white_balance);
         y += "}\n";
     } else if (d_.integrator.kind == IntegratorKind::kFlat || d_.integrator.kind == IntegratorKind::kNormals) {
         y += fmt::format("integrator: {{type: {}}}\n", d_.integrator.kind == IntegratorKind::kFlat ? "flat" : "normals");

@@ -408,6 +408,8 @@ void SceneParser::integrator(const YAML::Node& node, IntegratorDesc& d) {
                 d.path.texture_filter = *f;
         }
         assign(m.get("spectral"), d.path.spectral, [this](const YAML::Node& v) { return r_.boolean(v); });
+        assign(m.get("white_balance"), d.path.white_balance,
+               [this](const YAML::Node& v) { return r_.number_in(v, "white_balance", 1000, 100000); });
         return;
     }
     assign(m.get("ambient"), d.ambient,

@@ -9,6 +9,7 @@
 #include "glint/ray.h"
 #include "glint/samplers/sampler.h"
 #include "glint/scene.h"
+#include "glint/spectra/spectrum.h"
 
 namespace glint {
 
@@ -103,6 +104,9 @@ struct PathSettings {
     TextureFilter texture_filter = TextureFilter::kEwa;
     /// Spectral rendering (spectra/spectrum.h): three wavelengths per path instead of RGB.
     bool spectral = false;
+    /// White balance for a light of this colour temperature (kelvin; 0: none), as pbrt-v4's film
+    /// "whitebalance" (spectra/spectrum.h, white_balance).
+    float white_balance = 0;
 };
 
 /// Unidirectional path tracing with next-event estimation and multiple importance sampling
@@ -111,13 +115,15 @@ struct PathSettings {
 /// scene has any (path.cpp).
 class PathIntegrator final : public Integrator {
 public:
-    explicit PathIntegrator(PathSettings settings) : settings_(settings) {}
+    explicit PathIntegrator(PathSettings settings)
+        : settings_(settings), balance_(settings.white_balance > 0 ? white_balance(settings.white_balance) : ColorMatrix{}) {}
     Color li(const Scene& scene, const Ray& ray, SampleStream& samples, RayCounter& counter,
              FirstHit* first = nullptr) const override;
 
 private:
     bool roulette(Color& beta, float eta_scale, Color r_u, int depth, float u) const;
     PathSettings settings_;
+    ColorMatrix balance_;
 };
 
 }  // namespace glint

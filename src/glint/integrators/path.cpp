@@ -447,6 +447,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         ray = spawn_ray(si.p, si.n, bs->wi);
     }
     if (wl) radiance = film_rgb(radiance, *wl) + seen_rgb;
+    if (settings_.white_balance > 0) radiance = balance_(radiance);
     if (!is_finite(radiance)) return Color{0};
     return std::isinf(settings_.clamp) ? radiance : clamp_radiance(radiance, settings_.clamp);
 }

@@ -143,6 +143,7 @@ std::uint64_t render_fingerprint(const RenderJob& job, std::string_view settings
     const int texture_filter = static_cast<int>(job.texture_filter);
     add(&texture_filter, sizeof texture_filter);
     if (job.spectral) add("spectral", 8);  // only when on: RGB checkpoints keep their fingerprint
+    if (job.white_balance > 0) add(&job.white_balance, sizeof job.white_balance);
     return h;
 }
 

@@ -89,6 +89,68 @@ Color xyz_to_linear_srgb(Xyz c) {
             0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
 }
 
+Xyz daylight_white(float kelvin) {
+    const double t = double(kelvin) * 1.4388 / 1.4380;  // the CCT on today's value of c2
+    double x, y;
+    if (t < 4000) {
+        const Xyz c = spectrum_to_xyz(Spectrum::blackbody(float(t)));
+        x = c.x / (c.x + c.y + c.z), y = c.y / (c.x + c.y + c.z);
+    } else {
+        // CIE 15's daylight locus.
+        x = t <= 7000 ? -4.6070e9 / (t * t * t) + 2.9678e6 / (t * t) + 0.09911e3 / t + 0.244063
+                      : -2.0064e9 / (t * t * t) + 1.9018e6 / (t * t) + 0.24748e3 / t + 0.237040;
+        y = -3 * x * x + 2.870 * x - 0.275;
+    }
+    return {float(x / y), 1, float((1 - x - y) / y)};
+}
+
+ColorMatrix white_balance(float kelvin) {
+    // Bradford's cone response (Lam 1985) and its inverse, computed.
+    const double b[3][3] = {{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}};
+    const auto inverse = [](const double a[3][3], double out[3][3]) {
+        const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+                out[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
+            }
+    };
+    const auto mul = [](const double a[3][3], const double c[3][3], double out[3][3]) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) out[i][j] = a[i][0] * c[0][j] + a[i][1] * c[1][j] + a[i][2] * c[2][j];
+    };
+    // linear sRGB <-> XYZ (the D65 matrix of film_rgb's conversion and its inverse)
+    const double to_rgb[3][3] = {{3.2404542, -1.5371385, -0.4985314},
+                                 {-0.9692660, 1.8760108, 0.0415560},
+                                 {0.0556434, -0.2040259, 1.0572252}};
+    double to_xyz[3][3], b_inv[3][3];
+    inverse(to_rgb, to_xyz);
+    inverse(b, b_inv);
+    const Xyz src = daylight_white(kelvin);
+    // The target: the white of linear sRGB itself (D65 as the matrix has it), so that the balanced
+    // white is (1, 1, 1) to the last digit.
+    const double dst_y = to_xyz[1][0] + to_xyz[1][1] + to_xyz[1][2];
+    const double dst_x = (to_xyz[0][0] + to_xyz[0][1] + to_xyz[0][2]) / dst_y,
+                 dst_z = (to_xyz[2][0] + to_xyz[2][1] + to_xyz[2][2]) / dst_y;
+    double scale[3][3]{};
+    for (int i = 0; i < 3; ++i) {
+        const double s = b[i][0] * src.x + b[i][1] * src.y + b[i][2] * src.z;
+        const double d = b[i][0] * dst_x + b[i][1] * 1 + b[i][2] * dst_z;
+        scale[i][i] = d / s;
+    }
+    double t1[3][3], t2[3][3], t3[3][3], t4[3][3];
+    mul(scale, b, t1);       // diag * B
+    mul(b_inv, t1, t2);      // B^-1 diag B  (on XYZ)
+    mul(t2, to_xyz, t3);     // from linear sRGB
+    mul(to_rgb, t3, t4);     // back to linear sRGB
+    ColorMatrix m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m.m[i][j] = float(t4[i][j]);
+    return m;
+}
+
 Color film_rgb(Color radiance, const Wavelengths& wl) {
     Xyz sum;
     for (int i = 0; i < 3; ++i) {

@@ -42,6 +42,21 @@ void terminate_secondary(Wavelengths& wl);
 struct Xyz {
     float x = 0, y = 0, z = 0;
 };
+/// The white of a sensor white-balanced for `kelvin`, as pbrt-v4's film takes it: CIE daylight's
+/// chromaticity at that temperature (the locus formula, at T * 1.4388 / 1.4380, from 4000 K on), a
+/// black body's below 4000 K. Y = 1.
+Xyz daylight_white(float kelvin);
+/// A 3x3 matrix on linear sRGB colours.
+struct ColorMatrix {
+    float m[3][3]{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    Color operator()(Color c) const {
+        return {m[0][0] * c.r + m[0][1] * c.g + m[0][2] * c.b, m[1][0] * c.r + m[1][1] * c.g + m[1][2] * c.b,
+                m[2][0] * c.r + m[2][1] * c.g + m[2][2] * c.b};
+    }
+};
+/// White balance for `kelvin` (pbrt-v4's "whitebalance"): von Kries scaling in Bradford's cone
+/// space that takes daylight_white(kelvin) to sRGB's white (D65), as a matrix on linear sRGB.
+ColorMatrix white_balance(float kelvin);
 /// The CIE 1931 2-degree matching functions at lambda (1 nm table, linear between entries).
 Xyz cie_xyz(float lambda);
 /// The integral of y-bar over 360-830 nm (in nm).

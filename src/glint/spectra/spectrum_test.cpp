@@ -219,6 +219,31 @@ TEST(Spectra, TheFilmEstimateOfAnIlluminantIsItsColour) {
     EXPECT_NEAR(luminance(stand_in), 1, 1e-5);
 }
 
+TEST(Spectra, WhiteBalanceAdaptsADaylightWhiteToD65) {
+    // The daylight whites against CIE 15's published chromaticities of D50 and D65 (their CCTs on
+    // the old c2, 5000 and 6500 K), and against the D65 table: the same point within 5e-4. (pbrt-v4's
+    // "stdillum-D50" table is not a check: its chromaticity is (0.3368, 0.3580), not D50's.)
+    const auto xy = [](Xyz c) { return std::pair{c.x / (c.x + c.y + c.z), c.y / (c.x + c.y + c.z)}; };
+    const auto [x50, y50] = xy(daylight_white(5000));
+    EXPECT_NEAR(x50, 0.3457, 5e-4);
+    EXPECT_NEAR(y50, 0.3585, 5e-4);
+    const auto [x65, y65] = xy(daylight_white(6500));
+    EXPECT_NEAR(x65, 0.3127, 5e-4);
+    EXPECT_NEAR(y65, 0.3290, 5e-4);
+    const auto [xt, yt] = xy(spectrum_to_xyz(d65()));
+    EXPECT_NEAR(x65, xt, 5e-4);
+    EXPECT_NEAR(y65, yt, 5e-4);
+    // White balance for 6500 K is nearly nothing; for 5000 K and 3000 K (a black body) the white
+    // of that temperature becomes grey.
+    const ColorMatrix none = white_balance(6500);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(none.m[i][j], i == j ? 1 : 0, 3e-3) << i << j;
+    for (const float t : {5000.0f, 3000.0f}) {
+        const Color d50 = white_balance(t)(xyz_to_linear_srgb(daylight_white(t)));
+        EXPECT_LT(max_error(d50 / d50.g, Color{1}), 1e-4f) << t << ": " << d50.r << " " << d50.g << " " << d50.b;
+    }
+}
+
 // --- Through the path tracer --------------------------------------------------------------
 
 RenderJob job_from(const std::string& yaml, Overrides o = {}) {
@@ -539,6 +564,34 @@ TEST(Spectra, YamlReadsSpectraFromFiles) {
     EXPECT_EQ(error(scene("{file: bad.spd}", "1", warm)),
               "6:138: spectrum: " + (dir / "bad.spd").string() + ": \"x\" is not a number");
     std::filesystem::remove_all(dir);
+}
+
+TEST(Spectra, WhiteBalancedRenderOfAWarmLightIsNeutral) {
+    // A white quad lit by illuminant A (2856 K): yellow as it is, about grey with white_balance
+    // 2856 (von Kries is not exact for a black body far from daylight: within 3 %), in spectral
+    // and in RGB mode; and the pbrt-v4 film parameter does the same.
+    const auto scene = [](const std::string& balance) {
+        return "camera: {type: look_at, from: [0, 0, -3], to: [0, 0, 0], fov: 10}\n"
+               "film: {width: 8, height: 8}\n"
+               "integrator: {type: path, max_depth: 1, spectral: true" + balance + "}\n"
+               "background: {type: constant, color: [0, 0, 0]}\n"
+               "lights:\n  - {type: point, position: [0, 0, -3], intensity: [9, 9, 9], spectrum: stdillum-A}\n"
+               "objects:\n  - {type: quad, corner: [-5, -5, 0], edge1: [10, 0, 0], edge2: [0, 10, 0], "
+               "material: {type: diffuse, albedo: 1}}\n";
+    };
+    const Color warm = mean(render_job(job_from(scene("")), 64));
+    EXPECT_GT(warm.r, 1.5f * warm.b);
+    for (const bool spectral : {true, false}) {
+        Overrides o;
+        o.spectral = spectral;
+        const Color c = mean(render_job(job_from(scene(", white_balance: 2856"), o), 64));
+        EXPECT_LT(max_error(c / c.g, Color{1}), 0.03f) << spectral << ": " << c.r << " " << c.g << " " << c.b;
+    }
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_pbrt("Film \"rgb\" \"float whitebalance\" [ 2856 ]\nWorldBegin\n", "wb.pbrt", sources);
+    EXPECT_EQ(d.integrator.path.white_balance, 2856.0f);
+    EXPECT_NE(write_scene_yaml(d, "wb.yaml").yaml.find("white_balance: 2856"), std::string::npos);
+    EXPECT_THROW(parse_pbrt("Film \"rgb\" \"float whitebalance\" [ 50 ]\nWorldBegin\n", "wb.pbrt", sources), SceneError);
 }
 
 std::string first_error(const std::string& yaml) {
