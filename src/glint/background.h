@@ -3,6 +3,7 @@
 // (the environment), sampled by lights/light_sampler.h.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <variant>
 
@@ -27,6 +28,9 @@ struct SkyBackground {
 struct ConstantBackground {
     Color color;
     Color eval(Vector3) const { return color; }
+    /// Spectral mode: the sky's spectrum (Y = 1; `color` is its colour at the sky's luminance), or
+    /// null for the colour upsampled.
+    std::shared_ptr<const Spectrum> spectrum;
 };
 
 /// pbrt-v4's equal-area octahedral mapping (Clarberg's) of a unit direction to the square

@@ -91,6 +91,11 @@ struct Scene {
     const Spectrum* light_spectrum(std::uint32_t light) const {
         return light < light_spectra.size() ? light_spectra[light].get() : nullptr;
     }
+    /// Spectral mode: a constant background's spectrum, or null (its colour is upsampled).
+    const Spectrum* background_spectrum() const {
+        const auto* c = std::get_if<ConstantBackground>(&background);
+        return c ? c->spectrum.get() : nullptr;
+    }
     /// Participating media, and the one the camera (and so everything no boundary encloses) is in.
     std::vector<Medium> media;
     MediumId camera_medium = kNoMedium;

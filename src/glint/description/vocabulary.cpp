@@ -56,7 +56,7 @@ const std::vector<VocabularyEntry>& table() {
         {"texture_filter", "trilinear", {}},
         {"texture_filter", "none", {}},
         {"background", "sky", {"type", "horizon", "zenith"}},
-        {"background", "constant", {"type", "color"}},
+        {"background", "constant", {"type", "color", "spectrum"}},
         {"background", "environment", {"type", "filename", "scale"}},
         {"light", "directional", {"type", "direction", "intensity", "spectrum", "angular_diameter"}},
         {"light", "point", {"type", "position", "intensity", "spectrum"}},

@@ -241,7 +241,7 @@ void Parser::light(const Token& t, const std::string& type, ParamList pl) {
         } else {
             if (const auto e = target("illuminance")) s *= float(*e / std::numbers::pi);  // E = pi L
             const Color L = get_color(pl, "L", true).value_or(Color{1}) * s;
-            d_.background = ConstantBackground{L};
+            d_.background = ConstantBackground{L, emission_spectrum(pl, "L")};
         }
         ignore(pl, "portal", "\"portal\" ignored");
     } else {

@@ -340,7 +340,8 @@ WrittenScene Writer::run() {
         y += fmt::format("background: {{type: environment, filename: {}, scale: {}}}\n", yaml_quoted(file(d_.environment->filename.value)),
                          num(d_.environment->scale));
     } else if (const auto* c = std::get_if<ConstantBackground>(&d_.background)) {
-        y += fmt::format("background: {{type: constant, color: {}}}\n", vec(c->color));
+        y += fmt::format("background: {{type: constant, color: {}{}}}\n", vec(c->color),
+                         c->spectrum ? ", spectrum: " + spectrum_yaml(*c->spectrum) : "");
     } else if (const auto* sky = std::get_if<SkyBackground>(&d_.background)) {
         y += fmt::format("background: {{type: sky, horizon: {}, zenith: {}}}\n", vec(sky->horizon), vec(sky->zenith));
     }

@@ -443,6 +443,7 @@ std::optional<Background> SceneParser::background(const YAML::Node& node,
     ConstantBackground c;
     MapReader m(r_, node, "constant background", vocabulary_keys("background", "constant"));
     assign(m.require("color"), c.color, color());
+    if (const auto n = m.get("spectrum")) c.spectrum = emitter_spectrum(*n, c.color);
     return c;
 }
 

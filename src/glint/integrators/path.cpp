@@ -376,11 +376,12 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
                 add_emission(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction),
-                             scene.light_spectrum(l), l, {});
+                             l == lights.environment() ? scene.background_spectrum() : scene.light_spectrum(l), l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.
-            if (lights.environment() == kNoLight && depth == 0 && !seen_exactly(scene.background_seen(ray.direction), nullptr))
-                radiance += beta * E(scene.background_seen(ray.direction)) / average(r_u);
+            if (lights.environment() == kNoLight && depth == 0 &&
+                !seen_exactly(scene.background_seen(ray.direction), scene.background_spectrum()))
+                radiance += beta * E(scene.background_seen(ray.direction), scene.background_spectrum()) / average(r_u);
             break;
         }
         const SurfaceInteraction si = scene.interaction(ray, *hit);

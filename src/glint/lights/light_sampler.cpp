@@ -334,7 +334,7 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
         chosen = &moved;
     }
     if (light == environment()) {
-        return std::visit(
+        auto ls = std::visit(
             [&](const auto& b) -> std::optional<LightLiSample> {
                 using T = std::decay_t<decltype(b)>;
                 if constexpr (std::is_same_v<T, EnvironmentMap>) {
@@ -352,6 +352,8 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
                 }
             },
             scene.background);
+        if (ls) ls->spectrum = scene.background_spectrum();
+        return ls;
     }
     auto ls = std::visit(
         [&](const auto& l) -> std::optional<LightLiSample> {

@@ -594,6 +594,36 @@ TEST(Spectra, WhiteBalancedRenderOfAWarmLightIsNeutral) {
     EXPECT_THROW(parse_pbrt("Film \"rgb\" \"float whitebalance\" [ 50 ]\nWorldBegin\n", "wb.pbrt", sources), SceneError);
 }
 
+TEST(Spectra, AConstantSkyShinesItsSpectrum) {
+    // pbrt-v4's "infinite" light of a spectrum (a narrow green band) over a magenta sphere that
+    // fills the view, with one bounce: every pixel is the film's integral of reflectance x sky
+    // at 1 nm (the sky's colour upsampled instead would light the magenta by its 0.05 far less
+    // often: the test tells the two apart). The sky seen directly is the spectrum's colour; YAML's
+    // constant background takes the same `spectrum`, and glint convert writes it.
+    const std::string pbrt = R"(LookAt 0 0 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 10 ]
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+Integrator "path" "integer maxdepth" [ 1 ]
+WorldBegin
+LightSource "infinite" "spectrum L" [ 530 0 550 1 570 0 ]
+Material "diffuse" "spectrum reflectance" [ 380 0.9 480 0.9 500 0.05 600 0.05 620 0.9 780 0.9 ]
+Shape "sphere" "float radius" 1
+)";
+    auto sources = std::make_shared<SourceFiles>();
+    const SceneDescription d = parse_pbrt(pbrt, "sky.pbrt", sources);
+    const PiecewiseLinearSpectrum r({380, 480, 500, 600, 620, 780}, {0.9f, 0.9f, 0.05f, 0.05f, 0.9f, 0.9f});
+    const Spectrum sky = Spectrum::tabulated(PiecewiseLinearSpectrum({530, 550, 570}, {0, 1, 0})).normalised_emission();
+    const Color exact = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return r(l) * sky(l); }));
+    const Color c = mean(render_job(build(d, {}, sources), 256));
+    EXPECT_LT(max_error(c, exact), 0.01f * exact.max_component())
+        << c.r << " " << c.g << " " << c.b << " vs " << exact.r << " " << exact.g << " " << exact.b;
+    const WrittenScene w = write_scene_yaml(d, "sky.yaml");
+    EXPECT_NE(w.yaml.find("background: {type: constant, color: "), std::string::npos) << w.yaml;
+    EXPECT_NE(w.yaml.find(", spectrum: [530, 0, 550, 1, 570, 0]}"), std::string::npos) << w.yaml;
+    const Color back = mean(render_job(build(parse_scene(w.yaml, "sky.yaml", sources), {}, sources), 256));
+    EXPECT_LT(max_error(back, c), 1e-5f * c.max_component() + 1e-7f);
+}
+
 std::string first_error(const std::string& yaml) {
     try {
         job_from(yaml);
