@@ -189,8 +189,6 @@ const std::vector<double>* Parser::get_floats(ParamList& pl, const std::string& 
     return &p->numbers;
 }
 
-
-
 // A "spectrum" parameter's values: a name pbrt-v4 knows, a file of wavelength-value pairs (pbrt's
 // .spd files, relative to the main file, '#' comments), or the pairs inline. Located errors for a
 // missing file, an odd count, wavelengths that do not increase and negative values.
@@ -263,7 +261,7 @@ std::optional<Color> Parser::get_color(ParamList& pl, const std::string& name, b
         if (illuminant) return Spectrum::tabulated(*s).emission_rgb();
         if (named.rfind("stdillum-", 0) == 0) return xyz_to_linear_srgb(spectrum_to_xyz(*s));
         if (std::all_of(s->value().begin(), s->value().end(), [](float v) { return v <= 1; }))
-            return xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return (*s)(l) * d65()(l); }));
+            return reflectance_rgb(*s);
         return Color{(*s)(650), (*s)(550), (*s)(450)};
     }
     diag_.error(p->loc, fmt::format("\"{}\" must be rgb, spectrum or blackbody, not {}", name, p->type));

@@ -53,7 +53,7 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
                 r_.error(*s, fmt::format("constant texture: a reflectance spectrum is at most 1; it is {} at {} nm",
                                          (*r)(float(peak)), peak));
             } else {
-                t.value = xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return (*r)(l) * d65()(l); }));
+                t.value = reflectance_rgb(*r);
                 t.spectrum = std::make_shared<const Spectrum>(*r);
             }
         }

@@ -83,10 +83,16 @@ float cie_y_integral() {
     return sum;
 }
 
+// XYZ to linear sRGB (D65), IEC 61966-2-1's matrix.
+constexpr double kSrgbFromXyz[3][3] = {{3.2404542, -1.5371385, -0.4985314},
+                                       {-0.9692660, 1.8760108, 0.0415560},
+                                       {0.0556434, -0.2040259, 1.0572252}};
+
 Color xyz_to_linear_srgb(Xyz c) {
-    return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
-            -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
-            0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
+    const auto row = [&](int i) {
+        return float(kSrgbFromXyz[i][0]) * c.x + float(kSrgbFromXyz[i][1]) * c.y + float(kSrgbFromXyz[i][2]) * c.z;
+    };
+    return {row(0), row(1), row(2)};
 }
 
 Xyz daylight_white(float kelvin) {
@@ -121,10 +127,8 @@ ColorMatrix white_balance(float kelvin) {
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) out[i][j] = a[i][0] * c[0][j] + a[i][1] * c[1][j] + a[i][2] * c[2][j];
     };
-    // linear sRGB <-> XYZ (the D65 matrix of film_rgb's conversion and its inverse)
-    const double to_rgb[3][3] = {{3.2404542, -1.5371385, -0.4985314},
-                                 {-0.9692660, 1.8760108, 0.0415560},
-                                 {0.0556434, -0.2040259, 1.0572252}};
+    // linear sRGB <-> XYZ (the film's matrix and its inverse)
+    const auto& to_rgb = kSrgbFromXyz;
     double to_xyz[3][3], b_inv[3][3];
     inverse(to_rgb, to_xyz);
     inverse(b, b_inv);

@@ -162,5 +162,10 @@ std::vector<std::string_view> named_spectrum_names();
 const PiecewiseLinearSpectrum& d65();
 /// D65 at the path's wavelengths from a 1 nm table (no search: it is read at every light sample).
 Color d65_at(const Wavelengths& wl);
+/// A reflectance spectrum's colour: its linear sRGB under D65 (RGB mode's stand-in for it).
+template <class F>
+Color reflectance_rgb(const F& s) {
+    return xyz_to_linear_srgb(spectrum_to_xyz([&](float l) { return s(l) * d65()(l); }));
+}
 
 }  // namespace glint
