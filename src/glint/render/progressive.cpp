@@ -207,12 +207,12 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
             // Dimension pair 0 places the sample in the pixel (through the filter), pair 1 on the
             // lens; later pairs are the integrator's. The time, where something moves, is a pair
             // of its own far past them, so that still scenes draw exactly what they always drew.
-            const FilterSampler::Sample f = filter.sample(sampler.get_2d(index, 0));
-            const Sample2 lens = sampler.get_2d(index, 1);
+            SampleStream samples(sampler, index, 0);
+            const FilterSampler::Sample f = filter.sample(samples.next_2d());
+            const Sample2 lens = samples.next_2d();
             Ray ray = camera_.generate_ray(static_cast<float>(col + ox) + 0.5f + f.dx,
                                            static_cast<float>(row + oy) + 0.5f + f.dy, lens);
             if (moving_) ray = camera_.at_time(ray, sampler.get_2d(index, kTimeDimension).x);
-            SampleStream samples(sampler, index);
             li = integrator_.li(scene_, ray, samples, counter, want);
             w = f.weight;
             sum += li * w;

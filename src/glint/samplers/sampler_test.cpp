@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <set>
 #include <vector>
 
@@ -116,6 +118,44 @@ TEST(Sobol, DimensionsAndPixelsAreDecorrelated) {
         }
     }
     EXPECT_NEAR(product / n, 0.25, 0.005);
+}
+
+TEST(Sampler, FourPairsAtOnceAreTheScalarPairsBitForBit) {
+    // get_2d_x4 (SIMD for the Sobol sampler at power-of-two spp, a loop otherwise) against
+    // get_2d, the reference, for every sampler, counts that are and are not powers of two (and
+    // the small ones the SIMD path leaves to the loop), every index, dimensions near 0 and near
+    // the time pair, and many pixels.
+    const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+    for (const SamplerType type : {SamplerType::kSobol, SamplerType::kStratified, SamplerType::kIndependent}) {
+        for (const std::uint32_t spp : {1u, 2u, 3u, 4u, 8u, 12u, 64u, 100u, 256u, 4096u, 1u << 20}) {
+            for (std::uint32_t px = 0; px < 12; ++px) {
+                const PixelSampler s(type, spp, pixel_seed(px * 977u, px, 3 * px));
+                for (std::uint32_t i = 0; i < std::min(spp, 70u); ++i) {
+                    const std::uint32_t index = spp > 70 ? (i * 2654435761u) % spp : i;
+                    for (const std::uint32_t first : {0u, 1u, 2u, 6u, 37u, kTimeDimension - 3}) {
+                        Sample2 four[4];
+                        s.get_2d_x4(index, first, four);
+                        for (std::uint32_t k = 0; k < 4; ++k) {
+                            const Sample2 one = s.get_2d(index, first + k);
+                            ASSERT_EQ(bits(four[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
+                            ASSERT_EQ(bits(four[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(Sampler, AStreamHandsOutThePairsInOrder) {
+    // A stream draws pairs first_pair, first_pair + 1, ... whatever it computes ahead.
+    const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(9, 4, 2));
+    SampleStream stream(s, 13, 2);
+    for (std::uint32_t d = 2; d < 40; ++d) {
+        const Sample2 a = stream.next_2d(), b = s.get_2d(13, d);
+        ASSERT_EQ(a.x, b.x) << d;
+        ASSERT_EQ(a.y, b.y) << d;
+    }
 }
 
 }  // namespace
