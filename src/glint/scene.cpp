@@ -658,8 +658,8 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
         // Flat shapes snap the point onto their plane, like planes (math/snap.h).
         case ShapeKind::kQuad: {
             const Quad& q = quads[hit.index];
-            return {snap_to_plane(p, q.corner, q.normal()), q.normal(), q.material, hit.kind,
-                    hit.index};
+            const Normal3 n = q.normal();
+            return {snap_to_plane(p, q.corner, n), n, q.material, hit.kind, hit.index};
         }
         case ShapeKind::kDisk: {
             const Disk& d = disks[hit.index];
@@ -667,8 +667,8 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
         }
         case ShapeKind::kTriangle: {
             const Triangle& t = triangles[hit.index];
-            return {snap_to_plane(p, t.p0, t.normal()), t.normal(), t.material, hit.kind,
-                    hit.index};
+            const Normal3 n = t.normal();
+            return {snap_to_plane(p, t.p0, n), n, t.material, hit.kind, hit.index};
         }
         case ShapeKind::kMesh: {
             const Instance& inst = instances[hit.index];

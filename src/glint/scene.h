@@ -182,10 +182,7 @@ struct Scene {
         const auto* c = std::get_if<ConstantTexture>(&textures[id]);
         return c ? c->spectrum.get() : nullptr;
     }
-    const Emission& emission_of(MaterialId m) const {
-        static const Emission kNone;
-        return m < emission.size() ? emission[m] : kNone;
-    }
+    const Emission& emission_of(MaterialId m) const { return m < emission.size() ? emission[m] : kNoEmission; }
     /// The background the camera sees along d, directly or through perfect mirrors and glass:
     /// with texture filtering on (a footprint) an environment map is read over the pixel's
     /// angular size (trilinear over its MIP pyramid); every other lookup is evaluate()'s, which

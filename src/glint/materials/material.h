@@ -120,6 +120,9 @@ struct Emission {
     std::shared_ptr<const Spectrum> spectrum;
     bool emits() const { return radiance.max_component() > 0; }
 };
+/// What a material without an emission entry emits (nothing): a namespace-scope constant, so that
+/// reading it costs no guard of a function-local static.
+inline const Emission kNoEmission{};
 
 /// A tangent-space normal map on a material (glTF's normalTexture): texel (r, g, b) in [0, 1]
 /// is the normal (2r - 1) s, (2g - 1) s, 2b - 1 in the frame (tangent, bitangent, normal).
