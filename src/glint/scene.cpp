@@ -307,7 +307,7 @@ void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
         case ShapeKind::kTriangle: {
             WatertightRay wr = wr_in;
             wr.t_max = ray.t_max;
-            if (const auto h = intersect_triangle(triangles[i].p0, triangles[i].p1, triangles[i].p2, wr)) {
+            if (const auto h = intersect_triangle(triangles[i], wr)) {
                 ray.t_max = h->t;
                 best = Hit{h->t, ShapeKind::kTriangle, i};
             }
@@ -331,7 +331,7 @@ bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) 
         case ShapeKind::kQuad: return quads[i].intersect(ray).has_value();
         case ShapeKind::kDisk: return disks[i].intersect(ray).has_value();
         case ShapeKind::kTriangle:
-            return intersect_triangle(triangles[i].p0, triangles[i].p1, triangles[i].p2, wr).has_value();
+            return intersect_triangle(triangles[i], wr).has_value();
         case ShapeKind::kMesh: return any_instance(i, ray);
         case ShapeKind::kPlane: return false;
     }

@@ -1,5 +1,6 @@
 #pragma once
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 #include "glint/interaction.h"
@@ -31,6 +32,8 @@ struct TriangleHit {
 /// a shared edge or vertex hit at least one of the triangles that share it. Hits count in
 /// [kRayTMin, ray.t_max).
 std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point3 p2, const WatertightRay& ray);
+
+static_assert(sizeof(Point3) == 3 * sizeof(Float), "intersect_triangle reads a point as three floats");
 
 /// A triangle p0 p1 p2, facing along (p1 - p0) x (p2 - p0).
 struct Triangle {
@@ -64,15 +67,12 @@ struct Triangle {
     }
 };
 
-inline std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point3 p2,
-                                                     const WatertightRay& r) {
+namespace triangle_detail {
+
+/// The watertight test on the vertices relative to the ray's origin, permuted so that the ray's
+/// main axis is z (intersect_triangle's body).
+inline std::optional<TriangleHit> intersect_permuted(Vector3 a, Vector3 b, Vector3 c, const WatertightRay& r) {
     const Float sx = r.sx, sy = r.sy, sz = r.sz;
-    // The vertices relative to the origin, permuted so that the ray's main axis is z.
-    const auto permuted = [&r](Point3 p) {
-        const Float v[3] = {p.x - r.origin.x, p.y - r.origin.y, p.z - r.origin.z};
-        return Vector3{v[r.kx], v[r.ky], v[r.kz]};
-    };
-    const Vector3 a = permuted(p0), b = permuted(p1), c = permuted(p2);
     const Float ax = a.x - sx * a.z, ay = a.y - sy * a.z;
     const Float bx = b.x - sx * b.z, by = b.y - sy * b.z;
     const Float cx = c.x - sx * c.z, cy = c.y - sy * c.z;
@@ -99,6 +99,30 @@ inline std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point
     if (!(t >= kRayTMin && t < r.t_max)) return std::nullopt;  // rounding at the ends
     const Float inv_det = 1 / det;
     return TriangleHit{t, v * inv_det, w * inv_det};
+}
+
+}  // namespace triangle_detail
+
+inline std::optional<TriangleHit> intersect_triangle(Point3 p0, Point3 p1, Point3 p2,
+                                                     const WatertightRay& r) {
+    const auto permuted = [&r](Point3 p) {
+        const Float v[3] = {p.x - r.origin.x, p.y - r.origin.y, p.z - r.origin.z};
+        return Vector3{v[r.kx], v[r.ky], v[r.kz]};
+    };
+    return triangle_detail::intersect_permuted(permuted(p0), permuted(p1), permuted(p2), r);
+}
+
+/// The same test (the same operations, so the same bits) reading each vertex's coordinates by
+/// index where the triangle is stored: no copy of the vertices to permute them.
+inline std::optional<TriangleHit> intersect_triangle(const Triangle& t, const WatertightRay& r) {
+    Float o[3];
+    std::memcpy(o, &r.origin, sizeof o);
+    const auto permuted = [&](const Point3& p) {
+        Float v[3];
+        std::memcpy(v, &p, sizeof v);
+        return Vector3{v[r.kx] - o[r.kx], v[r.ky] - o[r.ky], v[r.kz] - o[r.kz]};
+    };
+    return triangle_detail::intersect_permuted(permuted(t.p0), permuted(t.p1), permuted(t.p2), r);
 }
 
 }  // namespace glint
