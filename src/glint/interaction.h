@@ -9,6 +9,8 @@ namespace glint {
 
 using MaterialId = std::uint32_t;
 
+struct RayDifferential;  // ray.h
+
 enum class ShapeKind : std::uint8_t { kSphere, kPlane, kQuad, kDisk, kTriangle, kMesh };
 
 struct Hit {
@@ -29,6 +31,9 @@ struct SurfaceInteraction {
     std::uint32_t prim = 0;     ///< kMesh: the triangle
     Point2 bary{};              ///< kMesh: (b1, b2)
     Float time = 0;             ///< the ray's time (moving shapes are placed at it)
+    /// The path's offset rays, carried through specular bounces: textures read the pixel's
+    /// footprint where they meet this surface; null: the camera's footprint model (camera.h).
+    const RayDifferential* differential = nullptr;
 };
 
 }  // namespace glint

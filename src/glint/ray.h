@@ -21,6 +21,43 @@ struct Ray {
     constexpr Point3 at(Float t) const { return origin + direction * t; }
 };
 
+/// The rays beside a path's own that pass one pixel to the right and one pixel up (scaled as the
+/// pixel footprint is, cameras/camera.h), carried through perfectly specular reflections and
+/// refractions (Igehy's ray differentials, which pbrt-v4 carries the same way), so that a texture
+/// or the environment seen in a mirror or through glass is read over what the pixel covers there.
+/// Each offset ray is kept as a line, a point on it and a direction of any length, not as
+/// derivatives: at a specular surface it is itself reflected or refracted where it meets the
+/// tangent plane, about the shading normal there (integrators/differentials.h).
+struct RayDifferential {
+    Point3 ox, oy;   ///< a point on each offset ray
+    Vector3 dx, dy;  ///< their directions (any length)
+
+    /// Where the offset rays meet the plane through p with normal n, relative to p; false (and
+    /// nothing written) where one runs parallel to the plane or the point is not finite.
+    bool at(Point3 p, Normal3 n, Vector3& dpdx, Vector3& dpdy) const {
+        const auto meet = [&](Point3 o, Vector3 d, Vector3& out) {
+            const Float denom = dot(n, d);
+            if (!(std::abs(denom) > 1e-8f * length(d))) return false;
+            const Vector3 from_p = o - p;
+            out = from_p + d * (-dot(n, from_p) / denom);
+            return is_finite(out);
+        };
+        Vector3 x, y;
+        if (!meet(ox, dx, x) || !meet(oy, dy, y)) return false;
+        dpdx = x;
+        dpdy = y;
+        return true;
+    }
+    /// How far the offset rays' directions turn from unit direction d: the larger chord between
+    /// the unit directions, about the angle in radians for the small angles of a pixel.
+    Float spread(Vector3 d) const {
+        const Float lx = length(dx), ly = length(dy);
+        if (!(lx > 0) || !(ly > 0)) return 0;
+        const Float s = std::max(length(dx / lx - d), length(dy / ly - d));
+        return std::isfinite(s) ? s : 0;
+    }
+};
+
 /// A world ray in the object space of `t`, its direction not renormalised, so that t means the
 /// same point in both spaces.
 inline Ray object_ray(const Transform& t, const Ray& r) {

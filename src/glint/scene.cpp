@@ -543,13 +543,14 @@ Triangle Scene::world_triangle(std::uint32_t inst, std::uint32_t prim, Float tim
     return t;
 }
 
-Color Scene::background_seen(Vector3 d) const {
+Color Scene::background_seen(Vector3 d, Float spread) const {
     const auto* env = std::get_if<EnvironmentMap>(&background);
-    if (!env || !footprint || footprint->orthographic || env_pyramid_.levels.empty()) return evaluate(background, d);
+    if (!env || !footprint || env_pyramid_.levels.empty()) return evaluate(background, d);
+    if (spread < 0 && footprint->orthographic) return evaluate(background, d);
     const Point2 uv = EnvironmentMap::direction_to_uv(d);
     if (!(std::isfinite(uv.x) && std::isfinite(uv.y))) return Color{0};
-    // A pixel's angle (at the image's centre), in units of the map's width (2 pi around).
-    const Float angle = length(footprint->h_step) / footprint->near * footprint->scale;
+    // The pixel's angle (given, or at the image's centre), in units of the map's width (2 pi around).
+    const Float angle = spread >= 0 ? spread : length(footprint->h_step) / footprint->near * footprint->scale;
     const Float width = angle / (2 * std::numbers::pi_v<Float>);
     return trilinear(env->image, env_pyramid_, {uv.x, 1 - uv.y}, width, WrapMode::kRepeat, WrapMode::kClamp) * env->scale;
 }
@@ -595,10 +596,11 @@ MaterialId Scene::surface_material(const SurfaceInteraction& si) const {
     return m;
 }
 
-SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit) const {
+SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit, const RayDifferential* differential) const {
     const Motion* moving = has_motion_ && hit.kind != ShapeKind::kMesh ? motion_of(hit.kind, hit.index) : nullptr;
     SurfaceInteraction si = moving ? moving_interaction(*moving, ray, hit) : base_interaction(ray, hit);
     si.time = ray.time;
+    si.differential = differential;
     if (hit.kind != ShapeKind::kMesh) si.ns = si.n;
     else if (si.material < normal_maps.size() && normal_maps[si.material]) apply_normal_map(si, ray);
     return si;
@@ -724,7 +726,10 @@ Color Scene::texture_general(TextureId id, const SurfaceInteraction& si) const {
         ctx.uv_set = &Scene::uv_set_of;
         ctx.uv_set_arg = &arg;
     }
-    if ((reads & kReadsFootprint) && footprint && footprint->at(si.p, si.n, ctx.dpdx, ctx.dpdy)) {
+    // The path's own offset rays where it carries them, else the camera's model of a direct view.
+    if ((reads & kReadsFootprint) && footprint &&
+        ((si.differential && si.differential->at(si.p, si.n, ctx.dpdx, ctx.dpdy)) ||
+         footprint->at(si.p, si.n, ctx.dpdx, ctx.dpdy))) {
         ctx.pyramids = &pyramids_;
         if (reads & kReadsUv) {
             const auto diff = [&](Vector3 dp) {
@@ -738,6 +743,29 @@ Color Scene::texture_general(TextureId id, const SurfaceInteraction& si) const {
         }
     }
     return evaluate(textures, images, id, ctx);
+}
+
+Vector3 Scene::normal_change(const SurfaceInteraction& si, Vector3 dp) const {
+    const auto change = [](Normal3 to, Normal3 from) {
+        const Vector3 v = to_vector(to) - to_vector(from);
+        return is_finite(v) ? v : Vector3{0, 0, 0};
+    };
+    const Point3 q = si.p + dp;
+    if (si.shape == ShapeKind::kSphere) {
+        const Sphere& s = spheres[si.shape_index];
+        if (const Motion* m = has_motion_ ? motion_of(si.shape, si.shape_index) : nullptr) {
+            const Transform d = m->at(si.time);
+            const auto at = [&](Point3 x) { return normalize(d.normal(s.normal_at(d.to_object.apply(x)))); };
+            return change(at(q), at(si.p));
+        }
+        return change(normalize(s.normal_at(q)), normalize(s.normal_at(si.p)));
+    }
+    if (si.shape != ShapeKind::kMesh) return Vector3{0, 0, 0};  // flat
+    const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
+    if (m.normals.empty()) return Vector3{0, 0, 0};
+    const Transform place = placement(si.shape_index, si.time);
+    const auto at = [&](Point2 b) { return normalize(place.normal(m.interpolate(m.normals, si.prim, b.x, b.y))); };
+    return change(at(mesh_barycentrics(si.shape_index, si.prim, q, si.time)), at(si.bary));
 }
 
 Float Scene::vertex_alpha(const SurfaceInteraction& si) const {

@@ -187,7 +187,9 @@ struct Scene {
     /// with texture filtering on (a footprint) an environment map is read over the pixel's
     /// angular size (trilinear over its MIP pyramid); every other lookup is evaluate()'s, which
     /// light sampling's densities are made from (docs/textures.md).
-    Color background_seen(Vector3 d) const;
+    /// `spread`: the pixel's angle there, if known (a path's offset rays through curved mirrors
+    /// and lenses); otherwise a pixel's angle at the image's centre.
+    Color background_seen(Vector3 d, Float spread = -1) const;
     /// Radiance the surface at si emits towards wo (unit, pointing away from the surface).
     Color emitted(const SurfaceInteraction& si, Vector3 wo) const {
         const Emission& e = emission_of(si.material);
@@ -244,7 +246,13 @@ struct Scene {
     Point2 uv(const SurfaceInteraction& si) const;
 
     /// Phase two: the full interaction for the winning hit.
-    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
+    /// `differential`: the path's offset rays, if it carries them (kept in si.differential for
+    /// the texture lookups, a normal map's among them).
+    SurfaceInteraction interaction(const Ray& ray, const Hit& hit,
+                                   const RayDifferential* differential = nullptr) const;
+    /// How the surface's shading normal (interpolated, before any normal map) turns from si.p to
+    /// si.p + dp, dp in the tangent plane: zero on flat shapes and meshes without normals.
+    Vector3 normal_change(const SurfaceInteraction& si, Vector3 dp) const;
 
 private:
     friend class EmbreeAccel;

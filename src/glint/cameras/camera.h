@@ -76,6 +76,12 @@ struct PixelFootprint {
         dpdy = y;
         return true;
     }
+    /// The offset rays that met a surface at p + dpdx and p + dpdy (from at()): from the camera
+    /// through those points, or parallel to the view for an orthographic camera.
+    RayDifferential differential(Point3 p, Vector3 dpdx, Vector3 dpdy) const {
+        const Point3 px = p + dpdx, py = p + dpdy;
+        return {px, py, orthographic ? view : px - position, orthographic ? view : py - position};
+    }
 };
 
 class Camera {

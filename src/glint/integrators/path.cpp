@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "glint/integrators/differentials.h"
 #include "glint/integrators/integrator.h"
 #include "glint/materials/make_bsdf.h"
 #include "glint/media/transmittance.h"
@@ -102,6 +103,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     Normal3 prev_n{0, 0, 0};
     bool prev_by_power = false;
     float eta_scale = 1;
+    // Texture filtering's offset rays (docs/textures.md): the camera's footprint model serves the
+    // camera ray; from a perfectly specular bounce on, the path carries its own, until any other.
+    std::optional<RayDifferential> differential;
     MediumId medium = scene.camera_medium;
     HashRng rng{media ? samples.stream_seed() : 0};
     const int hero = media ? std::min(2, static_cast<int>(rng.next() * 3)) : 0;
@@ -330,6 +334,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                         const PhaseSample ps = phase.sample(wo, u_phase);
                         beta *= Color{ps.p / ps.pdf};
                         specular = false;
+                        differential.reset();
                         bsdf_pdf = ps.pdf;
                         prev_p = p;
                         prev_n = Normal3{0, 0, 0};
@@ -375,7 +380,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // Seen by the camera (through perfect mirrors and glass), the environment is read
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
-                add_emission(seen ? scene.background_seen(ray.direction) : lights.distant_radiance(scene, l, ray.direction),
+                const Float spread = differential ? differential->spread(ray.direction) : -1;
+                add_emission(seen ? scene.background_seen(ray.direction, spread) : lights.distant_radiance(scene, l, ray.direction),
                              l == lights.environment() ? scene.background_spectrum() : scene.light_spectrum(l), l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.
@@ -384,7 +390,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 radiance += beta * E(scene.background_seen(ray.direction), scene.background_spectrum()) / average(r_u);
             break;
         }
-        const SurfaceInteraction si = scene.interaction(ray, *hit);
+        const SurfaceInteraction si = scene.interaction(ray, *hit, differential ? &*differential : nullptr);
         if (media && scene.is_interface(si.material)) {
             // No surface: change medium and go on in the same direction, no scattering event.
             if (const MediumInterface* mi = scene.medium_interface(si.material))
@@ -445,7 +451,13 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         ++depth;
         crossings = 0;
         if (!roulette(beta, eta_scale, r_u, depth, u_rr)) break;
-        ray = spawn_ray(si.p, si.n, bs->wi);
+        const Ray next = spawn_ray(si.p, si.n, bs->wi);
+        if (scene.footprint && (differential || depth == 1)) {
+            differential = bs->specular ? scatter_differential(scene, si, ray.direction, differential ? &*differential : nullptr,
+                                                               bs->wi, bs->eta, next.origin)
+                                        : std::nullopt;
+        }
+        ray = next;
     }
     if (wl) radiance = film_rgb(radiance, *wl) + seen_rgb;
     if (settings_.white_balance > 0) radiance = balance_(radiance);

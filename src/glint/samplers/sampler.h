@@ -36,7 +36,7 @@ public:
     /// get_2d's bit for bit: for the Sobol sampler at a power-of-two spp, computed four lanes at
     /// once (SSE4.1 integer multiplies; every step is integer arithmetic, so no lane can round
     /// differently from the scalar code).
-    void get_2d_x4(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[4]) const;
+    [[gnu::noinline]] void get_2d_x4(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[4]) const;
     std::uint32_t seed() const { return seed_; }
 
 private:
@@ -58,7 +58,9 @@ class SampleStream {
 public:
     SampleStream(const PixelSampler& sampler, std::uint32_t index, std::uint32_t first_pair = 2)
         : sampler_(&sampler), index_(index), pair_(first_pair) {}
-    Sample2 next_2d() {
+    // Inlined where it is drawn (the path loop): three of four calls are a load and an increment,
+    // and the call itself would cost as much (the loop outgrew GCC's inlining limits once).
+    [[gnu::always_inline]] Sample2 next_2d() {
         if (next_ == kBatch) {
             sampler_->get_2d_x4(index_, pair_, buffer_);
             pair_ += kBatch;
