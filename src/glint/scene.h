@@ -139,14 +139,16 @@ struct Scene {
     bool any_moving(std::uint32_t m, const Ray& ray) const;
     /// Moving shape m's box over the whole shutter.
     Bounds3 moving_bounds(std::uint32_t m) const;
-    /// Light i of `lights` where it is at `time`.
+    /// Light i of `lights` where it is and where it points at `time`: its keys carry a light at
+    /// the origin with its stored direction (math/motion.h, light_keys).
     Light light_at(std::size_t i, Float time) const {
         Light l = lights[i];
         if (i < light_motion.size() && light_motion[i] >= 0) {
             const Transform x = motions[static_cast<std::size_t>(light_motion[i])].at(time);
             std::visit(
                 [&](auto& v) {
-                    if constexpr (requires { v.position; }) v.position = x.point(v.position);
+                    if constexpr (requires { v.position; }) v.position = x.point(Point3{0, 0, 0});
+                    if constexpr (requires { v.direction; }) v.direction = normalize(x.vector(v.direction));
                 },
                 l);
         }

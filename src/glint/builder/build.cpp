@@ -657,18 +657,25 @@ public:
         scene_.background = d_.background;
         scene_.lights = d_.lights;
         scene_.light_spectra = d_.light_spectra;
-        // Moving point and spot lights: stored where they are at the opening, moved by their path.
+        // Moving and turning lights: stored as they are at the opening, placed by keys that carry
+        // a light at the origin (math/motion.h, light_keys; Scene::light_at).
         for (std::size_t i = 0; i < d_.light_paths.size() && i < scene_.lights.size(); ++i) {
             const auto& path = d_.light_paths[i];
-            if (path.size() < 2) continue;
+            const auto& turns = i < d_.light_turns.size() ? d_.light_turns[i] : std::vector<Vector3>{};
+            if (path.size() < 2 && turns.size() < 2) continue;
+            Point3 at{0, 0, 0};  // where a light that only turns stays
             std::visit(
                 [&](auto& l) {
-                    if constexpr (requires { l.position; }) l.position = path.front();
+                    if constexpr (requires { l.position; }) {
+                        if (!path.empty()) l.position = path.front();
+                        at = l.position;
+                    }
+                    if constexpr (requires { l.direction; }) {
+                        if (!turns.empty()) l.direction = normalize(turns.front());
+                    }
                 },
                 scene_.lights[i]);
-            std::vector<Transform> keys;
-            for (const Point3& p : path) keys.push_back(Transform::translate(p - path.front()));
-            scene_.motions.emplace_back(std::move(keys));
+            scene_.motions.emplace_back(light_keys(path, turns, at));
             scene_.light_motion.resize(scene_.lights.size(), -1);
             scene_.light_motion[i] = static_cast<std::int32_t>(scene_.motions.size() - 1);
         }

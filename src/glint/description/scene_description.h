@@ -292,9 +292,10 @@ struct SceneDescription {
     SourceLoc shutter_loc;
     /// The camera at evenly spaced times over the shutter (the first = `camera`); empty: still.
     std::vector<CameraDesc> camera_motion;
-    /// Per light of `lights` (may be shorter): a point or spot light's position at those times;
-    /// empty: still.
+    /// Per light of `lights` (may be shorter): a point or spot light's position at those times
+    /// (empty: it stays), and a spot or directional light's direction (empty: it keeps its own).
     std::vector<std::vector<Point3>> light_paths;
+    std::vector<std::vector<Vector3>> light_turns;
     /// Animation: the frame this description is of (keyframed values were read at it), frames
     /// per second (glTF animations are timed in seconds), and whether anything is keyframed.
     double frame = 0;

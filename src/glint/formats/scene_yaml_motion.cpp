@@ -63,18 +63,29 @@ SceneDescription parse_scene_over_shutter(const std::string& text, const std::st
         o.transform = motion.front();
         o.motion = std::move(motion);
     }
-    // Point and spot lights move by their positions (a spot's direction is the frame's).
+    // Point and spot lights move by their positions, spot and directional lights turn by their
+    // directions.
     for (std::size_t i = 0; i < d.lights.size(); ++i) {
         std::vector<Point3> route;
+        std::vector<Vector3> turns;
         for (const SceneDescription& key : keys) {
-            const Light& l = key.lights[i];
-            if (const auto* p = std::get_if<PointLight>(&l)) route.push_back(p->position);
-            else if (const auto* s = std::get_if<SpotLight>(&l)) route.push_back(s->position);
+            std::visit(
+                [&](const auto& l) {
+                    if constexpr (requires { l.position; }) route.push_back(l.position);
+                    if constexpr (requires { l.direction; }) turns.push_back(l.direction);
+                },
+                key.lights[i]);
         }
-        if (route.size() != keys.size() || std::all_of(route.begin(), route.end(), [&](Point3 q) { return q == route.front(); }))
-            continue;
+        const auto still = [&](const auto& v) {
+            return v.size() != keys.size() || std::all_of(v.begin(), v.end(), [&](const auto& q) { return q == v.front(); });
+        };
+        if (still(route)) route.clear();
+        if (still(turns)) turns.clear();
+        if (route.empty() && turns.empty()) continue;
         d.light_paths.resize(d.lights.size());
+        d.light_turns.resize(d.lights.size());
         d.light_paths[i] = std::move(route);
+        d.light_turns[i] = std::move(turns);
     }
     bool camera_moves = false;
     for (const SceneDescription& key : keys) camera_moves = camera_moves || !same_camera(key.camera, keys.front().camera);

@@ -381,7 +381,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 // over the pixel's footprint; that term has no MIS weight to keep consistent.
                 const bool seen = specular && l == lights.environment();
                 const Float spread = differential ? differential->spread(ray.direction) : -1;
-                add_emission(seen ? scene.background_seen(ray.direction, spread) : lights.distant_radiance(scene, l, ray.direction),
+                add_emission(seen ? scene.background_seen(ray.direction, spread) : lights.distant_radiance(scene, l, ray.direction, time),
                              l == lights.environment() ? scene.background_spectrum() : scene.light_spectrum(l), l, {});
             }
             // A background that is no light (black has no power) still shows to the camera.

@@ -65,6 +65,13 @@ float placed_area_scale(const Scene& scene, ShapeKind kind, std::uint32_t index)
     return k * k;
 }
 
+// A directional light's direction at `time`: it may turn over the shutter (Scene::light_at).
+Vector3 sun_direction(const Scene& scene, std::uint32_t light, const DirectionalLight& sun, Float time) {
+    if (light < scene.light_motion.size() && scene.light_motion[light] >= 0)
+        return std::get<DirectionalLight>(scene.light_at(light, time)).direction;
+    return sun.direction;
+}
+
 // Where a light is and which way it shines, for the BVH (lights/light_bvh.h). Distant lights
 // have no place: phi 0 leaves them out.
 LightBounds light_bounds(const Scene& scene, const Light& light) {
@@ -247,8 +254,20 @@ void LightSampler::build(const Scene& scene, float radius, LightSamplerKind samp
             distant_power.push_back(power[i]);
         } else {
             bounds[i] = light_bounds(scene, lights_[i]);
-            if (i < scene.light_motion.size() && scene.light_motion[i] >= 0)  // over the whole shutter
-                bounds[i].box = scene.motions[static_cast<std::size_t>(scene.light_motion[i])].swept_bounds(bounds[i].box);
+            if (i < scene.light_motion.size() && scene.light_motion[i] >= 0) {
+                // Over the whole shutter: the keys carry the light from the origin; a spot that
+                // turns may shine anywhere.
+                const Motion& m = scene.motions[static_cast<std::size_t>(scene.light_motion[i])];
+                Bounds3 origin;
+                origin.extend(Point3{0, 0, 0});
+                bounds[i].box = m.swept_bounds(origin);
+                for (std::size_t k = 0; k < m.key_count(); ++k) {
+                    if (!(m.key(k).vector(bounds[i].w) == bounds[i].w)) {
+                        bounds[i].cos_o = -1;
+                        bounds[i].cos_e = 0;
+                    }
+                }
+            }
         }
     }
     if (env_) {
@@ -459,8 +478,9 @@ float LightSampler::pdf_li_stored(const Scene& scene, std::uint32_t light, Point
             using T = std::decay_t<decltype(l)>;
             if constexpr (std::is_same_v<T, DirectionalLight>) {
                 if (!l.soft()) return 0;
-                return 1 + dot(wi, l.direction) <= l.one_minus_cos ? uniform_cone_pdf(l.one_minus_cos)
-                                                                  : 0;
+                return 1 + dot(wi, sun_direction(scene, light, l, time)) <= l.one_minus_cos
+                           ? uniform_cone_pdf(l.one_minus_cos)
+                           : 0;
             } else if constexpr (std::is_same_v<T, AreaLight>) {
                 float area = 1;
                 Normal3 n{0, 1, 0};
@@ -494,10 +514,10 @@ float LightSampler::pdf_li_stored(const Scene& scene, std::uint32_t light, Point
         lights_[light]);
 }
 
-Color LightSampler::distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d) const {
+Color LightSampler::distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d, Float time) const {
     if (light == environment()) return evaluate(scene.background, d);
     if (const auto* sun = std::get_if<DirectionalLight>(&lights_[light])) {
-        if (sun->soft() && 1 + dot(d, sun->direction) <= sun->one_minus_cos)
+        if (sun->soft() && 1 + dot(d, sun_direction(scene, light, *sun, time)) <= sun->one_minus_cos)
             return sun->intensity / (kPi * sun->sin2_half_angle());
     }
     return Color{0};

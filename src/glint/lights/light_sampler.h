@@ -93,7 +93,7 @@ public:
     const std::vector<std::uint32_t>& distant() const { return distant_; }
     std::uint32_t environment() const { return env_ ? static_cast<std::uint32_t>(lights_.size()) : kNoLight; }
     /// Radiance a ray leaving the scene along unit `d` receives from distant light `light`.
-    Color distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d) const;
+    Color distant_radiance(const Scene& scene, std::uint32_t light, Vector3 d, Float time = 0) const;
     const Light& light(std::uint32_t i) const { return lights_[i]; }
     /// Where a point or spot light sits (media sample distances towards it); nullopt for every
     /// other light.

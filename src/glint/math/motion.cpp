@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace glint {
@@ -212,6 +213,29 @@ Bounds3 Motion::swept_bounds(const Bounds3& b) const {
     out.lo = out.lo - widen;
     out.hi = out.hi + widen;
     return out;
+}
+
+Transform rotation_between(Vector3 from, Vector3 to) {
+    const Vector3 axis = cross(from, to);
+    const Float s = length(axis), c = dot(from, to);
+    if (s > 1e-7f) return Transform::rotate(std::atan2(s, c) * Float(180 / std::numbers::pi), axis);
+    if (c > 0) return Transform{};
+    // Opposite: half a turn about any axis perpendicular to `from`.
+    const Vector3 other = std::abs(from.x) < 0.9f ? Vector3{1, 0, 0} : Vector3{0, 1, 0};
+    return Transform::rotate(180, cross(from, other));
+}
+
+std::vector<Transform> light_keys(const std::vector<Point3>& positions, const std::vector<Vector3>& directions,
+                                  Point3 still_at) {
+    const std::size_t n = std::max(positions.size(), directions.size());
+    std::vector<Transform> keys;
+    keys.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const Transform move = Transform::translate(to_vector(positions.empty() ? still_at : positions[k]));
+        keys.push_back(directions.empty() ? move
+                                          : move * rotation_between(normalize(directions[0]), normalize(directions[k])));
+    }
+    return keys;
 }
 
 }  // namespace glint

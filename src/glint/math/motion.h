@@ -24,6 +24,18 @@ namespace glint {
 /// so turns and moves at a steady rate are exact with any count; curves need a few per frame.
 int shutter_segments(double frames);
 
+/// The rotation by the smallest angle that turns unit direction `from` into unit direction `to`
+/// (about their cross product; half a turn about a perpendicular axis when they are opposite).
+Transform rotation_between(Vector3 from, Vector3 to);
+
+/// Keys for a light that moves and turns: T(position k) R(direction 0 to direction k), placing a
+/// light stored at the origin with direction 0. `positions` or `directions` may be empty (the
+/// light stays at `still_at`, or turns not); otherwise both have one entry per key. A light's
+/// position at a time is then the blended translation itself, exact between keys, and its
+/// direction turns along the arc (a pivot away from the origin would wobble between keys).
+std::vector<Transform> light_keys(const std::vector<Point3>& positions, const std::vector<Vector3>& directions,
+                                  Point3 still_at = {0, 0, 0});
+
 class Motion {
 public:
     Motion() = default;
