@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "glint/integrators/integrator.h"
@@ -280,32 +281,50 @@ TEST(Path, FilteredTexturesAtOneSampleAreCloserToThePixelMean) {
     EXPECT_EQ(a.pixels(), b.pixels());
 }
 
+// An environment map of one-texel checks, w x h.
+Image one_texel_checks(int w, int h) {
+    Image checks{w, h, {}, {}};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) checks.texels.push_back(Color{static_cast<float>((x + y) & 1)});
+    return checks;
+}
+
+// The scene of `yaml` under environment map `map`, its textures read with `filter` (none: the
+// scene's default, EWA).
+RenderJob under_environment(const std::string& yaml, const Image& map, std::optional<TextureFilter> filter) {
+    Overrides o;
+    o.texture_filter = filter;
+    auto sources = std::make_shared<SourceFiles>();
+    RenderJob j = build(parse_scene(yaml, "env.yaml", sources), o, sources);
+    j.scene.background = EnvironmentMap::make(map, 1);
+    j.scene.commit();
+    return j;
+}
+
+// Relative MSE at 1 spp of a job read unfiltered and filtered, against the unfiltered job's
+// pixels' means (256 spp), printed under `what`.
+std::pair<double, double> errors_at_1spp(const RenderJob& none, const RenderJob& filtered, const char* what) {
+    const Film ref = render_job(none, 256, 7);
+    const double e_none = rel_mse(render_job(none, 1), ref), e_filtered = rel_mse(render_job(filtered, 1), ref);
+    std::printf("%s, relative MSE at 1 spp: unfiltered %.5f, filtered %.5f\n", what, e_none, e_filtered);
+    return {e_none, e_filtered};
+}
+
 // An environment map of one-texel checks (1024 x 512), seen directly at about 2.7 texels per
 // pixel: read over the pixel's angle (trilinear MIP), 1 spp is closer to the pixels' means (256
 // spp, unfiltered) than one bilinear lookup per sample; a constant map reads its constant.
 TEST(Path, TheEnvironmentSeenByTheCameraIsFilteredOverThePixel) {
-    Image checks{1024, 512, {}, {}};
-    for (int y = 0; y < 512; ++y)
-        for (int x = 0; x < 1024; ++x) checks.texels.push_back(Color{static_cast<float>((x + y) & 1)});
+    const Image checks = one_texel_checks(1024, 512);
     const auto job = [&](std::optional<TextureFilter> f) {
-        Overrides o;
-        o.texture_filter = f;
-        auto sources = std::make_shared<SourceFiles>();
-        RenderJob j = build(parse_scene("camera: {type: look_at, from: [0, 0, 0], to: [0, 0.3, 1], fov: 40}\n"
-                                        "film: {width: 64, height: 32}\nintegrator: {type: path, max_depth: 1}\n",
-                                        "env.yaml", sources),
-                            o, sources);
-        j.scene.background = EnvironmentMap::make(checks, 1);
-        j.scene.commit();
-        return j;
+        return under_environment("camera: {type: look_at, from: [0, 0, 0], to: [0, 0.3, 1], fov: 40}\n"
+                                 "film: {width: 64, height: 32}\nintegrator: {type: path, max_depth: 1}\n",
+                                 checks, f);
     };
     const RenderJob none = job(TextureFilter::kBilinear), filtered = job(std::nullopt);
     ASSERT_FALSE(none.scene.footprint.has_value());
     ASSERT_TRUE(filtered.scene.footprint.has_value());
-    const Film ref = render_job(none, 256, 7);
-    const double e_none = rel_mse(render_job(none, 1), ref), e_filtered = rel_mse(render_job(filtered, 1), ref);
+    const auto [e_none, e_filtered] = errors_at_1spp(none, filtered, "environment");
     EXPECT_LT(e_filtered, 0.5 * e_none);
-    std::printf("environment, relative MSE at 1 spp: unfiltered %.5f, filtered %.5f\n", e_none, e_filtered);
     RenderJob flat = job(std::nullopt);
     flat.scene.background = EnvironmentMap::make(Image{8, 4, std::vector<Color>(32, Color{0.25f, 0.5f, 2}), {}}, 3);
     flat.scene.commit();
@@ -323,28 +342,16 @@ TEST(Path, TheEnvironmentSeenByTheCameraIsFilteredOverThePixel) {
 // unfiltered.
 TEST(Path, TheEnvironmentSeenInAChromeBallIsFilteredOverThePixel) {
     // Checks of one texel, each a bit over twice a pixel's angle in a direct view.
-    Image checks{256, 128, {}, {}};
-    for (int y = 0; y < 128; ++y)
-        for (int x = 0; x < 256; ++x) checks.texels.push_back(Color{static_cast<float>((x + y) & 1)});
+    const Image checks = one_texel_checks(256, 128);
     const auto job = [&](std::optional<TextureFilter> f) {
-        Overrides o;
-        o.texture_filter = f;
-        auto sources = std::make_shared<SourceFiles>();
-        RenderJob j = build(parse_scene("camera: {type: look_at, from: [0, 0, -4], to: [0, 0, 0], fov: 30}\n"
-                                        "film: {width: 48, height: 48}\nintegrator: {type: path, max_depth: 2}\n"
-                                        "materials: {chrome: {type: conductor, reflectance: [1, 1, 1]}}\n"
-                                        "objects: [{type: sphere, center: [0, 0, 0], radius: 1, material: chrome}]\n",
-                                        "ball.yaml", sources),
-                            o, sources);
-        j.scene.background = EnvironmentMap::make(checks, 1);
-        j.scene.commit();
-        return j;
+        return under_environment("camera: {type: look_at, from: [0, 0, -4], to: [0, 0, 0], fov: 30}\n"
+                                 "film: {width: 48, height: 48}\nintegrator: {type: path, max_depth: 2}\n"
+                                 "materials: {chrome: {type: conductor, reflectance: [1, 1, 1]}}\n"
+                                 "objects: [{type: sphere, center: [0, 0, 0], radius: 1, material: chrome}]\n",
+                                 checks, f);
     };
-    const RenderJob none = job(TextureFilter::kBilinear), filtered = job(std::nullopt);
-    const Film ref = render_job(none, 256, 7);
-    const double e_none = rel_mse(render_job(none, 1), ref), e_filtered = rel_mse(render_job(filtered, 1), ref);
-    std::printf("environment in a chrome ball, relative MSE at 1 spp: unfiltered %.5f, filtered %.5f\n", e_none,
-                e_filtered);
+    const auto [e_none, e_filtered] =
+        errors_at_1spp(job(TextureFilter::kBilinear), job(std::nullopt), "environment in a chrome ball");
     EXPECT_LT(e_filtered, 0.2 * e_none);
 }
 
@@ -372,11 +379,8 @@ TEST(Path, AFloorSeenInAMirrorIsFilteredOverThePixel) {
                                  "mirror.yaml", sources),
                      o, sources);
     };
-    const RenderJob none = job(TextureFilter::kBilinear), filtered = job(std::nullopt);
-    const Film ref = render_job(none, 256, 7);
-    const double e_none = rel_mse(render_job(none, 1), ref), e_filtered = rel_mse(render_job(filtered, 1), ref);
-    std::printf("checker floor in a mirror, relative MSE at 1 spp: unfiltered %.5f, filtered %.5f\n", e_none,
-                e_filtered);
+    const auto [e_none, e_filtered] =
+        errors_at_1spp(job(TextureFilter::kBilinear), job(std::nullopt), "checker floor in a mirror");
     EXPECT_LT(e_filtered, 0.25 * e_none);
 }
 
