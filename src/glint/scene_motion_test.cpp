@@ -460,10 +460,12 @@ Shape "sphere"
 }
 
 // The collection's killeroo-moving.pbrt is killeroo-simple.pbrt with ActiveTransform blocks
-// around the two killeroos; the same edit made here to the copy in ../shared/models. It reads
-// with no warning (strict) and both killeroos (the second comes later in the same block) move by
-// the start-time offset, carried by the Scale and Rotate above it: 0.5 R(-60 degrees about z)
-// (35, 35, 35), by hand.
+// around the two killeroos; the same edits made here to the copy in ../shared/models: the first
+// killeroo's start time is moved by (35, 35, 35) and the active transform stays the start time's
+// for the rest of the block; the second, in an attribute block of its own, moves its start by a
+// further (30, 0, 0), then both times by (-200, 0, 0). It reads with no warning (strict) and the
+// killeroos' start-to-end shifts are those offsets carried by the Scale and Rotate above them,
+// 0.5 R(-60 degrees about z) (35, 35, 35) and (65, 35, 35), by hand.
 TEST(MotionScene, KillerooMovingReadsWithoutWarnings) {
     const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_MODEL_DIR) / "pbrt-v4-scenes" / "killeroos";
     if (!std::filesystem::exists(dir / "killeroo-simple.pbrt")) GTEST_SKIP() << "no " << dir.string();
@@ -472,22 +474,27 @@ TEST(MotionScene, KillerooMovingReadsWithoutWarnings) {
     const std::string absolute = "    Include \"" + (dir / "geometry" / "killeroo.pbrt").string() + "\"\n";
     const std::size_t first = text.find(include);
     ASSERT_NE(first, std::string::npos);
-    text.replace(first, include.size(), "    ActiveTransform StartTime\n    Translate 35 35 35\n    ActiveTransform All\n" + absolute);
-    const std::size_t second = text.find(include);
+    text.replace(first, include.size(),
+                 "    ActiveTransform StartTime\n    Translate 35 35 35\n    AttributeBegin\n" + absolute + "    AttributeEnd\n");
+    const std::string second_block = "    Translate -200 0 0\n" + include;
+    const std::size_t second = text.find(second_block);
     ASSERT_NE(second, std::string::npos);
-    text.replace(second, include.size(), absolute);
+    text.replace(second, second_block.size(),
+                 "    AttributeBegin\n    ActiveTransform StartTime\n    Translate 30 0 0\n    ActiveTransform All\n"
+                 "    Translate -200 0 0\n" + absolute + "    AttributeEnd\n");
     auto sources = std::make_shared<SourceFiles>();
     const SceneDescription d = parse_pbrt(text, (dir / "killeroo-moving-test.pbrt").string(), sources, PbrtOptions{true});
     EXPECT_TRUE(d.warnings.empty());
     int moving = 0;
     for (const ObjectDesc& o : d.objects) {
         if (o.motion.empty()) continue;
-        ++moving;
         const Vector3 shift = o.motion[0].point({0, 0, 0}) - o.motion[1].point({0, 0, 0});
         const double c = std::cos(-std::numbers::pi / 3), s = std::sin(-std::numbers::pi / 3);
-        EXPECT_NEAR(shift.x, 0.5 * (35 * c - 35 * s), 1e-3);
-        EXPECT_NEAR(shift.y, 0.5 * (35 * s + 35 * c), 1e-3);
-        EXPECT_NEAR(shift.z, 0.5 * 35, 1e-3);
+        const double ox = moving == 0 ? 35 : 65;  // the objects come in the file's order
+        EXPECT_NEAR(shift.x, 0.5 * (ox * c - 35 * s), 1e-3) << moving;
+        EXPECT_NEAR(shift.y, 0.5 * (ox * s + 35 * c), 1e-3) << moving;
+        EXPECT_NEAR(shift.z, 0.5 * 35, 1e-3) << moving;
+        ++moving;
     }
     EXPECT_EQ(moving, 2);
     Overrides o;
