@@ -21,6 +21,17 @@ struct Ray {
     constexpr Point3 at(Float t) const { return origin + direction * t; }
 };
 
+/// Where the line from_p + t dir (from_p relative to p) meets the plane through p with normal n,
+/// relative to p; false where the line runs parallel to the plane. (The pixel footprint's model
+/// and a path's offset rays both meet a hit's tangent plane this way.)
+inline bool meet_plane(Vector3 from_p, Vector3 dir, Normal3 n, Vector3& out) {
+    const Float denom = dot(dir, n);
+    if (!(std::abs(denom) > 1e-8f * length(dir))) return false;
+    const Float t = -dot(from_p, n) / denom;
+    out = from_p + dir * t;
+    return true;
+}
+
 /// The rays beside a path's own that pass one pixel to the right and one pixel up (scaled as the
 /// pixel footprint is, cameras/camera.h), carried through perfectly specular reflections and
 /// refractions (Igehy's ray differentials, which pbrt-v4 carries the same way), so that a texture
@@ -36,11 +47,7 @@ struct RayDifferential {
     /// nothing written) where one runs parallel to the plane or the point is not finite.
     bool at(Point3 p, Normal3 n, Vector3& dpdx, Vector3& dpdy) const {
         const auto meet = [&](Point3 o, Vector3 d, Vector3& out) {
-            const Float denom = dot(n, d);
-            if (!(std::abs(denom) > 1e-8f * length(d))) return false;
-            const Vector3 from_p = o - p;
-            out = from_p + d * (-dot(n, from_p) / denom);
-            return is_finite(out);
+            return meet_plane(o - p, d, n, out) && is_finite(out);
         };
         Vector3 x, y;
         if (!meet(ox, dx, x) || !meet(oy, dy, y)) return false;

@@ -745,27 +745,21 @@ Color Scene::texture_general(TextureId id, const SurfaceInteraction& si) const {
     return evaluate(textures, images, id, ctx);
 }
 
-Vector3 Scene::normal_change(const SurfaceInteraction& si, Vector3 dp) const {
-    const auto change = [](Normal3 to, Normal3 from) {
-        const Vector3 v = to_vector(to) - to_vector(from);
-        return is_finite(v) ? v : Vector3{0, 0, 0};
-    };
-    const Point3 q = si.p + dp;
+Normal3 Scene::smooth_normal_at(const SurfaceInteraction& si, Point3 q) const {
     if (si.shape == ShapeKind::kSphere) {
         const Sphere& s = spheres[si.shape_index];
         if (const Motion* m = has_motion_ ? motion_of(si.shape, si.shape_index) : nullptr) {
             const Transform d = m->at(si.time);
-            const auto at = [&](Point3 x) { return normalize(d.normal(s.normal_at(d.to_object.apply(x)))); };
-            return change(at(q), at(si.p));
+            return normalize(d.normal(s.normal_at(d.to_object.apply(q))));
         }
-        return change(normalize(s.normal_at(q)), normalize(s.normal_at(si.p)));
+        return normalize(s.normal_at(q));
     }
-    if (si.shape != ShapeKind::kMesh) return Vector3{0, 0, 0};  // flat
+    if (si.shape != ShapeKind::kMesh) return si.n;  // flat
     const TriangleMesh& m = meshes[instances[si.shape_index].mesh];
-    if (m.normals.empty()) return Vector3{0, 0, 0};
-    const Transform place = placement(si.shape_index, si.time);
-    const auto at = [&](Point2 b) { return normalize(place.normal(m.interpolate(m.normals, si.prim, b.x, b.y))); };
-    return change(at(mesh_barycentrics(si.shape_index, si.prim, q, si.time)), at(si.bary));
+    if (m.normals.empty()) return si.n;
+    // At si.p itself, its own barycentrics (the same point, without the projection's round-off).
+    const Point2 b = q == si.p ? si.bary : mesh_barycentrics(si.shape_index, si.prim, q, si.time);
+    return normalize(placement(si.shape_index, si.time).normal(m.interpolate(m.normals, si.prim, b.x, b.y)));
 }
 
 Float Scene::vertex_alpha(const SurfaceInteraction& si) const {

@@ -252,9 +252,10 @@ struct Scene {
     /// the texture lookups, a normal map's among them).
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit,
                                    const RayDifferential* differential = nullptr) const;
-    /// How the surface's shading normal (interpolated, before any normal map) turns from si.p to
-    /// si.p + dp, dp in the tangent plane: zero on flat shapes and meshes without normals.
-    Vector3 normal_change(const SurfaceInteraction& si, Vector3 dp) const;
+    /// The surface's own shading normal at q, a point of si's tangent plane near si.p (unit; on
+    /// meshes interpolated, before any normal map): a sphere's normal there, a mesh's interpolated
+    /// normal at q's barycentrics, si.n on flat shapes and meshes without normals.
+    Normal3 smooth_normal_at(const SurfaceInteraction& si, Point3 q) const;
 
 private:
     friend class EmbreeAccel;

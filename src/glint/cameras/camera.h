@@ -63,11 +63,9 @@ struct PixelFootprint {
         const auto along = [&](Vector3 step, Vector3& out) {
             // Perspective: the ray from the camera along d + step; orthographic: along d from p + step.
             const Vector3 dir = orthographic ? d : d + step;
-            const Float denom = dot(dir, n);
-            if (!(std::abs(denom) > 1e-8f * length(dir))) return false;
             const Vector3 from_p = orthographic ? step : -to_p;  // the ray's origin, relative to p
-            const Float t = -dot(from_p, n) / denom;
-            out = (from_p + dir * t) * scale;
+            if (!meet_plane(from_p, dir, n, out)) return false;
+            out = out * scale;
             return is_finite(out);
         };
         Vector3 x, y;

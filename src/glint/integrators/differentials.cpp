@@ -23,8 +23,13 @@ std::optional<RayDifferential> scatter_differential(const Scene& scene, const Su
     const Vector3 ns = to_vector(si.ns);
     // The normal on the side the path's own ray came from, for the refraction.
     const Float side = dot(wo, ns) >= 0 ? 1 : -1;
+    // The shading normal at an offset point: si.ns turned as the surface's own normal turns from
+    // si.p to there (zero on flat shapes), so that a normal map's bend is kept.
+    const Vector3 n0 = to_vector(scene.smooth_normal_at(si, si.p));
     const auto turn = [&](Vector3 dp, Vector3 v, Vector3& out) {
-        const Vector3 n = normalize(ns + scene.normal_change(si, dp)) * side;
+        Vector3 dn = to_vector(scene.smooth_normal_at(si, si.p + dp)) - n0;
+        if (!is_finite(dn)) dn = Vector3{0, 0, 0};
+        const Vector3 n = normalize(ns + dn) * side;
         const Float len = length(v);
         if (!(len > 0) || !is_finite(n)) return false;
         const Vector3 u = v / len;

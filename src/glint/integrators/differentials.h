@@ -12,7 +12,7 @@ namespace glint {
 /// path arrived along unit direction d with offset rays `in`, or, for null, is the camera's ray,
 /// whose offset rays come from the camera's footprint model. The offset rays leave from where
 /// they met si's tangent plane, turned about the shading normal there: si.ns plus the surface's
-/// own change of normal (Scene::normal_change), so a curved mirror spreads them and a flat one
+/// own change of normal (Scene::smooth_normal_at), so a curved mirror spreads them and a flat one
 /// keeps the mirror image's footprint. Empty where an offset ray runs parallel to the plane, or
 /// is totally reflected where the path's own ray refracts; textures further on then read the
 /// camera's model, as they do after any bounce that is not specular (pbrt-v4's rule).
