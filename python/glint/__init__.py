@@ -143,11 +143,19 @@ def load(path, *, strict=False, frame=0.0, camera=""):
 
 
 def _plain(value, arrays):
-    """The dict as JSON-able values; numpy arrays under an inline mesh's keys into `arrays`."""
+    """The dict as JSON-able values; numpy arrays under an inline mesh's keys, an image texture's
+    `pixels` and a grid medium's `voxels` into `arrays`."""
     if isinstance(value, dict):
-        if value.get("type") == "mesh":
+        kind = value.get("type")
+        if kind == "mesh":
             return {k: (_mesh_array(v, k, arrays) if k in _MESH_ARRAYS and isinstance(v, np.ndarray)
                         else _plain(v, arrays)) for k, v in value.items()}
+        if kind == "image" and isinstance(value.get("pixels"), np.ndarray):
+            return _image_dict(value, arrays)
+        if kind == "grid" and isinstance(value.get("voxels"), np.ndarray):
+            out = {str(k): _plain(v, arrays) for k, v in value.items() if k != "voxels"}
+            out["voxels"] = _block_array(value["voxels"], arrays)
+            return out
         return {str(k): _plain(v, arrays) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [_plain(v, arrays) for v in value]
@@ -182,11 +190,41 @@ def _mesh_array(a, key, arrays):
     return f"<array {len(arrays) - 1}>"
 
 
+def _block_array(a, arrays):
+    # An image's pixels or a grid's voxels, handed over with their shape (float32, C order).
+    if id(a) in arrays:
+        return f"<array {arrays[id(a)][0]}>"
+    handed = np.ascontiguousarray(a, dtype=np.float32)
+    arrays[id(a)] = (len(arrays), a, handed)
+    return f"<array {len(arrays) - 1}>"
+
+
+def _image_dict(value, arrays):
+    # Integer pixels (uint8, uint16) are read as files of those types are: scaled to [0, 1] and,
+    # unless `encoding` says otherwise, sRGB-encoded. Floats are linear unless it says srgb.
+    out = {str(k): _plain(v, arrays) for k, v in value.items() if k != "pixels"}
+    pixels = value["pixels"]
+    if pixels.dtype.kind in "iu":
+        if pixels.dtype.kind == "i" and pixels.size and pixels.min() < 0:
+            raise ValueError("image pixels: integer pixels must not be negative")
+        top = np.iinfo(pixels.dtype).max if pixels.dtype.itemsize <= 2 else None
+        if top is None:
+            raise TypeError(f"image pixels: integers of {pixels.dtype} have no standard scale; give uint8, "
+                            "uint16 or floats")
+        if out.get("encoding", "auto") == "auto":
+            out["encoding"] = "srgb"
+        pixels = pixels.astype(np.float32) / np.float32(top)
+    out["pixels"] = _block_array(pixels, arrays)
+    return out
+
+
 def load_dict(scene, *, name="<dict>", frame=0.0):
     """A scene given as Python dicts and lists, with the keys of the YAML scene format
     (docs/scene-format.md). numpy arrays may stand wherever a list of numbers does; an inline
-    mesh's `positions`, `indices`, `normals`, `uvs` and `colors` are read straight from the
-    arrays' memory (float32 and uint32 ones without any copy but the mesh's own):
+    mesh's `positions`, `indices`, `normals`, `uvs` and `colors`, an image texture's `pixels`
+    (height x width [x 1, 3 or 4 channels], row 0 at the top; uint8 and uint16 read as sRGB) and a
+    grid medium's `voxels` (nz x ny x nx, x fastest) are read straight from the arrays' memory
+    (float32 and uint32 ones without any copy but the mesh's, image's or grid's own):
 
         glint.load_dict({"camera": {...}, "objects": [
             {"type": "mesh", "positions": P, "indices": F, "material": {"type": "diffuse"}}]})

@@ -222,16 +222,18 @@ py::dict render_scene(std::shared_ptr<LoadedScene> scene, const std::string& nam
     return out;
 }
 
-// Numpy arrays beside a dict's JSON text: float32 or uint32, C-contiguous, 1 or 2 dimensions
+// Numpy arrays beside a dict's JSON text: float32 or uint32, C-contiguous, 1 to 3 dimensions
 // (__init__.py converts them). Kept alive by the caller for the parse.
 InlineArrays views_of(const std::vector<py::array>& arrays) {
     InlineArrays views;
     for (const py::array& a : arrays) {
         ArrayView v;
-        if (a.ndim() < 1 || a.ndim() > 2 || !(a.flags() & py::array::c_style))
-            throw std::invalid_argument("arrays must be C-contiguous, of 1 or 2 dimensions");
-        v.rows = static_cast<std::size_t>(a.shape(0));
-        v.columns = a.ndim() == 2 ? static_cast<std::size_t>(a.shape(1)) : 1;
+        if (a.ndim() < 1 || a.ndim() > 3 || !(a.flags() & py::array::c_style))
+            throw std::invalid_argument("arrays must be C-contiguous, of 1 to 3 dimensions");
+        v.dims = static_cast<int>(a.ndim());
+        for (int i = 0; i < v.dims; ++i) v.shape[static_cast<std::size_t>(i)] = static_cast<std::size_t>(a.shape(i));
+        v.rows = v.shape[0];
+        v.columns = v.dims == 1 ? 1 : v.shape[1] * (v.dims == 3 ? v.shape[2] : 1);
         if (a.dtype().is(py::dtype::of<float>())) v.floats = static_cast<const float*>(a.data());
         else if (a.dtype().is(py::dtype::of<std::uint32_t>())) v.ints = static_cast<const std::uint32_t*>(a.data());
         else throw std::invalid_argument("arrays must be float32 or uint32");

@@ -173,6 +173,77 @@ def test_bad_arrays_are_errors(change, message):
     assert message in str(e.value)
 
 
+def pixels_scene(pixels, **texture):
+    return {
+        "camera": {"type": "look_at", "from": [0, 0, -3], "to": [0, 0, 0], "fov": 30},
+        "film": {"width": 24, "height": 16},
+        "integrator": {"type": "flat"},
+        "objects": [{"type": "quad", "corner": [-1.5, -1, 0], "edge1": [3, 0, 0], "edge2": [0, 2, 0],
+                     "material": {"color": dict({"type": "image", "pixels": pixels}, **texture)}}],
+    }
+
+
+def test_numpy_pixels_equal_the_same_pixels_as_lists():
+    rng = np.random.default_rng(3)
+    pixels = rng.random((4, 6, 3), dtype=np.float32)
+    from_numpy = glint.render(pixels_scene(pixels), spp=4, seed=1)
+    from_lists = glint.render(glint.load_dict(pixels_scene(pixels.tolist())), spp=4, seed=1)
+    assert np.array_equal(from_numpy, from_lists)
+    # Row 0 is the top of the image: in the flat view of a 2 x 2 image clamped at its edges, each
+    # corner of the picture shows that corner's pixel exactly (the quad fills the frame).
+    corners = np.array([[[1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 1, 1]]], dtype=np.float32)
+    seen = glint.render(pixels_scene(corners, wrap="clamp"), spp=1)
+    for (y, x), (row, col) in {(0, 0): (0, 0), (0, -1): (0, 1), (-1, 0): (1, 0), (-1, -1): (1, 1)}.items():
+        assert np.array_equal(seen[y, x], corners[row, col]), (y, x, seen[y, x])
+    # Grey and RGBA arrays are images too.
+    assert glint.render(pixels_scene(pixels[:, :, 0]), spp=1).shape == (16, 24, 3)
+    assert glint.render(pixels_scene(np.dstack([pixels, np.ones((4, 6, 1), np.float32)])), spp=1).shape == (16, 24, 3)
+
+
+def test_8_bit_pixels_read_as_srgb_like_8_bit_files():
+    codes = np.array([[[0, 128, 255]]], dtype=np.uint8)
+    image = glint.render(pixels_scene(codes), spp=1, width=4, height=4)
+    srgb = np.where(codes / 255 <= 0.04045, codes / 255 / 12.92, ((codes / 255 + 0.055) / 1.055) ** 2.4)
+    assert np.allclose(image[2, 2], srgb[0, 0], atol=1e-5)
+    linear = glint.render(pixels_scene(codes, encoding="linear"), spp=1, width=4, height=4)
+    assert np.allclose(linear[2, 2], codes[0, 0] / 255, atol=1e-5)
+
+
+def voxels_scene(voxels):
+    return {
+        "integrator": {"type": "path", "max_depth": 4},
+        "film": {"width": 8, "height": 8},
+        "camera": {"type": "look_at", "from": [0.5, 0.5, -3], "to": [0.5, 0.5, 0], "fov": 10},
+        "background": {"type": "constant", "color": [1, 1, 1]},
+        "media": {"smoke": {"type": "grid", "voxels": voxels, "sigma_a": [2, 2, 2], "sigma_s": [0, 0, 0]}},
+        "objects": [{"type": "box", "min": [-1, -1, -1], "max": [2, 2, 2], "material": "interface",
+                     "interior": "smoke"}],
+    }
+
+
+def test_numpy_voxels_equal_the_same_voxels_as_lists():
+    voxels = np.zeros((4, 5, 6), dtype=np.float32)  # (nz, ny, nx)
+    voxels[:, :, 3:] = 1.0  # the right half (x >= 0.5) dense
+    from_numpy = glint.render(voxels_scene(voxels), spp=64, seed=1)
+    from_lists = glint.render(voxels_scene(voxels.tolist()), spp=64, seed=1)
+    assert np.array_equal(from_numpy, from_lists)
+    # x fastest: the dense half is on the right of the picture (+x is to the right, looking +z).
+    left, right = from_numpy[:, :3].mean(), from_numpy[:, 5:].mean()
+    assert left > 0.9 and right < 0.5, (left, right)
+
+
+@pytest.mark.parametrize("scene, message", [
+    (lambda: pixels_scene(np.zeros((4, 6, 2), np.float32)), "must have 1, 3 or 4 channels"),
+    (lambda: pixels_scene(np.full((2, 2), np.nan, np.float32)), "number 0 (counting from 0) is nan"),
+    (lambda: voxels_scene(np.ones((4, 4), np.float32)), "'voxels' must have 3 dimensions"),
+    (lambda: voxels_scene(-np.ones((2, 2, 2))), "is -1"),
+])
+def test_bad_pixels_and_voxels_are_errors(scene, message):
+    with pytest.raises(glint.SceneError) as e:
+        glint.load_dict(scene())
+    assert message in str(e.value)
+
+
 # --- AOVs against what the scene says ------------------------------------------------------------
 
 

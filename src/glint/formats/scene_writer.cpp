@@ -111,6 +111,7 @@ std::string Writer::texture(const TextureDesc& t) const {
             return fmt::format("{{type: checker, size: {}, even: {}, odd: {}}}", num(t.checker.size), vec(t.checker.even),
                                vec(t.checker.odd));
         case K::kImage: {
+            if (t.pixels) throw IoError("convert: image textures given as pixels are not written yet");
             std::string s = fmt::format("{{type: image, filename: {}", yaml_quoted(file(t.filename.value)));
             if (t.encoding == ImageEncoding::kSrgb) s += ", encoding: srgb";
             if (t.encoding == ImageEncoding::kLinear) s += ", encoding: linear";

@@ -1,6 +1,7 @@
 #pragma once
 // Scene files in YAML (yaml-cpp). JSON is accepted too: it is YAML 1.2. The format is documented
 // in docs/scene-format.md.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -13,13 +14,18 @@
 namespace glint {
 
 /// Numbers given beside a scene's text instead of in it (the Python module's numpy arrays,
-/// docs/python.md): an inline mesh's `positions`, `indices`, `normals`, `uvs` or `colors` whose
-/// value is the string "<array N>" reads arrays[N]. The memory stays the caller's; the parser
-/// copies it once, into the mesh.
+/// docs/python.md): an inline mesh's `positions`, `indices`, `normals`, `uvs` or `colors`, an
+/// image texture's `pixels` or a grid medium's `voxels` whose value is the string "<array N>"
+/// reads arrays[N]. The memory stays the caller's; the parser copies it once, into the mesh,
+/// image or grid.
 struct ArrayView {
     const float* floats = nullptr;         ///< rows x columns floats, row-major; or
     const std::uint32_t* ints = nullptr;   ///< rows x columns indices
     std::size_t rows = 0, columns = 0;
+    /// The array's own shape, row-major (rows = shape[0], columns = the product of the rest);
+    /// dims 1 to 3. Pixels are (height, width[, channels]), voxels (nz, ny, nx).
+    std::array<std::size_t, 3> shape{0, 0, 0};
+    int dims = 0;
 };
 using InlineArrays = std::vector<ArrayView>;
 

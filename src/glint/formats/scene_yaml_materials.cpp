@@ -66,16 +66,20 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
     } else if (*type == "image") {
         t.kind = TextureDesc::Kind::kImage;
         MapReader m(r_, node, "image texture", vocabulary_keys("texture", "image"));
-        if (const auto n = m.require("filename")) {
-            t.filename.loc = r_.loc(*n);
-            assign(n, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
-        }
         if (const auto n = m.get("encoding")) {
             if (auto e = choice<ImageEncoding>(*n, "encoding",
                                                {{"auto", ImageEncoding::kAuto},
                                                 {"srgb", ImageEncoding::kSrgb},
                                                 {"linear", ImageEncoding::kLinear}}))
                 t.encoding = *e;
+        }
+        // An image file, or its pixels in the scene itself (scene_yaml_pixels.cpp).
+        if (const auto n = m.get("pixels")) {
+            if (m.has("filename")) r_.error(*m.get("filename"), "image texture: give 'filename' or 'pixels', not both");
+            else t.pixels = inline_image(*n, t.encoding);
+        } else if (const auto f = m.require("filename")) {
+            t.filename.loc = r_.loc(*f);
+            assign(f, t.filename.value, [this](const YAML::Node& v) { return r_.string(v); });
         }
         if (const auto n = m.get("wrap")) {
             if (auto w = choice<WrapMode>(
@@ -428,7 +432,15 @@ MediumDesc SceneParser::medium(const YAML::Node& node, const std::string& contex
     }
     assign(m.get("emission"), d.emission, color());
     if (d.kind == MediumDesc::Kind::kGrid) {
-        if (const auto f = m.require("file")) d.file = located_name(*f);
+        const auto voxels = m.get("voxels");
+        if (voxels) {  // the density in the scene itself, not a file
+            for (const char* k : {"file", "grid", "emission_grid", "temperature_grid"})
+                if (m.has(k)) r_.error(*m.get(k), fmt::format("{}: '{}' names a grid in a file; with 'voxels' give none", context, k));
+        } else {
+            for (const char* k : {"min", "max"})
+                if (m.has(k)) r_.error(*m.get(k), fmt::format("{}: '{}' places 'voxels', which are not given", context, k));
+            if (const auto f = m.require("file")) d.file = located_name(*f);
+        }
         if (const auto g = m.get("grid")) d.density_grid = located_name(*g);
         const auto eg = m.get("emission_grid"), tg = m.get("temperature_grid");
         if (eg && tg) {
@@ -452,6 +464,7 @@ MediumDesc SceneParser::medium(const YAML::Node& node, const std::string& contex
             return r_.number_in(v, "temperature_scale", 0, kInf);
         });
         if (const auto t = m.get("transform")) d.transform = transform(*t);
+        if (voxels) inline_voxels(m, *voxels, d);
     }
     return d;
 }

@@ -12,9 +12,6 @@
 
 namespace glint::yaml_detail {
 
-namespace {
-
-// N from "<array N>"; -1 if the text is not of that form.
 long long array_number(const std::string& s) {
     constexpr std::string_view head = "<array ";
     if (s.size() < head.size() + 2 || s.compare(0, head.size(), head) != 0 || s.back() != '>') return -1;
@@ -24,8 +21,6 @@ long long array_number(const std::string& s) {
     const auto [end, ec] = std::from_chars(first, last, n);
     return ec == std::errc{} && end == last ? n : -1;
 }
-
-}  // namespace
 
 bool SceneParser::check_mesh_size(const YAML::Node& node, const char* key, std::size_t rows, bool triangles) {
     const Limit l = triangles ? Limit::kTriangles : Limit::kVertices;

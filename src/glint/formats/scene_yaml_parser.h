@@ -32,6 +32,9 @@ inline std::string join(const std::vector<std::string>& names) {
     return out;
 }
 
+// N from "<array N>" (an array handed over beside the text); -1 if the text is not of that form.
+long long array_number(const std::string& s);
+
 template <typename T, typename Read>
 void assign(const std::optional<YAML::Node>& node, T& field, Read read) {
     if (!node) return;
@@ -183,6 +186,27 @@ private:
                                        std::vector<float>& storage);
     // Whether `rows` vertices (or triangles) fit the limits and the memory budget; errors otherwise.
     bool check_mesh_size(const YAML::Node& node, const char* key, std::size_t rows, bool triangles);
+
+    // Numbers in a block of `min_dims` to `max_dims` dimensions (scene_yaml_pixels.cpp): a YAML
+    // list nested that deep, every row of one length, or "<array N>" (float32, its own shape).
+    // At most `max_values` numbers; nullopt after an error, located at `node`.
+    struct NumberBlock {
+        std::vector<float> storage;      ///< the list's numbers, when read from YAML
+        std::span<const float> values;   ///< row-major: storage, or the handed-over memory
+        std::array<std::size_t, 3> shape{0, 0, 0};
+        int dims = 0;
+    };
+    std::optional<NumberBlock> number_block(const YAML::Node& node, const std::string& what, int min_dims,
+                                            int max_dims, long long max_values);
+    // Whether every value is finite and >= 0; an error naming the first that is not otherwise.
+    bool check_values(const YAML::Node& node, const std::string& what, std::span<const float> values);
+    // An image texture's `pixels`: (height, width[, channels]) with 1, 3 or 4 channels, row 0 at the
+    // top, linear unless `encoding` is srgb; null after an error.
+    std::shared_ptr<const Image> inline_image(const YAML::Node& node, ImageEncoding encoding);
+    // A grid medium's `voxels` (nz, ny, nx; x fastest) filling the box `min`..`max` of `m`, before
+    // the medium's `transform`; sets d.inline_density and d.transform.
+    void inline_voxels(MapReader& m, const YAML::Node& node, MediumDesc& d);
+
     std::vector<Diagnostic> warnings_;  ///< into SceneDescription::warnings
     /// Inline meshes by the arrays they were read from ("<array 0>|<array 1>|-|..."): shared.
     std::map<std::string, std::shared_ptr<const TriangleMesh>> shared_meshes_;
