@@ -51,6 +51,8 @@ class Export:
         self.unmapped = []
         self._meshes = {}       # evaluated object name -> [(arrays, material slot)]
         self._materials = {}    # material name -> glint material dict
+        self._volumes = {}      # material name -> glint medium name, or None (no volume)
+        self._media = {}        # glint medium name -> medium dict
 
     def note(self, text):
         if text not in self.unmapped:
@@ -68,7 +70,7 @@ class Export:
             elif obj.type == "LIGHT":
                 self.light(obj, matrix, objects, lights)
             elif obj.type == "VOLUME":
-                self.note(f"volume object '{obj.name}': OpenVDB volumes are not mapped yet")
+                objects += self.volume_object(obj, matrix)
             elif obj.type not in {"CAMERA", "EMPTY", "ARMATURE", "LATTICE", "SPEAKER", "LIGHT_PROBE"}:
                 self.note(f"object '{obj.name}' of type {obj.type}: not mapped")
         scene = {
@@ -81,6 +83,13 @@ class Export:
         }
         if lights:
             scene["lights"] = lights
+        if self._media:
+            scene["media"] = self._media
+        world = self.scene.world
+        if world is not None and world.use_nodes and world.node_tree is not None:
+            out = next((n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
+            if out is not None and out.inputs["Volume"].is_linked:
+                self.note("world: a world volume (fog everywhere) is not mapped")
         return scene
 
     # --- camera ----------------------------------------------------------------------------------
@@ -220,8 +229,148 @@ class Export:
             o = dict(arrays, type="mesh", material=material, transform=transform)
             if alpha is not None:
                 o["alpha"], o["alpha_mode"] = alpha, "blend"
+            mat = obj.material_slots[slot].material if slot < len(obj.material_slots) else None
+            medium = self.mesh_medium(mat)
+            if medium is not None:
+                # The mesh bounds the medium (its normals face out of it); with no surface shader
+                # it is only the medium's boundary, as in Cycles.
+                o["interior"] = medium
+                if not self._has_surface(mat):
+                    o["material"] = "interface"
+                    o.pop("alpha", None), o.pop("alpha_mode", None)
             out.append(o)
         return out
+
+    # --- volumes ---------------------------------------------------------------------------------
+
+    @staticmethod
+    def _output(mat):
+        if mat is None or not mat.use_nodes or mat.node_tree is None:
+            return None
+        return next((n for n in mat.node_tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output), None)
+
+    def _has_surface(self, mat):
+        out = self._output(mat)
+        return out is not None and out.inputs["Surface"].is_linked
+
+    def volume_node(self, mat):
+        out = self._output(mat)
+        if out is None or not out.inputs["Volume"].is_linked:
+            return None
+        return out.inputs["Volume"].links[0].from_node
+
+    def coefficients(self, mat, node):
+        """Cycles' volume closures as glint's sigma_a, sigma_s (per metre), g, and the emission
+        per metre (Cycles' volume emission is radiance added per unit length, not scaled by
+        density). Principled Volume, as Cycles computes it: sigma_s = D C and
+        sigma_a = D max(1 - C, 0) max(1 - sqrt(A), 0) (A: Absorption Color)."""
+        i = node.inputs
+        value = (lambda name: self.number_input(mat, i[name]))
+        color = (lambda name: self.color_input(mat, i[name]) if not i[name].is_linked else
+                 (self.note(f"material '{mat.name}': '{name}' from a node is not mapped (its value is used)")
+                  or _rgb(i[name].default_value)))
+        zero = [0.0, 0.0, 0.0]
+        if node.type == "PRINCIPLED_VOLUME":
+            d = max(0.0, value("Density"))
+            c = color("Color")
+            a = color("Absorption Color")
+            sigma_s = [d * x for x in c]
+            sigma_a = [d * max(1 - x, 0.0) * max(1 - math.sqrt(max(y, 0.0)), 0.0) for x, y in zip(c, a)]
+            strength = max(0.0, value("Emission Strength"))
+            emission = [strength * x for x in color("Emission Color")]
+            if value("Blackbody Intensity") > 1e-3:
+                self.note(f"material '{mat.name}': Principled Volume blackbody emission is not mapped")
+            return sigma_a, sigma_s, value("Anisotropy"), emission
+        if node.type == "VOLUME_ABSORPTION":
+            d = max(0.0, value("Density"))
+            return [d * max(1 - x, 0.0) for x in color("Color")], zero, 0.0, zero
+        if node.type == "VOLUME_SCATTER":
+            d = max(0.0, value("Density"))
+            return zero, [d * x for x in color("Color")], value("Anisotropy"), zero
+        self.note(f"material '{mat.name}': volume node {node.bl_idname} is not mapped (no medium)")
+        return None
+
+    def _medium_name(self, mat):
+        return f"volume '{mat.name}'"
+
+    def mesh_medium(self, mat):
+        """The glint medium a mesh with this material encloses (homogeneous), or None."""
+        if mat is None:
+            return None
+        if mat.name in self._volumes:
+            return self._volumes[mat.name]
+        name = None
+        node = self.volume_node(mat)
+        got = self.coefficients(mat, node) if node is not None else None
+        if got is not None:
+            sigma_a, sigma_s, g, emission = got
+            medium = {"type": "homogeneous", "sigma_a": sigma_a, "sigma_s": sigma_s,
+                      "g": min(0.99, max(-0.99, g))}
+            if any(emission):
+                # glint's media emit sigma_a Le per unit length (pbrt's convention).
+                if all(e == 0 or a > 0 for e, a in zip(emission, sigma_a)):
+                    medium["emission"] = [e / a if e > 0 else 0.0 for e, a in zip(emission, sigma_a)]
+                else:
+                    self.note(f"material '{mat.name}': volume emission where nothing absorbs is not mapped")
+            name = self._medium_name(mat)
+            self._media[name] = medium
+        self._volumes[mat.name] = name
+        return name
+
+    def volume_object(self, obj, matrix):
+        """An OpenVDB Volume object: a grid medium read from its file (the current frame's), placed
+        by the grid's own transform and then the object's, inside an interface box around its
+        bounds. The material's volume node gives the coefficients at grid value 1; its Density
+        Attribute names the grid."""
+        import bpy
+        vol = obj.data
+        path = getattr(vol.grids, "frame_filepath", "") or vol.filepath
+        if not path:
+            self.note(f"volume object '{obj.name}': only volumes read from OpenVDB files are mapped")
+            return []
+        path = bpy.path.abspath(path, library=vol.library)
+        mat = obj.material_slots[0].material if len(obj.material_slots) else None
+        node = self.volume_node(mat)
+        got = self.coefficients(mat, node) if node is not None else None
+        if got is None:
+            if node is None:
+                self.note(f"volume object '{obj.name}': no volume shader, nothing to render")
+            return []
+        sigma_a, sigma_s, g, emission = got
+        grid = "density"
+        if node.type == "PRINCIPLED_VOLUME":
+            grid = node.inputs["Density Attribute"].default_value or "density"
+            if any(emission):
+                self.note(f"material '{mat.name}': Principled Volume emission on volume objects is not mapped")
+            try:
+                vol.grids.load()
+                names = {gr.name for gr in vol.grids}
+            except Exception:  # a file Blender cannot read: glint's reader says what is wrong
+                names = set()
+            attr = node.inputs["Color Attribute"].default_value
+            if attr and attr in names:
+                self.note(f"material '{mat.name}': the colour grid '{attr}' is not mapped (Color is used)")
+        render = getattr(vol, "render", None)
+        if render is None or render.space == "OBJECT":
+            # Blender's default: the density is per unit of the object's own space, so a volume
+            # scaled by s has s times fewer of them per metre along a ray (glint's are per metre).
+            k = 1 / max(_uniform_scale(matrix), 1e-12)
+            s = matrix.to_scale()
+            if max(abs(x) for x in s) > 1.001 * min(abs(x) for x in s):
+                self.note(f"volume object '{obj.name}': object-space density under a non-uniform scale "
+                          "is mapped by the mean scale")
+            sigma_a, sigma_s = [k * x for x in sigma_a], [k * x for x in sigma_s]
+        m = W @ _matrix(matrix)
+        rows = [[float(x) for x in row] for row in m[:3]]
+        name = f"volume object '{obj.name}'"
+        self._media[name] = {"type": "grid", "file": path, "grid": grid, "sigma_a": sigma_a,
+                             "sigma_s": sigma_s, "g": min(0.99, max(-0.99, g)),
+                             "transform": [{"matrix": rows}]}
+        corners = np.array([list(c) for c in obj.bound_box], dtype=np.float64)
+        lo, hi = corners.min(axis=0), corners.max(axis=0)
+        pad = 0.02 * (hi - lo).max() + 1e-6  # the trilinear support reaches past the active voxels
+        return [{"type": "box", "min": [float(x) for x in lo - pad], "max": [float(x) for x in hi + pad],
+                 "material": "interface", "interior": name, "transform": [{"matrix": rows}]}]
 
     def mesh_parts(self, obj):
         """The object's evaluated mesh (modifiers applied), split by material slot, as numpy arrays:
@@ -287,9 +436,7 @@ class Export:
     def convert_material(self, mat):
         if not mat.use_nodes or mat.node_tree is None:
             return {"type": "diffuse", "albedo": _rgb(mat.diffuse_color)}, None
-        out = next((n for n in mat.node_tree.nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output), None)
-        if out is not None and out.inputs["Volume"].is_linked:
-            self.note(f"material '{mat.name}': volumes (Principled Volume) are not mapped yet")
+        out = self._output(mat)
         if out is None or not out.inputs["Surface"].is_linked:
             return {"type": "diffuse", "albedo": [0, 0, 0]}, None
         node = out.inputs["Surface"].links[0].from_node
