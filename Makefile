@@ -48,7 +48,7 @@ test-release: configure
 # installs Blender (about 300 MB from Debian, a few minutes on a fresh machine); about a minute (63 s here).
 test-blender: configure
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
-	cmake --build $(BUILD) -j $(JOBS) --target glint_python
+	cmake --build $(BUILD) -j $(JOBS) --target glint_python glint_cloud_vdb
 	GLINT_PYTHON=$(CURDIR)/$(BUILD)/python/glint blender -b --factory-startup --python tests/blender/test_engine.py
 
 $(FUZZ_BUILD)/build.ninja: | deps
