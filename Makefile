@@ -50,6 +50,8 @@ test-blender: configure
 	GLINT_BENCH_DEPS=1 scripts/install-deps.sh
 	cmake --build $(BUILD) -j $(JOBS) --target glint_python glint_cloud_vdb
 	GLINT_PYTHON=$(CURDIR)/$(BUILD)/python/glint blender -b --factory-startup --python tests/blender/test_engine.py
+	GLINT_PYTHON=$(CURDIR)/$(BUILD)/python/glint xvfb-run -a -s "-screen 0 1280x800x24" \
+	  blender --factory-startup --python tests/blender/test_viewport.py
 
 $(FUZZ_BUILD)/build.ninja: | deps
 	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -31,9 +31,9 @@ packages=(
   clang libclang-rt-14-dev # libFuzzer and the sanitizers: `make fuzz`, run by `make test`
 )
 # Optional groups, not needed to build or test:
-# peers and timer for `make bench`, OpenCV for the denoiser's classical baseline (bench/denoise.sh),
+# peers and timer for `make bench`, OpenCV for the denoiser's classical baseline (bench/denoise.sh), Xvfb for the Blender viewport test (make test-blender),
 if [[ "${GLINT_BENCH_DEPS:-0}" == 1 ]]; then
-  packages+=(povray hyperfine blender time python3-opencv)
+  packages+=(povray hyperfine blender xvfb time python3-opencv)
 fi
 
 missing=()

@@ -3,7 +3,8 @@
 Renders the evaluated depsgraph in memory through glint's Python module: the scene becomes a
 dict with numpy meshes (export.py), glint renders it in progressive passes, and each pass is
 written into Blender's render result, with progress and Esc to cancel. What does not map is
-reported once per render in the Info area.
+reported once per render in the Info area. In the viewport's Rendered shading the same render
+runs live through the viewport's own view (view_update, view_draw).
 
 The compiled module is found, in order, where the add-on preferences point, on sys.path under
 the name glint_renderer, or in the checkout's build/python/glint beside this add-on when it is
@@ -23,6 +24,7 @@ import importlib.util
 import os
 import pathlib
 import sys
+import threading
 
 import bpy
 import numpy as np
@@ -81,6 +83,8 @@ class GlintSettings(bpy.types.PropertyGroup):
                                    description="Worker threads; 0: every core")
     time_limit: bpy.props.FloatProperty(name="Time Limit", default=0, min=0, unit="TIME_ABSOLUTE",
                                         description="Stop after the last pass that fits (seconds; 0: none)")
+    viewport_samples: bpy.props.IntProperty(name="Viewport Samples", default=64, min=1, max=1 << 16,
+                                            description="Samples per pixel of the viewport's rendered preview")
 
 
 class GlintRenderEngine(bpy.types.RenderEngine):
@@ -98,12 +102,7 @@ class GlintRenderEngine(bpy.types.RenderEngine):
         if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
             self.report({"WARNING"}, "glint: non-square pixels are not mapped")
         try:
-            prefs = bpy.context.preferences.addons[__name__].preferences
-            module_path = prefs.module_path if prefs else ""
-        except KeyError:
-            module_path = ""
-        try:
-            glint = renderer(module_path or None)
+            glint = renderer(_module_path())
             self.update_stats("", "glint: exporting the scene")
             ex = export.Export(depsgraph, width, height)
             data = ex.scene_dict(settings.samples, settings.max_depth)
@@ -136,6 +135,101 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 break
 
 
+    # --- the viewport's rendered preview ---------------------------------------------------------
+    # view_update (the scene changed) and view_draw (any redraw; the view may have moved) both
+    # export the depsgraph through the viewport's own camera and restart a progressive render in a
+    # thread when what it would show changed. Each finished pass is kept and the viewport redrawn;
+    # view_draw shows the latest pass through Blender's display transform.
+
+    def view_update(self, context, depsgraph):
+        self._preview_restart(context, depsgraph, force=True)
+
+    def view_draw(self, context, depsgraph):
+        self._preview_restart(context, depsgraph, force=False)
+        preview = getattr(self, "_preview", None)
+        if preview is None or preview.image is None:
+            return
+        import gpu
+        from gpu_extras.presets import draw_texture_2d
+        if preview.texture is None or preview.texture_spp != preview.image.spp:
+            preview.texture = _texture(preview.image)
+            preview.texture_spp = preview.image.spp
+        gpu.state.blend_set("ALPHA_PREMULT")
+        self.bind_display_space_shader(depsgraph.scene)
+        draw_texture_2d(preview.texture, (0, 0), context.region.width, context.region.height)
+        self.unbind_display_space_shader()
+        gpu.state.blend_set("NONE")
+
+    def _preview_restart(self, context, depsgraph, force):
+        region, rv3d = context.region, context.region_data
+        clip_end = getattr(context.space_data, "clip_end", 1000.0)
+        key = (region.width, region.height, tuple(tuple(r) for r in rv3d.view_matrix),
+               tuple(tuple(r) for r in rv3d.window_matrix))
+        preview = getattr(self, "_preview", None)
+        if preview is not None and preview.key == key and not force:
+            return
+        if preview is not None:
+            preview.stop()
+        settings = depsgraph.scene.glint
+        try:
+            glint = renderer(_module_path())
+            ex = export.Export(depsgraph, region.width, region.height, view=export.viewport_view(rv3d, clip_end))
+            loaded = glint.load_dict(ex.scene_dict(settings.viewport_samples, settings.max_depth), name="blender:viewport")
+        except Exception as e:
+            self.report({"ERROR"}, f"glint: {e}")
+            self._preview = None
+            return
+        self._preview = Preview(self, glint, loaded, key, dict(spp=settings.viewport_samples, seed=settings.seed,
+                                                               threads=settings.threads or None))
+
+    def __del__(self):
+        preview = getattr(self, "_preview", None)
+        if preview is not None:
+            preview.stop()
+
+
+class Preview:
+    """A progressive render in a thread: `image` is its latest pass; stop() ends it after the
+    tile in hand (leaving glint's pass loop stops the render)."""
+
+    def __init__(self, engine, glint, loaded, key, options):
+        self.key, self.image, self.texture, self.texture_spp = key, None, None, -1
+        self._stopping = threading.Event()
+        self._thread = threading.Thread(target=self._run, args=(engine, glint, loaded, options), daemon=True)
+        self._thread.start()
+
+    def _run(self, engine, glint, loaded, options):
+        try:
+            for image in glint.render_passes(loaded, **options):
+                if self._stopping.is_set():
+                    break
+                self.image = image
+                engine.tag_redraw()
+        except Exception as e:  # shown in the terminal; the viewport keeps its last pass
+            print(f"glint viewport: {e}", file=sys.stderr)
+
+    def stop(self):
+        self._stopping.set()
+        self._thread.join()
+
+
+def _texture(image):
+    """A GPU texture of a glint image (rows from the top) for draw_texture_2d (rows from the bottom)."""
+    import gpu
+    h, w = image.shape[:2]
+    rgba = np.ones((h, w, 4), np.float32)
+    rgba[..., :3] = image[::-1]
+    return gpu.types.GPUTexture((w, h), format="RGBA16F", data=gpu.types.Buffer("FLOAT", w * h * 4, rgba.ravel()))
+
+
+def _module_path():
+    try:
+        prefs = bpy.context.preferences.addons[__name__].preferences
+        return (prefs.module_path if prefs else "") or None
+    except KeyError:
+        return None
+
+
 class GLINT_PT_sampling(bpy.types.Panel):
     bl_label = "glint"
     bl_space_type = "PROPERTIES"
@@ -150,7 +244,7 @@ class GLINT_PT_sampling(bpy.types.Panel):
     def draw(self, context):
         s = context.scene.glint
         col = self.layout.column()
-        for name in ("samples", "max_depth", "seed", "denoise", "threads", "time_limit"):
+        for name in ("samples", "viewport_samples", "max_depth", "seed", "denoise", "threads", "time_limit"):
             col.prop(s, name)
 
 

@@ -43,11 +43,27 @@ def _rgb(c, scale=1.0):
     return [float(c[0]) * scale, float(c[1]) * scale, float(c[2]) * scale]
 
 
+def viewport_view(region_data, clip_end=1000.0):
+    """What a 3D viewport shows, as (camera-to-world matrix, vertical field of view in degrees or
+    None, orthographic height or None), from its view and projection matrices: the vertical field
+    is 2 atan(1 / P[1][1]) (perspective), the height 2 / P[1][1] (orthographic). An orthographic
+    viewport also sees what lies behind its eye, so the camera is moved back by half the clip range."""
+    to_world = region_data.view_matrix.inverted()
+    p11 = float(region_data.window_matrix[1][1])
+    if region_data.is_perspective:
+        return to_world, math.degrees(2 * math.atan(1 / p11)), None
+    back = to_world.copy()
+    back.translation = to_world.translation + to_world.to_3x3() @ type(to_world.translation)((0, 0, clip_end / 2))
+    return back, None, 2 / p11
+
+
 class Export:
-    def __init__(self, depsgraph, width, height):
+    def __init__(self, depsgraph, width, height, view=None):
+        """`view`: a viewport's viewport_view() to render instead of the scene's camera."""
         self.depsgraph = depsgraph
         self.scene = depsgraph.scene
         self.width, self.height = width, height
+        self.view = view
         self.unmapped = []
         self._meshes = {}       # evaluated object name -> [(arrays, material slot)]
         self._materials = {}    # material name -> glint material dict
@@ -95,6 +111,16 @@ class Export:
     # --- camera ----------------------------------------------------------------------------------
 
     def camera(self):
+        if self.view is not None:
+            m, fov, height = self.view
+            forward = _vector(m, (0, 0, -1))
+            c = {"type": "look_at", "from": _point(m), "to": [a + b for a, b in zip(_point(m), forward)],
+                 "up": _vector(m, (0, 1, 0))}
+            if fov is not None:
+                c["fov"] = fov
+            else:
+                c["projection"], c["height"] = "orthographic", height
+            return c
         cam = self.scene.camera
         if cam is None:
             raise ValueError("the scene has no camera")

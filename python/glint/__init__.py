@@ -299,12 +299,14 @@ def render(scene=None, *, spp=None, width=None, height=None, threads=None, seed=
     return _image(_glint.render(s._core, s.name, options), names)
 
 
-def render_passes(scene=None, **options):
+def render_passes(scene=None, *, stop=None, **options):
     """Renders as render() does (the same keyword arguments), yielding the image after each
     pass of the progressive render: passes double in samples while they are short, so a
     notebook can show the image sharpening. The last image yielded is render()'s result, bit for
     bit (denoised if asked; the passes before it are not). Leaving the loop early stops the render.
-    A render of one sample per pixel is one pass."""
+    A render of one sample per pixel is one pass. stop: a threading.Event; setting it, from any
+    thread, stops the render at its next tile and ends the loop without another image (a live
+    view that must restart when its scene changes)."""
     s = _scene_of(options.pop("scene", scene))
     names, opts = _options(**{k: options.pop(k, d) for k, d in _DEFAULTS.items()})
     if options:
@@ -325,10 +327,22 @@ def render_passes(scene=None, **options):
     thread.start()
     try:
         pending = None
-        while (p := events.get()) is not None:
+        while True:
+            try:
+                p = events.get(timeout=None if stop is None else 0.02)
+            except queue.Empty:  # only with `stop`: look at it every 20 ms
+                if stop.is_set():
+                    return
+                continue
+            if p is None:
+                break
+            if stop is not None and stop.is_set():
+                return
             if pending is not None:
                 yield _image(dict(pending, complete=False), names)
             pending = p
+        if stop is not None and stop.is_set():
+            return
         if "error" in outcome:
             raise outcome["error"]
         result = outcome["result"]

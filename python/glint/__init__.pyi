@@ -1,6 +1,7 @@
 # Type stubs of the glint package (docs/python.md). Kept beside __init__.py; tests/python checks
 # that every public name and parameter here matches the module.
 import os
+import threading
 from typing import Any, Iterator, Mapping, NamedTuple, Sequence, Union
 
 import numpy as np
@@ -75,6 +76,7 @@ def render(
 def render_passes(
     scene: SceneLike = ...,
     *,
+    stop: threading.Event | None = ...,
     spp: int | None = ...,
     width: int | None = ...,
     height: int | None = ...,

@@ -311,6 +311,26 @@ def test_leaving_the_passes_early_stops_the_render(source):
     assert time.monotonic() - started < 60  # the render of 6.5 G samples was not finished
 
 
+def test_a_stop_event_from_another_thread_ends_the_passes(source):
+    stop = threading.Event()
+    seen = []
+
+    def consume():
+        for image in glint.render_passes(source / "scenes/cornell-box.yaml", width=256, height=256,
+                                         spp=100000, stop=stop):
+            seen.append(image.spp)
+
+    worker = threading.Thread(target=consume)
+    started = time.monotonic()
+    worker.start()
+    while not seen and time.monotonic() - started < 60:
+        time.sleep(0.01)
+    stop.set()
+    worker.join(60)
+    assert not worker.is_alive() and seen and max(seen) < 100000
+    assert time.monotonic() - started < 60
+
+
 def test_time_budget_and_checkpoint_resume(source, tmp_path):
     scene = glint.load(source / "scenes/cornell-box.yaml")
     cut = glint.render(scene, width=32, height=32, spp=1 << 20, seed=1, time=0.5)
@@ -473,7 +493,8 @@ def test_stubs_match_the_module():
         names = [a.arg for a in stub.args + stub.kwonlyargs]
         assert names == list(real.parameters), name
     rp = stubs["render_passes"].args
-    assert [a.arg for a in rp.args + rp.kwonlyargs] == list(inspect.signature(glint.render).parameters)
+    assert [a.arg for a in rp.args + rp.kwonlyargs] == (["scene", "stop"] +
+                                                        list(inspect.signature(glint.render).parameters)[1:])
     for name in glint.__all__:
         assert hasattr(glint, name)
 
