@@ -18,7 +18,6 @@ import sys
 import tempfile
 import time
 
-import bpy
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
