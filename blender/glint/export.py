@@ -69,6 +69,7 @@ class Export:
         self._materials = {}    # material name -> glint material dict
         self._volumes = {}      # material name -> glint medium name, or None (no volume)
         self._media = {}        # glint medium name -> medium dict
+        self._images = {}       # image name -> linear RGB pixels (numpy), or None
 
     def note(self, text):
         if text not in self.unmapped:
@@ -486,13 +487,18 @@ class Export:
              "roughness": value("Roughness"), "ior": max(1.0001, value("IOR")),
              "transmission": value("Transmission")}
         spec = value("Specular")
-        if m["metallic"] == 0 and m["transmission"] == 0 and isinstance(base, list) and spec > 0:
+        if m["metallic"] == 0 and m["transmission"] == 0 and spec > 0:
             # Principled (v1) adds its specular layer over an undimmed diffuse; glint's pbr puts the
             # diffuse under a dielectric coat, whose internal reflection leaves the albedo
             # rho (1 - Fdr) / (1 - rho Fdr) (Fdr: the coat's diffuse reflectance from inside).
-            # The base colour is the one whose coated albedo is Principled's.
+            # The base colour is the one whose coated albedo is Principled's: for a value, and
+            # texel by texel for an image (whose linear pixels are at hand).
             fdr = _fdr_inside(m["ior"])
-            m["base_color"] = [c / ((1 - fdr) + c * fdr) if c > 0 else 0.0 for c in base]
+            if isinstance(base, list):
+                m["base_color"] = [c / ((1 - fdr) + c * fdr) if c > 0 else 0.0 for c in base]
+            elif "pixels" in base:
+                p = base["pixels"]
+                m["base_color"] = dict(base, pixels=(p / ((1 - fdr) + p * fdr)).astype(np.float32))
         if value("Clearcoat") > 0:
             m["clearcoat"] = value("Clearcoat")
             m["clearcoat_roughness"] = value("Clearcoat Roughness")
@@ -543,10 +549,10 @@ class Export:
         if not socket.is_linked:
             return _rgb(socket.default_value)
         src = socket.links[0].from_node
-        if src.type == "TEX_IMAGE" and src.image is not None and src.image.filepath:
-            t = {"type": "image", "filename": _image_path(src.image)}
-            if src.image.colorspace_settings.name in {"Non-Color", "Linear", "Linear Rec.709"}:
-                t["encoding"] = "linear"
+        pixels = self.image_pixels(src.image) if src.type == "TEX_IMAGE" and src.image is not None else None
+        if pixels is not None:
+            # The texels in memory (packed and generated images too), linear: no file is read.
+            t = {"type": "image", "pixels": pixels, "encoding": "linear"}
             if src.extension == "EXTEND":
                 t["wrap"] = "clamp"
             if src.inputs["Vector"].is_linked:
@@ -554,6 +560,26 @@ class Export:
             return t
         self.note(f"material '{mat.name}': '{socket.name}' from node {src.bl_idname} is not mapped (its value is used)")
         return _rgb(socket.default_value)
+
+    def image_pixels(self, image):
+        """An image's RGB as linear float32 numpy rows from the top, read from Blender's memory
+        (each image once a render); None when it has no pixels. Byte images in a colour space other
+        than the linear ones are decoded from sRGB (Blender keeps float images linear)."""
+        if image.name in self._images:
+            return self._images[image.name]
+        pixels = None
+        w, h = image.size
+        if w > 0 and h > 0 and image.channels > 0:
+            flat = np.empty(w * h * image.channels, np.float32)
+            image.pixels.foreach_get(flat)
+            rgb = flat.reshape(h, w, image.channels)[::-1, :, :3]
+            if rgb.shape[2] == 1 or image.channels == 2:
+                rgb = np.repeat(rgb[:, :, :1], 3, axis=2)
+            linear = image.is_float or image.colorspace_settings.name in {"Non-Color", "Linear", "Linear Rec.709"}
+            pixels = np.ascontiguousarray(rgb if linear else _srgb_decode(rgb), dtype=np.float32)
+            pixels = np.maximum(pixels, 0)  # glint refuses negative texels; Blender allows them
+        self._images[image.name] = pixels
+        return pixels
 
     def number_input(self, mat, socket):
         if socket.is_linked:
@@ -578,6 +604,10 @@ def _fdr_inside(eta, steps=1024):
     """The coat's reflectance, from inside, of diffuse light: 2 int_0^1 F(mu, 1/eta) mu dmu (the
     same integral as glint's diffuse_fresnel_inside)."""
     return sum(2 * _fresnel((i + 0.5) / steps, 1 / eta) * (i + 0.5) / steps / steps for i in range(steps))
+
+
+def _srgb_decode(c):
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4).astype(np.float32)
 
 
 def _image_path(image):

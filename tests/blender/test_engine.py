@@ -221,6 +221,28 @@ def light_units_match_closed_forms(tmp):
 
 
 
+def image_base_colour_matches_the_value(tmp):
+    """The cube's base colour as a value and as an Image Texture holding that colour (an 8-bit
+    sRGB image, read from Blender's memory): the same picture. glint remaps a Principled base
+    colour for its coat (docs/blender.md); before images were read from memory only values were."""
+    scene = build_scene()
+    code = (0.3, 0.45, 0.85)
+    linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in code]
+    node = bpy.data.materials["plastic"].node_tree.nodes["Principled BSDF"]
+    node.inputs["Base Color"].default_value = (*linear, 1)
+    value = glint_image(scene, tmp, "base-value")
+    image = bpy.data.images.new("flat", 4, 4)  # 8-bit, sRGB
+    image.pixels = [*code, 1.0] * 16
+    tex = bpy.data.materials["plastic"].node_tree.nodes.new("ShaderNodeTexImage")
+    tex.image = image
+    bpy.data.materials["plastic"].node_tree.links.new(tex.outputs["Color"], node.inputs["Base Color"])
+    node.inputs["Base Color"].default_value = (1, 1, 1, 1)  # what an unmapped image would fall back to
+    textured = glint_image(scene, tmp, "base-image")
+    diff = float(np.abs(textured.mean(axis=(0, 1)) / value.mean(axis=(0, 1)) - 1).max())
+    print(f"image-textured / valued base colour: channel means differ by {diff:.2e}")
+    check(diff < 2e-3, "an image-textured base colour renders as the same colour given as a value")
+
+
 def volumes_match_cycles(tmp):
     for kind in ("mesh", "vdb"):
         scene = volume_scene(kind)
@@ -246,8 +268,12 @@ def volumes_match_cycles(tmp):
 def main():
     with tempfile.TemporaryDirectory() as folder:
         tmp = pathlib.Path(folder)
-        if os.environ.get("GLINT_BLENDER_ONLY") == "volumes":  # a quicker run while working on volumes
+        only = os.environ.get("GLINT_BLENDER_ONLY")  # a quicker run of one part
+        if only == "volumes":
             volumes_match_cycles(tmp)
+            return
+        if only == "images":
+            image_base_colour_matches_the_value(tmp)
             return
         scene = build_scene()
         compare_with_cycles(scene, tmp)
@@ -255,6 +281,7 @@ def main():
         cancel_stops_the_render(scene)
         unmapped_node_is_reported_once(scene)
         light_units_match_closed_forms(tmp)
+        image_base_colour_matches_the_value(tmp)
         volumes_match_cycles(tmp)
 
 
