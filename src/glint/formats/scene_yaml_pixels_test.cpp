@@ -58,7 +58,8 @@ TEST(SceneYamlPixels, RowsFromTheTopAndChannelsInOrder) {
 // Grey (rows of numbers) is replicated; RGBA keeps its alpha; `encoding: srgb` decodes the colour
 // by the sRGB transfer function (IEC 61966-2-1), written out here, and leaves alpha linear.
 TEST(SceneYamlPixels, GreyRgbaAndSrgbDecoding) {
-    const Image& grey = first_pixels(parsed("materials: {m: {color: {type: image, pixels: [[0.25, 0.5]]}}}\n"));
+    const SceneDescription greys = parsed("materials: {m: {color: {type: image, pixels: [[0.25, 0.5]]}}}\n");
+    const Image& grey = first_pixels(greys);
     EXPECT_EQ(grey.width, 2);
     EXPECT_EQ(grey.texel(1, 0).g, 0.5f);
     EXPECT_EQ(grey.texel(0, 0).b, 0.25f);
@@ -80,7 +81,8 @@ TEST(SceneYamlPixels, AnArrayBesideTheTextIsTheList) {
     v.shape = {2, 3, 3};
     v.dims = 3;
     const InlineArrays arrays{v};
-    const Image& a = first_pixels(parsed("materials: {m: {color: {type: image, pixels: '<array 0>'}}}\n", &arrays));
+    const SceneDescription d = parsed("materials: {m: {color: {type: image, pixels: '<array 0>'}}}\n", &arrays);
+    const Image& a = first_pixels(d);
     ASSERT_EQ(a.width, 3);
     ASSERT_EQ(a.height, 2);
     EXPECT_EQ(a.texel(2, 1).b, 0.3f);
