@@ -134,7 +134,6 @@ class GlintRenderEngine(bpy.types.RenderEngine):
             if self.test_break():  # Esc: leaving the loop stops the render at its next tile
                 break
 
-
     # --- the viewport's rendered preview ---------------------------------------------------------
     # view_update (the scene changed) and view_draw (any redraw; the view may have moved) both
     # export the depsgraph through the viewport's own camera and restart a progressive render in a
@@ -189,8 +188,8 @@ class GlintRenderEngine(bpy.types.RenderEngine):
 
 
 class Preview:
-    """A progressive render in a thread: `image` is its latest pass; stop() ends it after the
-    tile in hand (leaving glint's pass loop stops the render)."""
+    """A progressive render in a thread: `image` is its latest pass; stop() ends it at its next
+    tile (render_passes' stop event) and waits for the thread."""
 
     def __init__(self, engine, glint, loaded, key, options):
         self.key, self.image, self.texture, self.texture_spp = key, None, None, -1
@@ -200,9 +199,7 @@ class Preview:
 
     def _run(self, engine, glint, loaded, options):
         try:
-            for image in glint.render_passes(loaded, **options):
-                if self._stopping.is_set():
-                    break
+            for image in glint.render_passes(loaded, stop=self._stopping, **options):
                 self.image = image
                 engine.tag_redraw()
         except Exception as e:  # shown in the terminal; the viewport keeps its last pass

@@ -13,6 +13,7 @@ import os
 import pathlib
 import sys
 import tempfile
+import time
 import traceback
 
 import bpy
@@ -156,6 +157,30 @@ def cancel_stops_the_render(scene):
     check(rect is not None and len(rect) == 64 * 64, "the pass was written into the render result")
 
 
+def a_viewport_render_stops_at_once(scene):
+    """The viewport preview's render (addon.Preview) stops at its next tile, not at the end of
+    the pass in flight: a 1024 x 1024 render whose passes have grown to seconds each is stopped
+    within a second."""
+    glint = addon.renderer()
+    ex = addon.export.Export(bpy.context.evaluated_depsgraph_get(), 1024, 1024)
+    loaded = glint.load_dict(ex.scene_dict(1 << 16, 8))
+
+    class Engine:
+        def tag_redraw(self):
+            pass
+
+    preview = addon.Preview(Engine(), glint, loaded, None, dict(spp=1 << 16, seed=0, threads=2))
+    started = time.monotonic()
+    while (preview.image is None or preview.image.spp < 4) and time.monotonic() - started < 120:
+        time.sleep(0.05)
+    before = preview.image.spp if preview.image is not None else 0
+    start = time.monotonic()
+    preview.stop()
+    took = time.monotonic() - start
+    print(f"viewport render: stopped after a {before}-spp pass in {took:.2f} s")
+    check(before >= 4 and took < 1.0, "a viewport render stops within a second, mid-pass")
+
+
 def unmapped_node_is_reported_once(scene):
     mat = bpy.data.materials["plastic"]
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
@@ -275,10 +300,14 @@ def main():
         if only == "images":
             image_base_colour_matches_the_value(tmp)
             return
+        if only == "viewport":
+            a_viewport_render_stops_at_once(build_scene())
+            return
         scene = build_scene()
         compare_with_cycles(scene, tmp)
         scene = each_mapped_input_changes_the_image(scene, tmp)
         cancel_stops_the_render(scene)
+        a_viewport_render_stops_at_once(scene)
         unmapped_node_is_reported_once(scene)
         light_units_match_closed_forms(tmp)
         image_base_colour_matches_the_value(tmp)
