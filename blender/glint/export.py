@@ -102,11 +102,6 @@ class Export:
             scene["lights"] = lights
         if self._media:
             scene["media"] = self._media
-        world = self.scene.world
-        if world is not None and world.use_nodes and world.node_tree is not None:
-            out = next((n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
-            if out is not None and out.inputs["Volume"].is_linked:
-                self.note("world: a world volume (fog everywhere) is not mapped")
         return scene
 
     # --- camera ----------------------------------------------------------------------------------
@@ -164,6 +159,8 @@ class Export:
         if not world.use_nodes or world.node_tree is None:
             return {"type": "constant", "color": _rgb(world.color)}
         out = next((n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
+        if out is not None and out.inputs["Volume"].is_linked:
+            self.note("world: a world volume (fog everywhere) is not mapped")
         link = out.inputs["Surface"].links[0] if out and out.inputs["Surface"].is_linked else None
         if link is None:
             return {"type": "constant", "color": [0, 0, 0]}
@@ -293,9 +290,7 @@ class Export:
         sigma_a = D max(1 - C, 0) max(1 - sqrt(A), 0) (A: Absorption Color)."""
         i = node.inputs
         value = (lambda name: self.number_input(mat, i[name]))
-        color = (lambda name: self.color_input(mat, i[name]) if not i[name].is_linked else
-                 (self.note(f"material '{mat.name}': '{name}' from a node is not mapped (its value is used)")
-                  or _rgb(i[name].default_value)))
+        color = (lambda name: self.color_value(mat, i[name]))
         zero = [0.0, 0.0, 0.0]
         if node.type == "PRINCIPLED_VOLUME":
             d = max(0.0, value("Density"))
@@ -580,6 +575,14 @@ class Export:
             pixels = np.maximum(pixels, 0)  # glint refuses negative texels; Blender allows them
         self._images[image.name] = pixels
         return pixels
+
+    def color_value(self, mat, socket):
+        """A colour socket's value (a medium's coefficients take no textures): what feeds it, if
+        anything, is reported as number_input reports it."""
+        if socket.is_linked:
+            self.note(f"material '{mat.name}': '{socket.name}' from node "
+                      f"{socket.links[0].from_node.bl_idname} is not mapped (its value is used)")
+        return _rgb(socket.default_value)
 
     def number_input(self, mat, socket):
         if socket.is_linked:

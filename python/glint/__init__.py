@@ -174,19 +174,23 @@ def _mesh_array(a, key, arrays):
     # the original, kept alive so that its id stays its own, the array handed over).
     if id(a) in arrays:
         return f"<array {arrays[id(a)][0]}>"
-    original = a
     if key == "indices":
         if a.dtype.kind not in "iu":
             raise TypeError(f"mesh indices must be integers, not {a.dtype}")
         if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
             raise ValueError(f"mesh indices must lie in [0, 2**32): found {a.min()} to {a.max()}")
-        a = np.ascontiguousarray(a, dtype=np.uint32)
+        c = np.ascontiguousarray(a, dtype=np.uint32)
     else:
-        a = np.ascontiguousarray(a, dtype=np.float32)
-    if a.ndim == 0:
+        c = np.ascontiguousarray(a, dtype=np.float32)
+    if c.ndim == 0:
         raise ValueError(f"mesh {key}: expected an array of rows, got a scalar")
-    a = a.reshape(a.shape[0], -1) if a.ndim > 1 else a
-    arrays[id(original)] = (len(arrays), original, a)
+    return _hand_over(a, c.reshape(c.shape[0], -1) if c.ndim > 1 else c, arrays)
+
+
+def _hand_over(original, handed, arrays):
+    # `handed` (converted from `original`) becomes the next array beside the text; `original` is
+    # kept alive in the table so that its id stays its own.
+    arrays[id(original)] = (len(arrays), original, handed)
     return f"<array {len(arrays) - 1}>"
 
 
@@ -194,9 +198,7 @@ def _block_array(a, arrays):
     # An image's pixels or a grid's voxels, handed over with their shape (float32, C order).
     if id(a) in arrays:
         return f"<array {arrays[id(a)][0]}>"
-    handed = np.ascontiguousarray(a, dtype=np.float32)
-    arrays[id(a)] = (len(arrays), a, handed)
-    return f"<array {len(arrays) - 1}>"
+    return _hand_over(a, np.ascontiguousarray(a, dtype=np.float32), arrays)
 
 
 def _image_dict(value, arrays):

@@ -195,9 +195,13 @@ def test_numpy_pixels_equal_the_same_pixels_as_lists():
     seen = glint.render(pixels_scene(corners, wrap="clamp"), spp=1)
     for (y, x), (row, col) in {(0, 0): (0, 0), (0, -1): (0, 1), (-1, 0): (1, 0), (-1, -1): (1, 1)}.items():
         assert np.array_equal(seen[y, x], corners[row, col]), (y, x, seen[y, x])
-    # Grey and RGBA arrays are images too.
-    assert glint.render(pixels_scene(pixels[:, :, 0]), spp=1).shape == (16, 24, 3)
-    assert glint.render(pixels_scene(np.dstack([pixels, np.ones((4, 6, 1), np.float32)])), spp=1).shape == (16, 24, 3)
+    # A grey array is its channel in all three; an RGBA array's colour is its RGB (the alpha channel
+    # is alpha, not colour).
+    grey = np.ascontiguousarray(pixels[:, :, 0])
+    assert np.array_equal(glint.render(pixels_scene(grey), spp=1),
+                          glint.render(pixels_scene(np.repeat(grey[:, :, None], 3, axis=2)), spp=1))
+    rgba = np.dstack([pixels, np.full((4, 6, 1), 0.5, np.float32)])
+    assert np.array_equal(glint.render(pixels_scene(rgba), spp=1), glint.render(pixels_scene(pixels), spp=1))
 
 
 def test_8_bit_pixels_read_as_srgb_like_8_bit_files():
