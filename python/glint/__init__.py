@@ -172,8 +172,11 @@ def _mesh_array(a, key, arrays):
     # The same array object given to several meshes is handed over once: the reader then makes
     # them one mesh, placed as instances (one BVH). `arrays` maps id(original) to (its number,
     # the original, kept alive so that its id stays its own, the array handed over).
-    if id(a) in arrays:
-        return f"<array {arrays[id(a)][0]}>"
+    return _hand_over(a, lambda: _mesh_rows(a, key), arrays)
+
+
+def _mesh_rows(a, key):
+    # A mesh array as the reader takes it: uint32 indices or float32 values, one row per entry.
     if key == "indices":
         if a.dtype.kind not in "iu":
             raise TypeError(f"mesh indices must be integers, not {a.dtype}")
@@ -184,21 +187,21 @@ def _mesh_array(a, key, arrays):
         c = np.ascontiguousarray(a, dtype=np.float32)
     if c.ndim == 0:
         raise ValueError(f"mesh {key}: expected an array of rows, got a scalar")
-    return _hand_over(a, c.reshape(c.shape[0], -1) if c.ndim > 1 else c, arrays)
+    return c.reshape(c.shape[0], -1) if c.ndim > 1 else c
 
 
-def _hand_over(original, handed, arrays):
-    # `handed` (converted from `original`) becomes the next array beside the text; `original` is
-    # kept alive in the table so that its id stays its own.
-    arrays[id(original)] = (len(arrays), original, handed)
-    return f"<array {len(arrays) - 1}>"
+def _hand_over(original, convert, arrays):
+    # The reference to `original` beside the text: an array given before is handed over once;
+    # otherwise convert() becomes the next array, and `original` is kept alive in the table so
+    # that its id stays its own.
+    if id(original) not in arrays:
+        arrays[id(original)] = (len(arrays), original, convert())
+    return f"<array {arrays[id(original)][0]}>"
 
 
 def _block_array(a, arrays):
     # An image's pixels or a grid's voxels, handed over with their shape (float32, C order).
-    if id(a) in arrays:
-        return f"<array {arrays[id(a)][0]}>"
-    return _hand_over(a, np.ascontiguousarray(a, dtype=np.float32), arrays)
+    return _hand_over(a, lambda: np.ascontiguousarray(a, dtype=np.float32), arrays)
 
 
 def _image_dict(value, arrays):
