@@ -129,6 +129,24 @@ def test_numpy_mesh_equals_the_same_mesh_as_yaml_lists(tmp_path):
     assert from_numpy.mean() > 0.05  # the field is lit and seen
 
 
+def test_an_array_given_twice_is_handed_over_once():
+    # Two meshes on the same position array, and one image on the same pixels twice: each array
+    # crosses once, and every use refers to it (the reader makes the meshes one, instanced).
+    positions, indices = height_field()
+    p, i = positions.astype(np.float32), indices.astype(np.uint32)
+    pixels = np.full((2, 2, 3), 0.5, np.float32)
+    arrays = {}
+    plain = glint._plain({"objects": [{"type": "mesh", "positions": p, "indices": i},
+                                      {"type": "mesh", "positions": p, "indices": i.copy()}],
+                          "textures": [{"type": "image", "pixels": pixels}, {"type": "image", "pixels": pixels}]},
+                         arrays)
+    assert len(arrays) == 4  # p, i, the copy of i, pixels
+    assert plain["objects"][0]["positions"] == plain["objects"][1]["positions"]
+    assert plain["objects"][0]["indices"] != plain["objects"][1]["indices"]
+    assert plain["textures"][0]["pixels"] == plain["textures"][1]["pixels"]
+    assert sorted(n for n, _, _ in arrays.values()) == [0, 1, 2, 3]
+
+
 def test_numpy_dtypes_and_layouts_convert():
     positions, indices = height_field()
     reference = glint.render(mesh_scene(positions.astype(np.float32), indices.astype(np.uint32)), spp=2, seed=1)
