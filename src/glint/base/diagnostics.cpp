@@ -242,21 +242,32 @@ std::string read_scene_text(const std::string& path, const std::shared_ptr<Sourc
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
     std::string best;
     std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+    std::vector<std::size_t> row;
     for (const std::string& c : candidates) {
-        // Levenshtein distance, one row at a time.
-        std::vector<std::size_t> row(c.size() + 1);
+        // The distance is at least the difference in length: a candidate that cannot beat the
+        // best so far is not compared. (A mistyped or garbage word of thousands of characters,
+        // which fuzzers and hostile files are full of, costs nothing against short names.)
+        const std::size_t gap = word.size() > c.size() ? word.size() - c.size() : c.size() - word.size();
+        if (gap >= best_distance) continue;
+        // Levenshtein distance, one row at a time; a row's smallest entry never falls in the rows
+        // below it, so once it reaches the best so far this candidate is out.
+        row.resize(c.size() + 1);
         std::iota(row.begin(), row.end(), 0);
-        for (std::size_t i = 1; i <= word.size(); ++i) {
+        bool out = false;
+        for (std::size_t i = 1; i <= word.size() && !out; ++i) {
             std::size_t diagonal = row[0];
             row[0] = i;
+            std::size_t smallest = row[0];
             for (std::size_t j = 1; j <= c.size(); ++j) {
                 const std::size_t above = row[j];
                 row[j] = std::min({row[j] + 1, row[j - 1] + 1,
                                    diagonal + (word[i - 1] == c[j - 1] ? 0 : 1)});
                 diagonal = above;
+                smallest = std::min(smallest, row[j]);
             }
+            out = smallest >= best_distance;
         }
-        if (row[c.size()] < best_distance) {
+        if (!out && row[c.size()] < best_distance) {
             best_distance = row[c.size()];
             best = c;
         }
