@@ -2,15 +2,19 @@
 // channels with string attributes on writing; R, G, B (or Y) of the first part on reading, as
 // floats whatever their stored type.
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfThreading.h>
+#include <OpenEXR/ImfVersion.h>
 #include <fmt/core.h>
 #include <tbb/info.h>
 
+#include <fstream>
 #include <mutex>
 #include <utility>
 
@@ -33,15 +37,75 @@ std::pair<long long, long long> window_size(const Imath::Box2i& dw) {
     return {static_cast<long long>(dw.max.x) - dw.min.x + 1, static_cast<long long>(dw.max.y) - dw.min.y + 1};
 }
 
+// Scan lines per compressed block, by codec (OpenEXR's own table); 256 for a codec it lacks.
+long long lines_per_block(Imf::Compression c) {
+    switch (c) {
+        case Imf::NO_COMPRESSION: case Imf::RLE_COMPRESSION: case Imf::ZIPS_COMPRESSION: return 1;
+        case Imf::ZIP_COMPRESSION: case Imf::PXR24_COMPRESSION: return 16;
+        case Imf::PIZ_COMPRESSION: case Imf::B44_COMPRESSION: case Imf::B44A_COMPRESSION: case Imf::DWAA_COMPRESSION: return 32;
+        default: return 256;
+    }
+}
+
+// The first part's header, read by OpenEXR's own parser but without opening the file for pixels:
+// Imf::InputFile's constructor allocates its line (or tile) buffers from the header at once, so a
+// header that lies is checked here first (admit_exr).
+Imf::Header read_exr_header(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(fmt::format("cannot read image '{}': cannot open it", path.string()));
+    char magic[4] = {};
+    unsigned char v[4] = {};
+    in.read(magic, 4);
+    in.read(reinterpret_cast<char*>(v), 4);
+    if (!in || !Imf::isImfMagic(magic))
+        throw IoError(fmt::format("cannot read image '{}': it is not an OpenEXR file", path.string()));
+    int version = static_cast<int>(v[0] | (v[1] << 8) | (v[2] << 16) | (static_cast<unsigned>(v[3]) << 24));
+    if (Imf::getVersion(version) != Imf::EXR_VERSION || !Imf::supportsFlags(Imf::getFlags(version)))
+        throw IoError(fmt::format("cannot read image '{}': OpenEXR version field {:#x} is not one glint reads", path.string(),
+                                  static_cast<unsigned>(version)));
+    Imf::StdIFStream stream(in, path.c_str());
+    Imf::Header header;
+    header.readFrom(stream, version);
+    return header;
+}
+
+// admit_image for an OpenEXR header, and one check more: the reader's working buffers. OpenEXR
+// decodes through 2 x threads buffers of one block each (16 to 256 scan lines or a tile, by codec)
+// plus the decompressor's copies, however few rows the data window has: a 500-byte header
+// claiming a window 8 million pixels wide and one row high asks for gigabytes. Those buffers may
+// be as large as the image itself, or 256 MB, not more.
+void admit_exr(const fs::path& path, const Imf::Header& header, long long max_pixels, int bytes_per_pixel) {
+    const auto [w, h] = window_size(header.dataWindow());
+    admit_image(path, w, h, max_pixels, bytes_per_pixel, kExrPixelsPerByte);
+    double line_bytes = 0;  // one row of every channel, as stored (doubles: a tile may claim 2^31 x 2^31)
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+        line_bytes += (c.channel().type == Imf::HALF ? 2.0 : 4.0) * (w / std::max(1, c.channel().xSampling) + 1);
+    double block_bytes = line_bytes * static_cast<double>(lines_per_block(header.compression()));
+    if (header.hasTileDescription()) {
+        const Imf::TileDescription& t = header.tileDescription();
+        block_bytes = line_bytes / static_cast<double>(w) * t.xSize * t.ySize;
+    }
+    const double working = 3.0 * std::max(1, 2 * Imf::globalThreadCount()) * block_bytes;
+    const double allowed = std::max(static_cast<double>(w * h * bytes_per_pixel), 256.0 * (1 << 20));
+    if (working > allowed)
+        throw IoError(fmt::format("cannot read image '{}': its header claims a {} x {} data window in blocks of {}; OpenEXR "
+                                  "would need {:.1f} MB of buffers to decode it, more than the image itself",
+                                  path.string(), w, h,
+                                  header.hasTileDescription()
+                                      ? fmt::format("{} x {} tiles", header.tileDescription().xSize, header.tileDescription().ySize)
+                                      : fmt::format("{} rows", lines_per_block(header.compression())),
+                                  working / 1e6));
+}
+
 }  // namespace
 
 RawImage read_exr(const fs::path& path, long long max_pixels) {
     exr_threads();
     try {
+        admit_exr(path, read_exr_header(path), max_pixels, 3 * 4 * 2);
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const auto [w, h] = window_size(dw);
-        admit_image(path, w, h, max_pixels, 3 * 4 * 2, kExrPixelsPerByte);
         const Imf::ChannelList& channels = file.header().channels();
         std::vector<std::string> names;
         if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B")) {
@@ -80,16 +144,17 @@ RawImage read_exr(const fs::path& path, long long max_pixels) {
 ExrChannels read_exr_planes(const fs::path& path, const std::vector<std::string>& wanted, long long max_pixels) {
     exr_threads();
     try {
-        Imf::InputFile file(path.c_str());
-        const Imath::Box2i dw = file.header().dataWindow();
-        const auto [w, h] = window_size(dw);
-        const Imf::ChannelList& channels = file.header().channels();
+        const Imf::Header header = read_exr_header(path);
+        const Imf::ChannelList& channels = header.channels();
         ExrChannels out;
         for (auto c = channels.begin(); c != channels.end(); ++c) out.names.emplace_back(c.name());
         std::vector<std::size_t> present;
         for (std::size_t i = 0; i < wanted.size(); ++i)
             if (channels.findChannel(wanted[i])) present.push_back(i);
-        admit_image(path, w, h, max_pixels, static_cast<int>(std::max<std::size_t>(1, present.size())) * 4, kExrPixelsPerByte);
+        admit_exr(path, header, max_pixels, static_cast<int>(std::max<std::size_t>(1, present.size())) * 4);
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const auto [w, h] = window_size(dw);
         out.width = static_cast<int>(w), out.height = static_cast<int>(h);
         out.planes.resize(wanted.size());
         Imf::FrameBuffer fb;

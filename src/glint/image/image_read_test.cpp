@@ -121,6 +121,42 @@ TEST_F(ExrHeaderLies, AnAttributeHiddenBehindAChannelListsLyingSizeIsSeen) {
         << refused(bytes);
 }
 
+// Found by fuzz_image's idle hour: OpenEXR's reader allocates its decoding buffers, each a whole
+// block of 16 to 256 rows (or a tile) of the data window, when the file is opened, however few
+// rows the window has. A ~500-byte header claiming a window millions of pixels wide asked for 2 GB
+// before glint's size checks ran (fuzz/regressions/image/exr-wide-window-*). glint reads the
+// header first and refuses buffers larger than the image itself (and than 256 MB).
+TEST_F(ExrHeaderLies, AWideShortWindowIsRefusedBeforeOpenEXRsBuffers) {
+    const std::size_t at = ok_.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(at, std::string::npos);
+    std::string bytes = ok_;
+    const std::int32_t window[4] = {0, 0, 3'999'999, 0};  // 4,000,000 x 1: a block of 16 such rows is 384 MB
+    std::memcpy(bytes.data() + at + 17 + 4, window, 16);
+    const std::string error = refused(bytes);
+    EXPECT_NE(error.find("bad.exr': its header claims a 4000000 x 1 data window in blocks of 16 rows; OpenEXR would need"),
+              std::string::npos)
+        << error;
+    // As a tiled file (version flag 0x200, a `tiles` attribute) of 2^13 x 2^13 tiles (a 400 MB tile buffer each): refused alike.
+    std::string tiled = ok_;
+    tiled[5] = static_cast<char>(tiled[5] | 0x02);
+    std::string tiles = std::string("tiles\0tiledesc\0", 15);
+    const std::uint32_t size = 9, side = 1u << 13;
+    tiles.append(reinterpret_cast<const char*>(&size), 4).append(reinterpret_cast<const char*>(&side), 4);
+    tiles.append(reinterpret_cast<const char*>(&side), 4).push_back('\0');
+    tiled.insert(8, tiles);
+    const std::string tiled_error = refused(tiled);
+    EXPECT_NE(tiled_error.find("bad.exr': its header claims a 2 x 2 data window in blocks of 8192 x 8192 tiles"),
+              std::string::npos)
+        << tiled_error;
+    // A real image one row high and 5,000 wide reads (its blocks are 2.9 MB).
+    std::vector<float> row(3 * 5000);
+    for (std::size_t i = 0; i < row.size(); ++i) row[i] = static_cast<float>(i % 7) * 0.25f;
+    write_rgb(dir_ / "row.exr", 5000, 1, OIIO::TypeDesc::HALF, row);
+    const Image image = read_image(dir_ / "row.exr", ImageEncoding::kLinear);
+    ASSERT_EQ(image.width, 5000);
+    EXPECT_EQ(image.texel(4999, 0).b, row[3 * 4999 + 2]);
+}
+
 TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
     for (float v : {0.0f, 0.001f, 0.2f, 0.5f, 1.0f}) EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-5);
     EXPECT_NEAR(srgb_decode(0.5f), 0.21404, 1e-4);
