@@ -193,6 +193,29 @@ TEST_F(Hostile, AnHdrHeaderClaimingMorePixelsThanItsBytesIsRefusedBeforeAllocati
     EXPECT_NE(r.err.find("env.yaml:2:"), std::string::npos) << r.err;
 }
 
+// OpenEXR allocates its decoding buffers, whole blocks of the data window, when it opens a file:
+// a window claimed 4 million pixels wide and one row high was gigabytes before glint could look
+// (found by fuzz_image). Refused from the header, as an environment map and to `glint denoise`.
+TEST_F(Hostile, AnExrHeaderClaimingAWideWindowIsRefusedBeforeOpenEXRAllocates) {
+    write("pixel.yaml", "camera: {type: look_at, from: [0, 0, -5], to: [0, 0, 0], fov: 40}\nfilm: {width: 2, height: 2}\n"
+                        "sampler: {spp: 1}\nobjects:\n  - {type: sphere, center: [0, 0, 0], radius: 1}\n");
+    ASSERT_EQ(run_limited("render pixel.yaml -o ok.exr").status, 0);
+    std::string bytes = read(dir_ / "ok.exr");
+    const std::size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t window[4] = {0, 0, 3'999'999, 0};
+    std::memcpy(bytes.data() + at + 17 + 4, window, 16);
+    write("lie.exr", bytes);
+    write("env.yaml", std::string(kCamera) + "background: {type: environment, filename: lie.exr}\n");
+    const std::string claim = "lie.exr': its header claims a 4000000 x 1 data window in blocks of 16 rows";
+    expect_refused("render env.yaml -o out.png", claim);
+    expect_refused("render env.yaml -o out.png", "env.yaml:2:");
+    const Result r = run_limited("denoise lie.exr -o out.exr");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find(claim), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+}
+
 TEST_F(Hostile, AGltfAccessorOfMillionsWithNoDataIsRefusedNamingTheFile) {
     std::string g = triangle_gltf_with("\"count\": 3", "\"count\": 89000000");
     g.replace(g.find("{\"bufferView\": 0, "), 18, "{");

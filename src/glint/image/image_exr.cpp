@@ -14,6 +14,7 @@
 #include <fmt/core.h>
 #include <tbb/info.h>
 
+#include <cmath>
 #include <fstream>
 #include <mutex>
 #include <utility>
@@ -71,10 +72,12 @@ Imf::Header read_exr_header(const fs::path& path) {
 
 // admit_image for an OpenEXR header, and one check more: the reader's working buffers. OpenEXR
 // decodes through 2 x threads buffers of one block each (16 to 256 scan lines or a tile, by codec)
-// plus the decompressor's copies, however few rows the data window has: a 500-byte header
-// claiming a window 8 million pixels wide and one row high asks for gigabytes. Those buffers may
-// be as large as the image itself, or 256 MB, not more.
-void admit_exr(const fs::path& path, const Imf::Header& header, long long max_pixels, int bytes_per_pixel) {
+// plus the decompressor's copies, allocated when the file is opened, however few rows the data
+// window has: a 500-byte header claiming a window 8 million pixels wide and one row high asked for
+// gigabytes. The buffers may take as much memory as the image, or 256 MB: a wide image with large
+// blocks is decoded on fewer threads (down to one buffer), one whose single block exceeds that is
+// refused. Returns the threads to open the file with.
+int admit_exr(const fs::path& path, const Imf::Header& header, long long max_pixels, int bytes_per_pixel) {
     const auto [w, h] = window_size(header.dataWindow());
     admit_image(path, w, h, max_pixels, bytes_per_pixel, kExrPixelsPerByte);
     double line_bytes = 0;  // one row of every channel, as stored (doubles: a tile may claim 2^31 x 2^31)
@@ -85,16 +88,19 @@ void admit_exr(const fs::path& path, const Imf::Header& header, long long max_pi
         const Imf::TileDescription& t = header.tileDescription();
         block_bytes = line_bytes / static_cast<double>(w) * t.xSize * t.ySize;
     }
-    const double working = 3.0 * std::max(1, 2 * Imf::globalThreadCount()) * block_bytes;
+    const double per_buffer = 3.0 * block_bytes;  // the block, the compressed block, the codec's scratch
     const double allowed = std::max(static_cast<double>(w * h * bytes_per_pixel), 256.0 * (1 << 20));
-    if (working > allowed)
+    if (per_buffer > allowed)
         throw IoError(fmt::format("cannot read image '{}': its header claims a {} x {} data window in blocks of {}; OpenEXR "
-                                  "would need {:.1f} MB of buffers to decode it, more than the image itself",
+                                  "would need {:.1f} MB of buffers to decode one, more than the image itself (or 256 MB)",
                                   path.string(), w, h,
                                   header.hasTileDescription()
                                       ? fmt::format("{} x {} tiles", header.tileDescription().xSize, header.tileDescription().ySize)
                                       : fmt::format("{} rows", lines_per_block(header.compression())),
-                                  working / 1e6));
+                                  per_buffer / 1e6));
+    // OpenEXR keeps 2 x threads buffers (one without threads).
+    const double buffers = std::floor(allowed / per_buffer);
+    return buffers >= 2 * Imf::globalThreadCount() ? Imf::globalThreadCount() : static_cast<int>(buffers / 2);
 }
 
 }  // namespace
@@ -102,8 +108,8 @@ void admit_exr(const fs::path& path, const Imf::Header& header, long long max_pi
 RawImage read_exr(const fs::path& path, long long max_pixels) {
     exr_threads();
     try {
-        admit_exr(path, read_exr_header(path), max_pixels, 3 * 4 * 2);
-        Imf::InputFile file(path.c_str());
+        const int threads = admit_exr(path, read_exr_header(path), max_pixels, 3 * 4 * 2);
+        Imf::InputFile file(path.c_str(), threads);
         const Imath::Box2i dw = file.header().dataWindow();
         const auto [w, h] = window_size(dw);
         const Imf::ChannelList& channels = file.header().channels();
@@ -151,8 +157,8 @@ ExrChannels read_exr_planes(const fs::path& path, const std::vector<std::string>
         std::vector<std::size_t> present;
         for (std::size_t i = 0; i < wanted.size(); ++i)
             if (channels.findChannel(wanted[i])) present.push_back(i);
-        admit_exr(path, header, max_pixels, static_cast<int>(std::max<std::size_t>(1, present.size())) * 4);
-        Imf::InputFile file(path.c_str());
+        const int threads = admit_exr(path, header, max_pixels, static_cast<int>(std::max<std::size_t>(1, present.size())) * 4);
+        Imf::InputFile file(path.c_str(), threads);
         const Imath::Box2i dw = file.header().dataWindow();
         const auto [w, h] = window_size(dw);
         out.width = static_cast<int>(w), out.height = static_cast<int>(h);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <bit>
+#include <tuple>
 
 #include "glint/builder/build.h"
 #include "glint/image/image_io.h"
@@ -20,10 +21,12 @@ namespace glint {
 namespace {
 
 void write_rgb(const std::filesystem::path& path, int w, int h, OIIO::TypeDesc type,
-               const std::vector<float>& rgb) {
+               const std::vector<float>& rgb, const char* compression = nullptr) {
     auto out = OIIO::ImageOutput::create(path.string());
     ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(w, h, 3, type)));
+    OIIO::ImageSpec spec(w, h, 3, type);
+    if (compression) spec.attribute("compression", compression);
+    ASSERT_TRUE(out->open(path.string(), spec));
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
     out->close();
 }
@@ -148,13 +151,20 @@ TEST_F(ExrHeaderLies, AWideShortWindowIsRefusedBeforeOpenEXRsBuffers) {
     EXPECT_NE(tiled_error.find("bad.exr': its header claims a 2 x 2 data window in blocks of 8192 x 8192 tiles"),
               std::string::npos)
         << tiled_error;
-    // A real image one row high and 5,000 wide reads (its blocks are 2.9 MB).
-    std::vector<float> row(3 * 5000);
-    for (std::size_t i = 0; i < row.size(); ++i) row[i] = static_cast<float>(i % 7) * 0.25f;
-    write_rgb(dir_ / "row.exr", 5000, 1, OIIO::TypeDesc::HALF, row);
-    const Image image = read_image(dir_ / "row.exr", ImageEncoding::kLinear);
-    ASSERT_EQ(image.width, 5000);
-    EXPECT_EQ(image.texel(4999, 0).b, row[3 * 4999 + 2]);
+    // Real wide images read: one row of 5,000 half pixels (ZIP: blocks of 16 rows, 0.5 MB), and two
+    // rows of 100,000 float pixels in PIZ's blocks of 32 rows (38 MB each; on two or more threads
+    // OpenEXR's 2 x threads buffers would pass 256 MB: decoded on fewer threads instead).
+    for (const auto& [w, h, type, codec] :
+         {std::tuple{5000, 1, OIIO::TypeDesc::HALF, "zip"}, std::tuple{100000, 2, OIIO::TypeDesc::FLOAT, "piz"}}) {
+        std::vector<float> rgb(3 * static_cast<std::size_t>(w) * h);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<float>(i % 7) * 0.25f;
+        write_rgb(dir_ / "wide.exr", w, h, OIIO::TypeDesc(type), rgb, codec);
+        const Image image = read_image(dir_ / "wide.exr", ImageEncoding::kLinear);
+        ASSERT_EQ(image.width, w) << codec;
+        ASSERT_EQ(image.height, h) << codec;
+        EXPECT_EQ(image.texel(w - 1, h - 1).b, rgb.back()) << codec;  // multiples of 1/4: exact in half
+        EXPECT_EQ(image.texel(w / 2, 0).r, rgb[3 * static_cast<std::size_t>(w / 2)]) << codec;
+    }
 }
 
 TEST(ImageRead, SrgbDecodeInvertsTheEncoding) {
