@@ -335,7 +335,7 @@ int main(int argc, char** argv) {
                         "noisy.R/G/B; .png, .jpg ... the denoised image alone")->required();
     denoise->add_option("--threads", args.threads, "Worker threads (0 or absent: all cores)");
     int denoise_radius = glint::DenoiseOptions{}.radius;
-    denoise->add_option("--radius", denoise_radius, "The filter window's half size in pixels (default 6: 13 x 13)")
+    denoise->add_option("--radius", denoise_radius, "The filter window's half size in pixels (default 5: 11 x 11)")
         ->check(CLI::Range(1, 20));
     denoise->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
 

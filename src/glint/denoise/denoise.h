@@ -8,14 +8,19 @@
 //  - Features (first non-specular hit: albedo, normal, depth) are prefiltered: each is averaged
 //    over 3 x 3 pixels with weights from its own differences, so that a feature that varies per
 //    sample (depth of field, edges) weighs less noisily.
-//  - Candidates: three filters over a (2r+1)^2 window, each weighing a neighbour by the least of
-//    a colour weight (non-local means on 3 x 3 patches, distances normalised by the variance,
-//    Rousselle et al. 2012/2013) and the feature weights: strict colour (k = 1), loose colour
-//    (k = 2), and features alone.
+//  - Weights over a (2r+1)^2 window: each neighbour weighs the least of a colour weight (non-local
+//    means on 3 x 3 patches, distances normalised by the variance, Rousselle et al. 2012/2013) and
+//    the feature weights; two sets, strict colour (k = 1) and loose colour (k = 2).
+//  - Candidates: the strict weights' mean, and a plane in the image's coordinates fitted by
+//    weighted least squares to each set's neighbours (first-order regression, as in Bitterli et
+//    al. 2016, on the pixel position alone), evaluated at the pixel: where the features cut the
+//    window to one side of the pixel (an edge, a corner), a mean is pulled towards that side's
+//    gradient; the plane is not.
 //  - Selection: per pixel, the candidate with the least estimated error, by Stein's unbiased
 //    risk estimate (SURE, as Li et al. 2012 use it for rendering): |F(c) - c|^2 + sigma^2
-//    (2 dF/dc - 1) per channel, with dF_p/dc_p = w_pp / sum w. The error maps are smoothed over
-//    7 x 7 pixels and the choice over 5 x 5, so that neighbouring pixels blend, not jump.
+//    (2 dF/dc - 1) per channel, with dF_p/dc_p the pixel's own weight in the candidate (w_pp /
+//    sum w for the mean, the corner of the inverse moment matrix for a plane). The error maps are
+//    smoothed over 7 x 7 pixels and the choice over 5 x 5, so that neighbouring pixels blend.
 //
 // Every pixel's sums are accumulated in a fixed order of offsets, so the result has the same bits
 // for any number of threads.
@@ -39,7 +44,7 @@ struct DenoiseInput {
 };
 
 struct DenoiseOptions {
-    int radius = 6;    ///< the window is (2 radius + 1)^2 pixels
+    int radius = 5;    ///< the window is (2 radius + 1)^2 pixels
     int threads = 0;   ///< 0: every core
 };
 
