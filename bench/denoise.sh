@@ -28,6 +28,7 @@ scenes=(
   "materials scenes/materials.yaml"
   "fig14-soft scenes/seed/fig14-soft.yaml"
   "textures scenes/textures.yaml"
+  "textures-lit scenes/textures-lit.yaml"
   "cloud scenes/volumes/cloud.yaml"
 )
 mse() { awk -v r="$1" 'BEGIN { printf "%.6f", r * r }'; }
