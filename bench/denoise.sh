@@ -35,7 +35,7 @@ mse() { awk -v r="$1" 'BEGIN { printf "%.6f", r * r }'; }
 metrics() { "$here/bench/denoise_metrics.py" "$@" 2>/dev/null || echo "- - - - - -"; }
 /usr/bin/python3 -c "import cv2" 2>/dev/null ||
   echo "denoise.sh: no python3-opencv (GLINT_BENCH_DEPS=1 scripts/install-deps.sh): no SSIM, no baseline" >&2
-printf "%-11s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" scene spp "raw relMSE" "denoised" "ratio" "filter s" \
+printf "%-12s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" scene spp "raw relMSE" "denoised" "ratio" "filter s" \
   "raw SSIM" "SSIM" "OpenCV relMSE" "SSIM" "s" "h"
 for entry in "${scenes[@]}"; do
   read -r name file <<<"$entry"
@@ -49,7 +49,7 @@ for entry in "${scenes[@]}"; do
     r=$(mse "$(relative_rmse "$raw" "$ref")")
     d=$(mse "$(relative_rmse "$den" "$ref")")
     read -r s_raw s_den cv_mse cv_ssim cv_secs cv_h <<<"$(metrics "$ref" "$raw" "$den")"
-    printf "%-11s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" "$name" "$spp" "$r" "$d" \
+    printf "%-12s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" "$name" "$spp" "$r" "$d" \
       "$(awk -v a="$r" -v b="$d" 'BEGIN { printf "%.2f", a / b }')" "$secs" "$s_raw" "$s_den" "$cv_mse" "$cv_ssim" "$cv_secs" "$cv_h"
   done
 done

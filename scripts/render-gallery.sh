@@ -105,15 +105,20 @@ rm -rf "$khronos_tmp"
 # glTF's material extensions as pbr keys: clear coat, sheen, specular.
 "$glint" render scenes/gltf-layers.yaml -q -o docs/images/gltf-layers.png
 echo docs/images/gltf-layers.png
-# The denoiser (docs/denoising.md): the Cornell box at 16 spp, the same denoised, and 1024 spp.
-denoise_tmp=$(mktemp -d)
-for spp in 16 1024; do
-  "$glint" render scenes/cornell-box.yaml --width 256 --height 256 --spp "$spp" -q -o "$denoise_tmp/$spp.png"
-done
-"$glint" render scenes/cornell-box.yaml --width 256 --height 256 --spp 16 --denoise -q -o "$denoise_tmp/16d.png"
-oiiotool "$denoise_tmp/16.png" "$denoise_tmp/16d.png" "$denoise_tmp/1024.png" --mosaic 3x1 -o docs/images/denoise-cornell.png
-rm -rf "$denoise_tmp"
-echo docs/images/denoise-cornell.png
+# The denoiser (docs/denoising.md): SCENE at 16 spp, the same denoised, and at SPP, side by side.
+#   denoise_strip SCENE WIDTH HEIGHT SPP OUT
+denoise_strip() {
+  local tmp
+  tmp=$(mktemp -d)
+  for spp in 16 "$4"; do
+    "$glint" render "$1" --width "$2" --height "$3" --spp "$spp" -q -o "$tmp/$spp.png"
+  done
+  "$glint" render "$1" --width "$2" --height "$3" --spp 16 --denoise -q -o "$tmp/16d.png"
+  oiiotool "$tmp/16.png" "$tmp/16d.png" "$tmp/$4.png" --mosaic 3x1 -o "$5"
+  rm -rf "$tmp"
+  echo "$5"
+}
+denoise_strip scenes/cornell-box.yaml 256 256 1024 docs/images/denoise-cornell.png
 # The issue's scene: pbrt-v4's features at 64 spp, the same denoised, and 256 spp (its right half).
 denoise_tmp=$(mktemp -d)
 "$glint" render scenes/pbrt/features.pbrt --spp 64 --denoise -q -o "$denoise_tmp/64d.exr"
@@ -123,6 +128,8 @@ oiiotool "$denoise_tmp/64d.exr" --ch noisy.R,noisy.G,noisy.B --chnames R,G,B --c
   --mosaic 3x1 --colorconvert linear sRGB --resize 900x300 -o docs/images/denoise-features.png
 rm -rf "$denoise_tmp"
 echo docs/images/denoise-features.png
+# Texture edges through the denoiser: the path-traced textures scene, against 64 spp.
+denoise_strip scenes/textures-lit.yaml 400 225 64 docs/images/denoise-textures.png
 # Many lights (docs/lights.md): the town square of bench/many_lights.py at equal time (8 s each,
 # 2 threads): the power sampler, the light BVH, and the BVH's 4096-spp reference.
 lights_tmp=$(mktemp -d)
