@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -459,11 +458,8 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
     double chosen[kCandidates] = {};
     for (std::size_t p = 0; p < n; ++p) {
         std::size_t best = 0;
-        static const char* skip = std::getenv("GLINT_DN_SKIP");
         for (std::size_t k = 1; k < kCandidates; ++k)
-            if (sure[k][p] < sure[best][p] && !(skip && (k == 2 || k == 5))) best = k;
-        static const char* force = std::getenv("GLINT_DN_FORCE");
-        if (force) best = static_cast<std::size_t>(std::atoi(force));
+            if (sure[k][p] < sure[best][p]) best = k;
         hot[p].v[best] = 1;
         chosen[best] += 1;
     }
