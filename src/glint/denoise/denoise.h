@@ -41,6 +41,11 @@ struct DenoiseInput {
     const Color* albedo = nullptr;  ///< features; each may be null (then not used)
     const Normal3* normal = nullptr;
     const float* depth = nullptr;   ///< +inf where nothing was hit
+    /// The albedo's half images (means of the even- and odd-numbered samples), optional: with
+    /// them the filter also tries filtering the shading (colour / albedo), whose error estimate
+    /// needs to know how the albedo's noise goes with the colour's.
+    const Color* even_albedo = nullptr;
+    const Color* odd_albedo = nullptr;
 };
 
 struct DenoiseOptions {
@@ -51,7 +56,7 @@ struct DenoiseOptions {
 /// What the filter found, for tests and reports.
 struct DenoiseStats {
     double seconds = 0;
-    double chosen[3] = {0, 0, 0};  ///< the share of pixels each candidate won
+    double chosen[5] = {0, 0, 0, 0, 0};  ///< the share of pixels each candidate won
 };
 
 /// The denoised image. Throws std::invalid_argument naming the first bad input: missing planes,

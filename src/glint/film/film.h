@@ -23,14 +23,16 @@ public:
     const Color& at(int col, int row) const { return pixels_[index(col, row)]; }
     const BigVector<Color>& pixels() const { return pixels_; }
 
-    /// Allocates the AOV planes (albedo, normal, depth, and the two half images: the means of
-    /// the even- and of the odd-numbered samples), before rendering.
+    /// Allocates the AOV planes (albedo, normal, depth, and the two half images of the colour and
+    /// of the albedo: the means of the even- and of the odd-numbered samples), before rendering.
     void enable_aovs() {
         albedo_.assign(pixels_.size(), Color{0});
         normal_.assign(pixels_.size(), Normal3{0, 0, 0});
         depth_.assign(pixels_.size(), 0);
         even_.assign(pixels_.size(), Color{0});
         odd_.assign(pixels_.size(), Color{0});
+        even_albedo_.assign(pixels_.size(), Color{0});
+        odd_albedo_.assign(pixels_.size(), Color{0});
     }
     bool has_aovs() const { return !albedo_.empty(); }
     Color& albedo(int col, int row) { return albedo_[index(col, row)]; }
@@ -43,6 +45,10 @@ public:
     Color& odd(int col, int row) { return odd_[index(col, row)]; }
     const BigVector<Color>& even() const { return even_; }
     const BigVector<Color>& odd() const { return odd_; }
+    Color& even_albedo(int col, int row) { return even_albedo_[index(col, row)]; }
+    Color& odd_albedo(int col, int row) { return odd_albedo_[index(col, row)]; }
+    const BigVector<Color>& even_albedo() const { return even_albedo_; }
+    const BigVector<Color>& odd_albedo() const { return odd_albedo_; }
 
     /// The image before denoising, kept beside the denoised one (written as EXR channels).
     void keep_noisy(BigVector<Color> noisy) { noisy_ = std::move(noisy); }
@@ -66,7 +72,7 @@ private:
     BigVector<Color> albedo_;
     BigVector<Normal3> normal_;
     BigVector<float> depth_;
-    BigVector<Color> even_, odd_, noisy_;
+    BigVector<Color> even_, odd_, even_albedo_, odd_albedo_, noisy_;
     BigVector<float> samples_;
 };
 

@@ -349,13 +349,14 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
     const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (format == ImageFormat::kExr) {
         // R, G, B, then with AOVs: albedo.R/G/B, N.X/Y/Z and Z (depth), OpenEXR's names, the
-        // half images even.R/G/B and odd.R/G/B; the image before denoising noisy.R/G/B; then the
-        // sample counts.
+        // half images even.R/G/B and odd.R/G/B and the albedo's, albedo.even.R/G/B and
+        // albedo.odd.R/G/B; the image before denoising noisy.R/G/B; then the sample counts.
         const bool counts = film.has_sample_counts(), noisy = film.has_noisy();
         std::vector<std::string> names = {"R", "G", "B"};
         if (film.has_aovs())
             names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "even.R", "even.G",
-                                       "even.B", "odd.R", "odd.G", "odd.B"});
+                                       "even.B", "odd.R", "odd.G", "odd.B", "albedo.even.R", "albedo.even.G",
+                                       "albedo.even.B", "albedo.odd.R", "albedo.odd.G", "albedo.odd.B"});
         if (noisy) names.insert(names.end(), {"noisy.R", "noisy.G", "noisy.B"});
         if (counts) names.emplace_back("spp");
         const std::size_t stride = names.size();
@@ -373,10 +374,13 @@ void write_image(const fs::path& path, const Film& film, const DisplaySettings& 
                 const Color e = film.even()[i], o = film.odd()[i];
                 px[10] = e.r, px[11] = e.g, px[12] = e.b;
                 px[13] = o.r, px[14] = o.g, px[15] = o.b;
+                const Color ae = film.even_albedo()[i], ao = film.odd_albedo()[i];
+                px[16] = ae.r, px[17] = ae.g, px[18] = ae.b;
+                px[19] = ao.r, px[20] = ao.g, px[21] = ao.b;
             }
             if (noisy) {
                 const Color c0 = film.noisy()[i];
-                float* q = px + (film.has_aovs() ? 16 : 3);
+                float* q = px + (film.has_aovs() ? 22 : 3);
                 q[0] = c0.r, q[1] = c0.g, q[2] = c0.b;
             }
             if (counts) px[stride - 1] = film.sample_counts()[i];

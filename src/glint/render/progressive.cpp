@@ -40,6 +40,7 @@ void ProgressiveState::allocate() {
     samples.assign(adaptive ? n : 0, 0);
     active.assign(adaptive ? n : 0, 1);
     albedo.assign(aovs ? n : 0, Color{0});
+    odd_albedo.assign(aovs ? n : 0, Color{0});
     normal.assign(aovs ? n : 0, Vector3{0, 0, 0});
     depth.assign(aovs ? n : 0, 0.0f);
     hit_weight.assign(aovs ? n : 0, 0.0f);
@@ -54,6 +55,7 @@ void ProgressiveState::check_shape() const {
     check_plane(samples, a, "sample count");
     check_plane(active, a, "active");
     check_plane(albedo, v, "albedo");
+    check_plane(odd_albedo, v, "odd-sample albedo");
     check_plane(normal, v, "normal");
     check_plane(depth, v, "depth");
     check_plane(hit_weight, v, "depth weight");
@@ -183,10 +185,10 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
 
     Color sum = in.sum[i], odd = in.halves() ? in.odd_sum[i] : Color{0};
     float weight = in.weight[i], odd_weight = in.halves() ? in.odd_weight[i] : 0.0f;
-    Color albedo{0};
+    Color albedo{0}, odd_albedo{0};
     Vector3 normal{0, 0, 0};
     float depth = 0, hit_weight = 0;
-    if (in.aovs) albedo = in.albedo[i], normal = in.normal[i], depth = in.depth[i], hit_weight = in.hit_weight[i];
+    if (in.aovs) albedo = in.albedo[i], odd_albedo = in.odd_albedo[i], normal = in.normal[i], depth = in.depth[i], hit_weight = in.hit_weight[i];
     const FilterSampler& filter = filter_;
     for (int s = first; s < last; ++s) {
         const auto index = static_cast<std::uint32_t>(s);
@@ -221,6 +223,7 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
         }
         if (in.aovs) {
             albedo += hit.albedo * w;
+            if (s & 1) odd_albedo += hit.albedo * w;
             normal += to_vector(hit.normal) * w;
             if (hit.hit) depth += hit.depth * w, hit_weight += w;
         }
@@ -237,6 +240,7 @@ int ProgressiveRender::next_pass_size(double seconds_left) const {
     }
     if (in.aovs) {
         out.albedo[i] = albedo;
+        out.odd_albedo[i] = odd_albedo;
         out.normal[i] = normal;
         out.depth[i] = depth;
         out.hit_weight[i] = hit_weight;
@@ -298,6 +302,7 @@ void each_plane(State& s, F&& f) {
     }
     if (s.aovs) {
         f(s.albedo);
+        f(s.odd_albedo);
         f(s.normal);
         f(s.depth);
         f(s.hit_weight);
@@ -481,6 +486,8 @@ void ProgressiveRender::resolve(Film& film) const {
                 const Color even = ew > 0 ? (state_.sum[i] - state_.odd_sum[i]) / ew : Color{0};
                 film.even(col, row) = options_.scale != 1 ? even * options_.scale : even;
                 film.odd(col, row) = options_.scale != 1 ? odd * options_.scale : odd;
+                film.odd_albedo(col, row) = ow > 0 ? state_.odd_albedo[i] / ow : Color{0};
+                film.even_albedo(col, row) = ew > 0 ? (state_.albedo[i] - state_.odd_albedo[i]) / ew : Color{0};
             }
             if (film.has_sample_counts()) {
                 film.sample_count(col, row) = static_cast<float>(

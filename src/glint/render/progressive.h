@@ -47,8 +47,10 @@ struct ProgressiveState {
     // Adaptive sampling only.
     std::vector<std::uint32_t> samples;  ///< per pixel
     std::vector<std::uint8_t> active;    ///< 1: still sampling
-    // AOVs only: filter-weighted albedo and normal; depth over the samples that hit.
-    std::vector<Color> albedo;
+    // AOVs only: filter-weighted albedo (all samples, and the odd-numbered ones: the denoiser's
+    // estimate of how the albedo's noise goes with the colour's) and normal; depth over the
+    // samples that hit.
+    std::vector<Color> albedo, odd_albedo;
     std::vector<Vector3> normal;
     std::vector<float> depth, hit_weight;
 

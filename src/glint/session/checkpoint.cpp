@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-constexpr std::uint32_t kVersion = 2;  // 2: AOVs bring the odd-numbered samples' sums
+constexpr std::uint32_t kVersion = 3;  // 2: AOVs bring the odd-numbered samples' sums; 3: and albedo
 constexpr std::size_t kHeaderBytes = 72;
 
 // Bytes per pixel of the planes the flags call for.
@@ -35,7 +35,7 @@ std::size_t pixel_bytes(bool adaptive, bool aovs) {
     std::size_t b = 12 + 4;
     if (adaptive || aovs) b += 12 + 4;
     if (adaptive) b += 4 + 1;
-    if (aovs) b += 12 + 12 + 4 + 4;
+    if (aovs) b += 12 + 12 + 12 + 4 + 4;
     return b;
 }
 
@@ -170,6 +170,7 @@ void write_checkpoint(const fs::path& path, std::uint64_t fingerprint, const Pro
     }
     if (s.aovs) {
         w.plane(s.albedo);
+        w.plane(s.odd_albedo);
         w.plane(s.normal);
         w.plane(s.depth);
         w.plane(s.hit_weight);
@@ -255,6 +256,7 @@ Checkpoint read_checkpoint(const fs::path& path) {
     }
     if (s.aovs) {
         r.plane(s.albedo, n);
+        r.plane(s.odd_albedo, n);
         r.plane(s.normal, n);
         r.plane(s.depth, n);
         r.plane(s.hit_weight, n);

@@ -3,7 +3,7 @@
 // samples done, and a fingerprint of the scene and the options, so that `--resume` continues the
 // same render and refuses any other.
 //
-// The file (little-endian, version 1):
+// The file (little-endian, version 3):
 //   0   "GLINTCKP"                   magic
 //   8   u32 version, u32 flags       bit 0: adaptive sampling, bit 1: AOVs
 //   16  u64 fingerprint
@@ -12,7 +12,7 @@
 //   64  u64 payload bytes
 //   72  the planes, pixel by pixel, row 0 first: sum (3 f32), weight (f32); adaptive: odd-sample
 //       sum (3 f32), odd-sample weight (f32), sample count (u32), active (u8); AOVs: albedo
-//       (3 f32), normal (3 f32), depth (f32), depth weight (f32)
+//       (3 f32), odd-sample albedo (3 f32), normal (3 f32), depth (f32), depth weight (f32)
 //   end u64 checksum of every byte before it
 // Written atomically (a temporary file, flushed to disk, then renamed), so a checkpoint on disk
 // is always whole, whenever the process is killed.

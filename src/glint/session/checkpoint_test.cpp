@@ -28,7 +28,7 @@ ProgressiveState small_state(bool adaptive, bool aovs) {
         s.sum[i] = Color{0.1f * i, 0.2f, -0.0f};
         s.weight[i] = 4.0f + i;
         if (adaptive) s.samples[i] = static_cast<std::uint32_t>(i), s.active[i] = i % 2;
-        if (aovs) s.depth[i] = 1.0f / (i + 1);
+        if (aovs) s.depth[i] = 1.0f / (i + 1), s.odd_albedo[i] = Color{0.25f, 0.01f * i, 0.5f};
         if (s.halves()) s.odd_sum[i] = Color{0.05f * i, 0.1f, 0.0f}, s.odd_weight[i] = 2.0f + i;
     }
     return s;
@@ -63,8 +63,11 @@ TEST(Checkpoint, RoundTripsEveryPlaneBitForBit) {
             EXPECT_EQ(r.samples, s.samples);
             EXPECT_EQ(r.active, s.active);
             EXPECT_EQ(r.depth, s.depth);
-            // 72-byte header, 16 bytes a pixel (+16 odd samples with either, +5 adaptive, +32 AOVs), 8-byte checksum.
-            EXPECT_EQ(bytes_of(dir / "c.ckpt").size(), 72 + 6 * (16 + (adaptive || aovs ? 16 : 0) + (adaptive ? 5 : 0) + (aovs ? 32 : 0)) + 8);
+            ASSERT_EQ(r.odd_albedo.size(), s.odd_albedo.size());
+            if (!s.odd_albedo.empty())
+                EXPECT_EQ(0, std::memcmp(r.odd_albedo.data(), s.odd_albedo.data(), s.odd_albedo.size() * sizeof(Color)));
+            // 72-byte header, 16 bytes a pixel (+16 odd samples with either, +5 adaptive, +44 AOVs), 8-byte checksum.
+            EXPECT_EQ(bytes_of(dir / "c.ckpt").size(), 72 + 6 * (16 + (adaptive || aovs ? 16 : 0) + (adaptive ? 5 : 0) + (aovs ? 44 : 0)) + 8);
             EXPECT_EQ(dir.file_count(), 1u);  // no temporary file left
         }
     }

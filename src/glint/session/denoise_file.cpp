@@ -18,7 +18,9 @@ namespace {
 
 // The channels read, in groups of three (Z alone): a group is used only when whole.
 const std::vector<std::string> kChannels = {"R", "G", "B", "even.R", "even.G", "even.B", "odd.R", "odd.G",
-                                            "odd.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+                                            "odd.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z",
+                                            "albedo.even.R", "albedo.even.G", "albedo.even.B", "albedo.odd.R",
+                                            "albedo.odd.G", "albedo.odd.B"};
 
 }  // namespace
 
@@ -45,6 +47,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
         return true;
     };
     const bool albedo = whole(9, 3), normal = whole(12, 3), depth = whole(15, 1);
+    const bool albedo_halves = albedo && whole(16, 6);
     const int w = c.width, h = c.height;
     Film film(w, h);
     film.enable_aovs();
@@ -60,6 +63,7 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
             if (albedo) film.albedo(x, y) = rgb(9);
             if (normal) film.normal(x, y) = Normal3{c.planes[12][i], c.planes[13][i], c.planes[14][i]};
             film.depth(x, y) = depth ? c.planes[15][i] : 0.0f;
+            if (albedo_halves) film.even_albedo(x, y) = rgb(16), film.odd_albedo(x, y) = rgb(19);
         }
     }
     c = {};  // the film holds it now
@@ -70,7 +74,9 @@ double denoise_file(const std::filesystem::path& in, const std::filesystem::path
                              film.odd().data(),
                              albedo ? film.albedo().data() : nullptr,
                              normal ? film.normal().data() : nullptr,
-                             depth ? film.depth().data() : nullptr};
+                             depth ? film.depth().data() : nullptr,
+                             albedo_halves ? film.even_albedo().data() : nullptr,
+                             albedo_halves ? film.odd_albedo().data() : nullptr};
     DenoiseStats stats;
     std::vector<Color> result;
     try {

@@ -240,7 +240,8 @@ namespace {
 double denoise_film(Film& film, int threads) {
     const DenoiseInput in{film.width(),         film.height(),        film.pixels().data(),
                           film.even().data(),   film.odd().data(),    film.albedo().data(),
-                          film.normal().data(), film.depth().data()};
+                          film.normal().data(), film.depth().data(),  film.even_albedo().data(),
+                          film.odd_albedo().data()};
     DenoiseStats stats;
     DenoiseOptions options;
     options.threads = threads;
