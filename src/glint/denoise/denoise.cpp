@@ -21,14 +21,28 @@ namespace {
 // candidates from them: the strict weights' mean, the strict weights' plane fit and the loose
 // weights' plane fit (docs/denoising.md says how these were chosen).
 constexpr int kWeightSets = 2;
-constexpr int kCandidates = 3;
-constexpr int kMoments = 15;                   // the sums a plane fit needs (accumulate)
+constexpr int kCandidates = 5;
+constexpr int kColumnSums = 9;                 // per set of weights and column of offsets (add_column_*)
+constexpr int kShadingColumnSums = 6;          // the strict set's shading sums, per column
+constexpr int kMoments = 15;                   // the sums a plane fit needs (fold_*)
+constexpr int kShadingMoments = 9;             // the strict set's, of the shading
+constexpr float kShadingFloor = 0.01f;         // added to the albedo the shading is divided by
+constexpr int kShadeSet = 1;                   // the weights the shading is filtered with: the loose set
+// Where the albedo's noise is large against the albedo (its variance over its square above this),
+// the shading candidates' first-order risk estimate does not hold (an emitter's edge, where the
+// colour is not albedo times shading): they are not considered there.
+constexpr float kShadingMaxRelativeVariance = 0.25f;
 constexpr double kRidge = 0.1;                 // on the slopes, times the sum of weights
 constexpr float kColourK[kWeightSets] = {1.0f, 2.0f};  // the colour bandwidths
 constexpr float kEpsilon = 1e-10f;             // keeps a noise-free pixel's distances finite
 // Feature bandwidths: albedo per channel, normal (unit vectors), depth relative to itself after
 // the plane through the pixel (its gradient) is taken away.
 constexpr float kAlbedoScale = 0.1f, kNormalScale = 0.2f, kDepthScale = 0.02f;
+// The filter's working memory per pixel of a strip at its peak (while the candidates are
+// computed): the planes (23 floats and a flag) and five candidates with their error estimates;
+// and what a strip may use (docs/denoising.md, "Speed and memory").
+constexpr std::size_t kBytesPerPixel = 23 * 4 + 1 + kCandidates * 16;
+constexpr std::size_t kStripBytes = std::size_t{256} << 20;
 constexpr int kBand = 16;  // rows per task: fixed, so the work's split never depends on threads
 
 // Maximum and minimum by value, which the vectoriser turns into selects.
@@ -106,6 +120,8 @@ void check(const DenoiseInput& in) {
         if (!is_finite(in.even[i])) throw std::invalid_argument(where(i, "even half"));
         if (!is_finite(in.odd[i])) throw std::invalid_argument(where(i, "odd half"));
         if (in.albedo && !is_finite(in.albedo[i])) throw std::invalid_argument(where(i, "albedo"));
+        if (in.even_albedo && !is_finite(in.even_albedo[i])) throw std::invalid_argument(where(i, "albedo's even half"));
+        if (in.odd_albedo && !is_finite(in.odd_albedo[i])) throw std::invalid_argument(where(i, "albedo's odd half"));
         if (in.normal && !(std::isfinite(in.normal[i].x) && std::isfinite(in.normal[i].y) && std::isfinite(in.normal[i].z)))
             throw std::invalid_argument(where(i, "normal"));
         if (in.depth && std::isnan(in.depth[i])) throw std::invalid_argument(where(i, "depth"));
@@ -120,7 +136,22 @@ struct Planes {
     std::vector<float> a[3], nrm[3];   // albedo, normal (zero when absent)
     std::vector<float> z, inv_z, hit;  // depth (0 on a miss), 1 / its scale, 1 where hit (all 1 without depth)
     std::vector<float> gx, gy;         // depth gradient (the smaller one-sided difference)
+    // With the albedo's halves: the shading s = c / (albedo + floor) (the pixel's own albedo,
+    // not prefiltered), that albedo plus the floor, and the covariance of the albedo's and the
+    // colour's means per channel (from the halves, like the variance).
+    bool shading = false;
+    std::vector<float> s[3], ahat[3], cov[3];
+    std::vector<std::uint8_t> ok;
 };
+
+// The covariance of the albedo's and the colour's means per channel: (a_e - a_o)(c_e - c_o) / 4,
+// smoothed like the variance.
+std::vector<Color> albedo_covariance(const DenoiseInput& in, bool variance) {
+    const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+    std::vector<Color> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = (in.even_albedo[i] - in.odd_albedo[i]) * (variance ? in.even_albedo[i] - in.odd_albedo[i] : in.even[i] - in.odd[i]) * 0.25f;
+    return box(v, in.width, in.height, 2);
+}
 
 Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
     const int w = in.width, h = in.height;
@@ -196,6 +227,24 @@ Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
             }
         });
     }
+    pl.shading = in.albedo && in.even_albedo && in.odd_albedo;
+    if (pl.shading) {
+        const std::vector<Color> cov = albedo_covariance(in, false), va = albedo_covariance(in, true);
+        pl.ok.resize(n);
+        for (int ch = 0; ch < 3; ++ch) pl.s[ch].resize(n), pl.ahat[ch].resize(n), pl.cov[ch].resize(n);
+        for_rows(h, [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t p = at(w, x, y);
+                for (int ch = 0; ch < 3; ++ch) {
+                    const float a = std::max(0.0f, in.albedo[p][ch]) + kShadingFloor;
+                    pl.ahat[ch][p] = a, pl.s[ch][p] = in.color[p][ch] / a, pl.cov[ch][p] = cov[p][ch];
+                }
+                float rel = 0;
+                for (int ch = 0; ch < 3; ++ch) rel = std::max(rel, va[p][ch] / (pl.ahat[ch][p] * pl.ahat[ch][p]));
+                pl.ok[p] = rel <= kShadingMaxRelativeVariance;
+            }
+        });
+    }
     return pl;
 }
 
@@ -235,29 +284,39 @@ void colour_terms(const Planes& pl, int y, int qy, int dx, int w, float* t0) {
     for (int x = xb; x < w; ++x) term(x, std::clamp(x + dx, 0, w - 1), &t0[x]);
 }
 
-// Adds n neighbours at the offset (dx, dy), with their weights, to the sums of a weighted fit of
-// a plane in the image's coordinates: the planes s[0..15) of one set of weights are the moments
-// w, w dx, w dy, w dx^2, w dx dy, w dy^2 and, per channel, w c, w c dx, w c dy. Each loop's
-// pointers are distinct parameters, so that GCC knows they do not alias and vectorises.
-[[gnu::noinline]] void add_moments(float* __restrict m0, float* __restrict m1, float* __restrict m2,
-                                   float* __restrict m3, float* __restrict m4, float* __restrict m5,
-                                   const float* __restrict wt, float dx, float dy, int n) {
-    const float xx = dx * dx, xy = dx * dy, yy = dy * dy;
+// The sums over one column of offsets (a fixed dx, every dy) of a set of weights, per pixel:
+// w, w dy, w dy^2, then per colour channel w c and w c dy (kColumnSums planes), and for the
+// strict set per shading channel w s and w s dy. fold() turns them into the moments of a plane
+// fit: w, w dx, w dy, w dx^2, w dx dy, w dy^2 and per channel w c, w c dx, w c dy: the dx factors
+// are constant over a column, so they are applied once per column, not once per neighbour. Each
+// loop's pointers are distinct parameters, so that GCC knows they do not alias and vectorises.
+[[gnu::noinline]] void add_column_weights(float* __restrict t0, float* __restrict t1, float* __restrict t2,
+                                          const float* __restrict wt, float dy, int n) {
+    const float yy = dy * dy;
     for (int x = 0; x < n; ++x) {
         const float v = wt[x];
-        m0[x] += v, m1[x] += v * dx, m2[x] += v * dy, m3[x] += v * xx, m4[x] += v * xy, m5[x] += v * yy;
+        t0[x] += v, t1[x] += v * dy, t2[x] += v * yy;
     }
 }
-[[gnu::noinline]] void add_colour(float* __restrict s0, float* __restrict s1, float* __restrict s2,
-                                  const float* __restrict wt, const float* __restrict c, float dx, float dy, int n) {
+[[gnu::noinline]] void add_column_values(float* __restrict t0, float* __restrict t1, const float* __restrict wt,
+                                         const float* __restrict c, float dy, int n) {
     for (int x = 0; x < n; ++x) {
         const float v = wt[x] * c[x];
-        s0[x] += v, s1[x] += v * dx, s2[x] += v * dy;
+        t0[x] += v, t1[x] += v * dy;
     }
 }
-void accumulate(float* const* s, std::size_t o, const float* wt, const float* const* c, float dx, float dy, int n) {
-    add_moments(s[0] + o, s[1] + o, s[2] + o, s[3] + o, s[4] + o, s[5] + o, wt, dx, dy, n);
-    for (int ch = 0; ch < 3; ++ch) add_colour(s[6 + 3 * ch] + o, s[7 + 3 * ch] + o, s[8 + 3 * ch] + o, wt, c[ch], dx, dy, n);
+[[gnu::noinline]] void fold_weights(float* __restrict m0, float* __restrict m1, float* __restrict m2,
+                                    float* __restrict m3, float* __restrict m4, float* __restrict m5,
+                                    const float* __restrict t0, const float* __restrict t1, const float* __restrict t2,
+                                    float dx, int n) {
+    const float xx = dx * dx;
+    for (int x = 0; x < n; ++x) {
+        m0[x] += t0[x], m1[x] += dx * t0[x], m2[x] += t1[x], m3[x] += xx * t0[x], m4[x] += dx * t1[x], m5[x] += t2[x];
+    }
+}
+[[gnu::noinline]] void fold_values(float* __restrict s0, float* __restrict s1, float* __restrict s2,
+                                   const float* __restrict t0, const float* __restrict t1, float dx, int n) {
+    for (int x = 0; x < n; ++x) s0[x] += t0[x], s1[x] += dx * t0[x], s2[x] += t1[x];
 }
 
 // Sums of three along a row, clamped at its ends.
@@ -349,14 +408,17 @@ std::vector<Color> denoise_variance(const DenoiseInput& in) {
 
 namespace {
 
-std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
-    const auto start = std::chrono::steady_clock::now();
+// The filter on a whole image `in` (or a strip of rows of one, with its halo), of which the rows
+// [keep0, keep1) are written to `out` (row keep0 first) and their choices counted into `chosen`.
+void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int keep0, int keep1, Color* out,
+                  double* chosen) {
     // The variance lives on in the planes (pl.v); the planes go once the candidates are computed:
-    // the working memory peaks at 116 bytes a pixel (docs/denoising.md, "Speed and memory").
-    Planes pl = planes(in, denoise_variance(in));  // checks `in`
+    // the working memory peaks at kBytesPerPixel (docs/denoising.md, "Speed and memory").
+    Planes pl = planes(in, denoise_variance(in));
     const int w = in.width, h = in.height, r = std::max(0, options.radius);
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     const Color* c = in.color;
+    const bool shade = pl.shading;
 
     // Each candidate's image and its SURE error map, filled band by band.
     std::vector<Color> filtered[kCandidates];
@@ -369,37 +431,67 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
         const auto row_size = static_cast<std::size_t>(w);
         std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), h0(t0.size());
         std::vector<float> wk0(row_size), wk1(row_size), dfr(row_size);
-        // The band's sums, plane by plane: weight set k's kMoments planes from kMoments k on.
+        // The band's sums, plane by plane: per column of offsets (cols) and over the window
+        // (moments); the strict set's first, then the loose set's.
         const std::size_t band_pixels = static_cast<std::size_t>(y1 - y0) * row_size;
-        std::vector<float> acc(kMoments * kWeightSets * band_pixels, 0.0f);
-        float* planes_of[kWeightSets][kMoments];
-        for (std::size_t k = 0; k < kWeightSets; ++k)
-            for (std::size_t m = 0; m < kMoments; ++m) planes_of[k][m] = acc.data() + (k * kMoments + m) * band_pixels;
-        for (int dy = -r; dy <= r; ++dy) {
-            for (int dx = -r; dx <= r; ++dx) {
+        int ncol[kWeightSets] = {kColumnSums, kColumnSums};
+        int nmom[kWeightSets] = {kMoments, kMoments};
+        if (shade) ncol[kShadeSet] += kShadingColumnSums, nmom[kShadeSet] += kShadingMoments;
+        std::vector<float> cols(static_cast<std::size_t>(ncol[0] + ncol[1]) * band_pixels);
+        std::vector<float> moments(static_cast<std::size_t>(nmom[0] + nmom[1]) * band_pixels, 0.0f);
+        float* col[kWeightSets][kColumnSums + kShadingColumnSums];
+        float* mom[kWeightSets][kMoments + kShadingMoments];
+        for (int k = 0, ci = 0, mi = 0; k < kWeightSets; ++k) {
+            for (int j = 0; j < ncol[k]; ++j) col[k][j] = cols.data() + static_cast<std::size_t>(ci++) * band_pixels;
+            for (int j = 0; j < nmom[k]; ++j) mom[k][j] = moments.data() + static_cast<std::size_t>(mi++) * band_pixels;
+        }
+        for (int dx = -r; dx <= r; ++dx) {
+            const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
+            if (xa >= xb) continue;
+            std::fill(cols.begin(), cols.end(), 0.0f);
+            for (int dy = -r; dy <= r; ++dy) {
                 // Per-pixel colour terms of (p, p + d), neighbours clamped to the image.
                 for (int y = ty0; y < ty1; ++y) {
                     const std::size_t row = static_cast<std::size_t>(y - ty0) * row_size;
                     colour_terms(pl, y, std::clamp(y + dy, 0, h - 1), dx, w, &t0[row]);
                     box3_row(&t0[row], &h0[row], w);
                 }
+                const auto fy = static_cast<float>(dy);
                 for (int y = y0; y < y1; ++y) {
                     const int qy = y + dy;
                     if (qy < 0 || qy >= h) continue;
                     const std::size_t ra = static_cast<std::size_t>(std::max(ty0, y - 1) - ty0) * row_size,
                                       rb = static_cast<std::size_t>(y - ty0) * row_size,
                                       rc = static_cast<std::size_t>(std::min(ty1 - 1, y + 1) - ty0) * row_size;
-                    const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
-                    if (xa >= xb) continue;
                     weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc],
                             dfr.data(), wk0.data(), wk1.data());
                     const std::size_t p0 = static_cast<std::size_t>(y - y0) * row_size, q0 = static_cast<std::size_t>(qy) * row_size;
                     const float* wk[kWeightSets] = {wk0.data(), wk1.data()};
                     const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
-                    const float* cq[3] = {pl.c[0].data() + qs, pl.c[1].data() + qs, pl.c[2].data() + qs};
-                    for (int k = 0; k < kWeightSets; ++k)
-                        accumulate(planes_of[k], p0 + xs, wk[k] + xs, cq, static_cast<float>(dx), static_cast<float>(dy), xb - xa);
+                    const std::size_t o = p0 + xs;
+                    const int count = xb - xa;
+                    for (int k = 0; k < kWeightSets; ++k) {
+                        const float* wt = wk[k] + xs;
+                        float* const* t = col[k];
+                        add_column_weights(t[0] + o, t[1] + o, t[2] + o, wt, fy, count);
+                        for (int ch = 0; ch < 3; ++ch)
+                            add_column_values(t[3 + 2 * ch] + o, t[4 + 2 * ch] + o, wt, pl.c[ch].data() + qs, fy, count);
+                        if (k == kShadeSet && shade)
+                            for (int ch = 0; ch < 3; ++ch)
+                                add_column_values(t[9 + 2 * ch] + o, t[10 + 2 * ch] + o, wt, pl.s[ch].data() + qs, fy, count);
+                    }
                 }
+            }
+            const auto fx = static_cast<float>(dx);
+            const auto bp = static_cast<int>(band_pixels);
+            for (int k = 0; k < kWeightSets; ++k) {
+                float* const* t = col[k];
+                float* const* m = mom[k];
+                fold_weights(m[0], m[1], m[2], m[3], m[4], m[5], t[0], t[1], t[2], fx, bp);
+                for (int ch = 0; ch < 3; ++ch) fold_values(m[6 + 3 * ch], m[7 + 3 * ch], m[8 + 3 * ch], t[3 + 2 * ch], t[4 + 2 * ch], fx, bp);
+                if (k == kShadeSet && shade)
+                    for (int ch = 0; ch < 3; ++ch)
+                        fold_values(m[15 + 3 * ch], m[16 + 3 * ch], m[17 + 3 * ch], t[9 + 2 * ch], t[10 + 2 * ch], fx, bp);
             }
         }
         for (std::size_t i = 0; i < band_pixels; ++i) {
@@ -410,27 +502,55 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
                 const Color d = f - c[p];
                 return d.r * d.r + d.g * d.g + d.b * d.b + v * (2 * df - 1);
             };
+            // A shading candidate's: the output a f, with a the pixel's albedo (plus the floor)
+            // and f the filtered shading, moves with the pixel's colour through f (derivative
+            // df) and with its albedo, whose noise goes with the colour's: the risk gains
+            // 2 cov(a, c) (f - df s_p) per channel (docs/denoising.md derives it).
+            const auto shading_risk = [&](const float* f, float df, Color* out) {
+                float e = 0, g[3];
+                for (int ch = 0; ch < 3; ++ch) {
+                    g[ch] = pl.ahat[ch][p] * f[ch];
+                    const float d = g[ch] - c[p][ch];
+                    e += d * d + pl.v[ch][p] * (2 * df - 1) + 2 * pl.cov[ch][p] * (f[ch] - df * pl.s[ch][p]);
+                }
+                *out = Color{g[0], g[1], g[2]};
+                return e;
+            };
             // The strict weights' mean. The pixel weighs itself by 1, so the sum of weights is at least 1.
-            float* const* m = planes_of[0];
+            float* const* m = mom[0];
             const float sw = m[0][i];
             filtered[0][p] = Color{m[6][i] / sw, m[9][i] / sw, m[12][i] / sw};
             sure[0][p] = risk(filtered[0][p], 1 / sw);
+            if (shade) {
+                float* const* ms = mom[kShadeSet];
+                const float sws = ms[0][i];
+                const float f[3] = {ms[15][i] / sws, ms[18][i] / sws, ms[21][i] / sws};
+                sure[3][p] = shading_risk(f, 1 / sws, &filtered[3][p]);
+                if (!pl.ok[p]) sure[3][p] = std::numeric_limits<float>::infinity();
+            } else {
+                sure[3][p] = sure[4][p] = std::numeric_limits<float>::infinity();
+            }
             for (std::size_t k = 0; k < kWeightSets; ++k) {
                 // The plane's value at the pixel: the first row of the moments' inverse times the
                 // colour sums (a ridge on the slopes keeps a fit along a line, or of the pixel
                 // alone, from dividing by zero). Its derivative by the pixel's colour is the
                 // inverse's corner: the pixel sits at (0, 0) with weight 1.
-                m = planes_of[k];
+                m = mom[k];
                 const double s0 = m[0][i], sx = m[1][i], sy = m[2][i];
                 const double sxx = m[3][i] + kRidge * s0, sxy = m[4][i], syy = m[5][i] + kRidge * s0;
                 const double c0 = syy * sxx - sxy * sxy, c1 = sy * sxy - sx * syy, c2 = sx * sxy - sy * sxx;
                 const double det = s0 * c0 + sx * c1 + sy * c2;
                 const double i0 = c0 / det, i1 = c1 / det, i2 = c2 / det;
-                const auto fit = [&](int ch) {
-                    return static_cast<float>(i0 * m[6 + 3 * ch][i] + i1 * m[7 + 3 * ch][i] + i2 * m[8 + 3 * ch][i]);
+                const auto fit = [&](int first) {
+                    return static_cast<float>(i0 * m[first][i] + i1 * m[first + 1][i] + i2 * m[first + 2][i]);
                 };
-                filtered[1 + k][p] = Color{fit(0), fit(1), fit(2)};
+                filtered[1 + k][p] = Color{fit(6), fit(9), fit(12)};
                 sure[1 + k][p] = risk(filtered[1 + k][p], static_cast<float>(i0));
+                if (k == kShadeSet && shade) {
+                    const float f[3] = {fit(15), fit(18), fit(21)};
+                    sure[4][p] = shading_risk(f, static_cast<float>(i0), &filtered[4][p]);
+                    if (!pl.ok[p]) sure[4][p] = std::numeric_limits<float>::infinity();
+                }
             }
         }
     };
@@ -455,37 +575,67 @@ std::vector<Color> denoise_in_arena(const DenoiseInput& in, const DenoiseOptions
         }
     };
     std::vector<Shares> hot(n);
-    double chosen[kCandidates] = {};
+    const std::size_t kept0 = at(w, 0, keep0), kept1 = at(w, 0, keep1);
     for (std::size_t p = 0; p < n; ++p) {
         std::size_t best = 0;
         for (std::size_t k = 1; k < kCandidates; ++k)
             if (sure[k][p] < sure[best][p]) best = k;
         hot[p].v[best] = 1;
-        chosen[best] += 1;
+        if (p >= kept0 && p < kept1) chosen[best] += 1;
     }
     for (auto& s : sure) s = {};
     hot = box(hot, w, h, 2);
-    std::vector<Color> out(n);
-    for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t p = kept0; p < kept1; ++p) {
         Color o{0};
         float total = 0;
         for (std::size_t k = 0; k < kCandidates; ++k) total += hot[p].v[k];
         for (std::size_t k = 0; k < kCandidates; ++k) o += filtered[k][p] * (hot[p].v[k] / total);
-        out[p] = o;
+        out[p - kept0] = o;
     }
-    if (stats) {
-        for (int k = 0; k < kCandidates; ++k) stats->chosen[k] = chosen[k] / static_cast<double>(n);
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-    return out;
 }
+
+// The rows a strip's result depends on beyond it, on each side: the output blends the choice
+// over +-2 rows, the choice compares error maps smoothed over +-3, the candidates at a pixel read
+// neighbours +-r away and their 3 x 3 patches (+-1), whose variance is smoothed over +-2, and
+// each computation clamps at its input's edge. A strip filtered with this many rows of the image
+// on each side gives the bits the whole image would (test Denoise.StripsGiveTheWholeImagesBits).
+int halo(int radius) { return radius + 8; }
 
 }  // namespace
 
 std::vector<Color> denoise(const DenoiseInput& in, const DenoiseOptions& options, DenoiseStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    check(in);
+    const int w = in.width, h = in.height, r = std::max(0, options.radius);
+    // Strips of rows, each with its halo, so that the working memory stays near kStripBytes
+    // whatever the image's size (a 4K image in six strips, 1080p in two).
+    const int rows = options.strip_rows > 0 ? options.strip_rows
+                                            : std::max(64, static_cast<int>(kStripBytes / (kBytesPerPixel * static_cast<std::size_t>(w))));
+    std::vector<Color> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    double chosen[kCandidates] = {};
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    std::vector<Color> out;
-    arena.execute([&] { out = denoise_in_arena(in, options, stats); });
+    arena.execute([&] {
+        for (int y0 = 0; y0 < h; y0 += rows) {
+            const int y1 = std::min(h, y0 + rows), s0 = std::max(0, y0 - halo(r)), s1 = std::min(h, y1 + halo(r));
+            const std::size_t o = at(w, 0, s0);
+            const auto shift = [o](const auto* plane) { return plane ? plane + o : nullptr; };
+            const DenoiseInput strip{w,
+                                     s1 - s0,
+                                     shift(in.color),
+                                     shift(in.even),
+                                     shift(in.odd),
+                                     shift(in.albedo),
+                                     shift(in.normal),
+                                     shift(in.depth),
+                                     shift(in.even_albedo),
+                                     shift(in.odd_albedo)};
+            denoise_rows(strip, options, y0 - s0, y1 - s0, out.data() + at(w, 0, y0), chosen);
+        }
+    });
+    if (stats) {
+        for (int k = 0; k < kCandidates; ++k) stats->chosen[k] = chosen[k] / static_cast<double>(out.size());
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
     return out;
 }
 

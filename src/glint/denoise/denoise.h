@@ -16,6 +16,13 @@
 //    al. 2016, on the pixel position alone), evaluated at the pixel: where the features cut the
 //    window to one side of the pixel (an edge, a corner), a mean is pulled towards that side's
 //    gradient; the plane is not.
+//  - Shading candidates (with the albedo's half images): the loose weights' mean and plane fit of
+//    the shading s = c / (albedo + 0.01), times the pixel's own albedo, so that a texture finer
+//    than the albedo feature's bandwidth is not averaged away. Their SURE gains
+//    2 cov(a, c) (f - df s_p) per channel, the covariance of the albedo's and the colour's noise
+//    from the halves: where the albedo's noise is the colour's (a texture's antialiasing) the
+//    shading passes it through untouched, and the estimate must see it. Not considered where the
+//    albedo's variance exceeds a quarter of its square (the first-order estimate fails there).
 //  - Selection: per pixel, the candidate with the least estimated error, by Stein's unbiased
 //    risk estimate (SURE, as Li et al. 2012 use it for rendering): |F(c) - c|^2 + sigma^2
 //    (2 dF/dc - 1) per channel, with dF_p/dc_p the pixel's own weight in the candidate (w_pp /
@@ -23,7 +30,8 @@
 //    smoothed over 7 x 7 pixels and the choice over 5 x 5, so that neighbouring pixels blend.
 //
 // Every pixel's sums are accumulated in a fixed order of offsets, so the result has the same bits
-// for any number of threads.
+// for any number of threads. The image is filtered in strips of rows, each with the rows around
+// it that it depends on, so the memory is bounded and the bits are those of the whole image.
 #include <string>
 #include <vector>
 
@@ -51,6 +59,9 @@ struct DenoiseInput {
 struct DenoiseOptions {
     int radius = 5;    ///< the window is (2 radius + 1)^2 pixels
     int threads = 0;   ///< 0: every core
+    /// The image is filtered in strips of this many rows (each with the rows around it it
+    /// depends on), which bounds the memory; 0: as many as fit 256 MB. The bits do not depend on it.
+    int strip_rows = 0;
 };
 
 /// What the filter found, for tests and reports.
