@@ -72,7 +72,7 @@ TEST_F(Cli, AovsAreExrChannelsWithHandValues) {
     auto in = OIIO::ImageInput::open((dir_ / "aov.exr").string());
     ASSERT_TRUE(in);
     const auto& spec = in->spec();
-    ASSERT_EQ(spec.nchannels, 16);
+    ASSERT_EQ(spec.nchannels, 22);
     // EXR keeps channels by name (files store them sorted): look each one up.
     auto channel = [&spec](const std::string& name) {
         for (int c = 0; c < spec.nchannels; ++c)
@@ -80,11 +80,11 @@ TEST_F(Cli, AovsAreExrChannelsWithHandValues) {
         ADD_FAILURE() << "no channel " << name;
         return std::size_t{0};
     };
-    std::vector<float> px(161 * 91 * 16);
-    ASSERT_TRUE(in->read_image(0, 0, 0, 16, OIIO::TypeDesc::FLOAT, px.data()));
+    std::vector<float> px(161 * 91 * 22);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 22, OIIO::TypeDesc::FLOAT, px.data()));
     // Centre: the white sphere's front at (0,0,0), distance 1 from the camera at (0,0,-1),
     // normal (0,0,-1), albedo K = 1.
-    const float* c = &px[(45 * 161 + 80) * 16];
+    const float* c = &px[(45 * 161 + 80) * 22];
     EXPECT_NEAR(c[channel("R")], 0.1 + 1 / std::sqrt(3.0), 2e-6);
     EXPECT_EQ(c[channel("albedo.R")], 1.0f);
     EXPECT_EQ(c[channel("albedo.B")], 1.0f);
@@ -94,6 +94,8 @@ TEST_F(Cli, AovsAreExrChannelsWithHandValues) {
     // The half images: one sample (the figure's spp) is sample 0, even; the odd half has none.
     EXPECT_EQ(c[channel("even.R")], c[channel("R")]);
     EXPECT_EQ(c[channel("odd.R")], 0.0f);
+    EXPECT_EQ(c[channel("albedo.even.R")], 1.0f);  // the albedo's halves, likewise
+    EXPECT_EQ(c[channel("albedo.odd.R")], 0.0f);
     // Corner: sky. Albedo is the background colour, normal zero, depth infinite.
     const float* k = &px[0];
     EXPECT_EQ(k[channel("albedo.G")], k[channel("G")]);

@@ -172,8 +172,8 @@ private:
 };
 
 /// `glint denoise`: the image of an EXR written by `glint render --aovs` (or any EXR with channels
-/// R, G, B, the half images even.R/G/B and odd.R/G/B, and optionally albedo.R/G/B, N.X/Y/Z and
-/// Z), denoised, written to `out` (EXR: with the input's channels and noisy.R/G/B; PNG, JPEG ...:
+/// R, G, B, the half images even.R/G/B and odd.R/G/B, and optionally albedo.R/G/B, N.X/Y/Z, Z
+/// and the albedo's halves albedo.even.R/G/B and albedo.odd.R/G/B), denoised, written to `out` (EXR: with the input's channels and noisy.R/G/B; PNG, JPEG ...:
 /// the image alone). `threads` 0: every core. Returns the seconds the filter took. Throws IoError
 /// naming the file, the channel or the pixel at fault; nothing is written then.
 /// `radius`: the filter window's half size in pixels (denoise/denoise.h).
