@@ -43,7 +43,10 @@ constexpr float kAlbedoScale = 0.1f, kNormalScale = 0.2f, kDepthScale = 0.02f;
 // and what a strip may use (docs/denoising.md, "Speed and memory").
 constexpr std::size_t kBytesPerPixel = 23 * 4 + 1 + kCandidates * 16;
 constexpr std::size_t kStripBytes = std::size_t{256} << 20;
-constexpr int kBand = 16;  // rows per task: fixed, so the work's split never depends on threads
+constexpr int kBand = 16;
+// The error maps are smoothed over (2 kSureRadius + 1)^2 pixels and the choice blended over
+// (2 kBlendRadius + 1)^2 (docs/denoising.md says how these were chosen).
+constexpr int kSureRadius = 3, kBlendRadius = 2;  // rows per task: fixed, so the work's split never depends on threads
 
 // Maximum and minimum by value, which the vectoriser turns into selects.
 inline float max2(float a, float b) { return a > b ? a : b; }
@@ -559,7 +562,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
     });
 
     pl = Planes{};
-    for (int k = 0; k < kCandidates; ++k) sure[k] = box(sure[k], w, h, 3);
+    for (int k = 0; k < kCandidates; ++k) sure[k] = box(sure[k], w, h, kSureRadius);
     // The choice, one-hot, then blended over 5 x 5.
     struct Shares {
         std::array<float, kCandidates> v{};
@@ -584,7 +587,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
         if (p >= kept0 && p < kept1) chosen[best] += 1;
     }
     for (auto& s : sure) s = {};
-    hot = box(hot, w, h, 2);
+    hot = box(hot, w, h, kBlendRadius);
     for (std::size_t p = kept0; p < kept1; ++p) {
         Color o{0};
         float total = 0;
@@ -595,11 +598,11 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
 }
 
 // The rows a strip's result depends on beyond it, on each side: the output blends the choice
-// over +-2 rows, the choice compares error maps smoothed over +-3, the candidates at a pixel read
+// over +-kBlendRadius rows, the choice compares error maps smoothed over +-kSureRadius, the candidates at a pixel read
 // neighbours +-r away and their 3 x 3 patches (+-1), whose variance is smoothed over +-2, and
 // each computation clamps at its input's edge. A strip filtered with this many rows of the image
 // on each side gives the bits the whole image would (test Denoise.StripsGiveTheWholeImagesBits).
-int halo(int radius) { return radius + 8; }
+int halo(int radius) { return kBlendRadius + kSureRadius + radius + 1 + 2; }
 
 }  // namespace
 
