@@ -17,15 +17,16 @@
 namespace glint {
 namespace {
 
-// Two sets of weights (strict and loose colour, each also bounded by the features) and three
-// candidates from them: the strict weights' mean, the strict weights' plane fit and the loose
-// weights' plane fit (docs/denoising.md says how these were chosen).
+// Two sets of weights (strict and loose colour, each also bounded by the features) and five
+// candidates from them: the strict weights' mean, the strict weights' plane fit, the loose
+// weights' plane fit, and with the albedo's halves the loose weights' mean and plane fit of the
+// shading times the pixel's albedo (docs/denoising.md says how these were chosen).
 constexpr int kWeightSets = 2;
 constexpr int kCandidates = 5;
 constexpr int kColumnSums = 9;                 // per set of weights and column of offsets (add_column_*)
-constexpr int kShadingColumnSums = 6;          // the strict set's shading sums, per column
+constexpr int kShadingColumnSums = 6;          // the shading's set's sums of the shading, per column
 constexpr int kMoments = 15;                   // the sums a plane fit needs (fold_*)
-constexpr int kShadingMoments = 9;             // the strict set's, of the shading
+constexpr int kShadingMoments = 9;             // and its moments of the shading
 constexpr float kShadingFloor = 0.01f;         // added to the albedo the shading is divided by
 constexpr int kShadeSet = 1;                   // the weights the shading is filtered with: the loose set
 // Where the albedo's noise is large against the albedo (its variance over its square above this),
@@ -140,15 +141,18 @@ struct Planes {
     std::vector<float> z, inv_z, hit;  // depth (0 on a miss), 1 / its scale, 1 where hit (all 1 without depth)
     std::vector<float> gx, gy;         // depth gradient (the smaller one-sided difference)
     // With the albedo's halves: the shading s = c / (albedo + floor) (the pixel's own albedo,
-    // not prefiltered), that albedo plus the floor, and the covariance of the albedo's and the
-    // colour's means per channel (from the halves, like the variance).
+    // not prefiltered) and the covariance of the albedo's and the colour's means per channel
+    // (from the halves, like the variance).
     bool shading = false;
-    std::vector<float> s[3], ahat[3], cov[3];
-    std::vector<std::uint8_t> ok;
+    std::vector<float> s[3], cov[3];
+    std::vector<std::uint8_t> shading_ok;  // 1 where the shading candidates are considered
 };
 
+// The albedo the shading is divided by: the pixel's own, not below 0, plus the floor.
+inline float shading_albedo(const Color& albedo, int ch) { return std::max(0.0f, albedo[ch]) + kShadingFloor; }
+
 // The covariance of the albedo's and the colour's means per channel: (a_e - a_o)(c_e - c_o) / 4,
-// smoothed like the variance.
+// smoothed like the variance; with `variance`, the albedo's own variance (a_e - a_o)^2 / 4.
 std::vector<Color> albedo_covariance(const DenoiseInput& in, bool variance) {
     const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
     std::vector<Color> v(n);
@@ -233,18 +237,18 @@ Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
     pl.shading = in.albedo && in.even_albedo && in.odd_albedo;
     if (pl.shading) {
         const std::vector<Color> cov = albedo_covariance(in, false), va = albedo_covariance(in, true);
-        pl.ok.resize(n);
-        for (int ch = 0; ch < 3; ++ch) pl.s[ch].resize(n), pl.ahat[ch].resize(n), pl.cov[ch].resize(n);
+        pl.shading_ok.resize(n);
+        for (int ch = 0; ch < 3; ++ch) pl.s[ch].resize(n), pl.cov[ch].resize(n);
         for_rows(h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 const std::size_t p = at(w, x, y);
-                for (int ch = 0; ch < 3; ++ch) {
-                    const float a = std::max(0.0f, in.albedo[p][ch]) + kShadingFloor;
-                    pl.ahat[ch][p] = a, pl.s[ch][p] = in.color[p][ch] / a, pl.cov[ch][p] = cov[p][ch];
-                }
                 float rel = 0;
-                for (int ch = 0; ch < 3; ++ch) rel = std::max(rel, va[p][ch] / (pl.ahat[ch][p] * pl.ahat[ch][p]));
-                pl.ok[p] = rel <= kShadingMaxRelativeVariance;
+                for (int ch = 0; ch < 3; ++ch) {
+                    const float a = shading_albedo(in.albedo[p], ch);
+                    pl.s[ch][p] = in.color[p][ch] / a, pl.cov[ch][p] = cov[p][ch];
+                    rel = std::max(rel, va[p][ch] / (a * a));
+                }
+                pl.shading_ok[p] = rel <= kShadingMaxRelativeVariance;
             }
         });
     }
@@ -527,7 +531,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
             const auto shading_risk = [&](const float* f, float df, Color* out) {
                 float e = 0, g[3];
                 for (int ch = 0; ch < 3; ++ch) {
-                    g[ch] = pl.ahat[ch][p] * f[ch];
+                    g[ch] = shading_albedo(in.albedo[p], ch) * f[ch];
                     const float d = g[ch] - c[p][ch];
                     e += d * d + pl.v[ch][p] * (2 * df - 1) + 2 * pl.cov[ch][p] * (f[ch] - df * pl.s[ch][p]);
                 }
@@ -544,7 +548,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
                 const float sws = ms[0][i];
                 const float f[3] = {ms[15][i] / sws, ms[18][i] / sws, ms[21][i] / sws};
                 sure[3][p] = shading_risk(f, 1 / sws, &filtered[3][p]);
-                if (!pl.ok[p]) sure[3][p] = std::numeric_limits<float>::infinity();
+                if (!pl.shading_ok[p]) sure[3][p] = std::numeric_limits<float>::infinity();
             } else {
                 sure[3][p] = sure[4][p] = std::numeric_limits<float>::infinity();
             }
@@ -567,7 +571,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
                 if (k == kShadeSet && shade) {
                     const float f[3] = {fit(15), fit(18), fit(21)};
                     sure[4][p] = shading_risk(f, static_cast<float>(i0), &filtered[4][p]);
-                    if (!pl.ok[p]) sure[4][p] = std::numeric_limits<float>::infinity();
+                    if (!pl.shading_ok[p]) sure[4][p] = std::numeric_limits<float>::infinity();
                 }
             }
         }
