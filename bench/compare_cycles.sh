@@ -9,7 +9,9 @@
 #
 #   bench/compare_cycles.sh [BUILD_DIR] [RUNS]
 #   env: SPPS="64 1024", THREADS="1 2", THREADS_HIGH (threads for spp >= 1024; default THREADS),
-#        REF_SPP=1024, OUT (keep the images in this folder), REPORT_ONLY=1 (reuse OUT's runs)
+#        REF_SPP=1024, OUT (keep the images in this folder), REPORT_ONLY=1 (reuse OUT's runs),
+#        SCENE=cornell (default) or bunny (scenes/bunny.yaml, the bunny in the box; Cycles' twin
+#        from bench/cornell_cycles.py with CYCLES_SCENE=bunny)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -27,7 +29,13 @@ for tool in blender oiiotool python3; do
 done
 [ -x "$glint" ] || { echo "missing $glint: run make build" >&2; exit 1; }
 
-scene=scenes/cornell-box.yaml
+scene_name=${SCENE:-cornell}
+case $scene_name in
+  cornell) scene=scenes/cornell-box.yaml ;;
+  bunny) scene=scenes/bunny.yaml ;;
+  *) echo "compare_cycles.sh: SCENE=$scene_name: cornell or bunny" >&2; exit 1 ;;
+esac
+export CYCLES_SCENE=$scene_name
 glint_run() {  # spp threads out.exr [seed] -> "seconds rays"
   "$glint" render "$scene" --spp "$1" --threads "$2" -o "$3" --seed "${4:-0}" 2>&1 |
     sed -n 's/^rendered .* in \([0-9.]*\) s: \([0-9]*\) rays.*/\1 \2/p'
@@ -89,9 +97,9 @@ stats() { oiiotool "$1" --ch R,G,B "$2" --sub --dup --mul --printstats 2>&1 | se
 mean() { oiiotool "$1" --printstats 2>&1 | sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p'; }
 echo "$(mean "$out/ref-g.exr") $(mean "$out/ref-c.exr")" > "$out/means.txt"
 
-python3 - "$out" "$ref_spp" "$equal_spp" <<'PY'
+python3 - "$out" "$ref_spp" "$equal_spp" "$scene_name" <<'PY'
 import math, statistics, sys
-out, ref_spp, equal_spp = sys.argv[1], sys.argv[2], int(sys.argv[3])
+out, ref_spp, equal_spp, scene_name = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
 
 def rows(name):
@@ -103,7 +111,8 @@ def rows(name):
 
 g, c = rows("glint"), rows("cycles")
 pixels = 512 * 512
-print(f"Cornell box 512x512, {cpu}; render time only (median of the runs; one run at 1024 spp)\n")
+title = {"cornell": "Cornell box", "bunny": "The bunny in the Cornell box"}[scene_name]
+print(f"{title} 512x512, {cpu}; render time only (median of the runs; one run at 1024 spp)\n")
 print("| spp | threads | glint (s) | Cycles (s) | Cycles / glint | glint Msamples/s | Cycles Msamples/s | glint Mrays/s |")
 print("|---|---|---|---|---|---|---|---|")
 for key in sorted(g):

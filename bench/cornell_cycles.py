@@ -10,7 +10,13 @@
 # SIZE: the square film's side (default 512); THRESHOLD > 0: adaptive sampling with that noise
 # threshold (Cycles' automatic minimum samples), SPP the maximum (bench/compare_adaptive.sh).
 # Prints "cycles render seconds: S" (the render alone, without Blender's start-up).
+#
+# CYCLES_SCENE=bunny builds scenes/bunny.yaml instead: the same room without the two blocks, and
+# the Stanford bunny (stanford-bunny.ply, from BUNNY_PLY or the models folder beside the checkout)
+# placed as that file places it, white and diffuse.
 import math
+import os
+import struct
 import sys
 import time
 
@@ -104,12 +110,61 @@ def add_mesh(name, quads, material, face_down=False):
     return obj
 
 
+variant = os.environ.get("CYCLES_SCENE", "cornell")
+if variant not in ("cornell", "bunny"):
+    sys.exit(f"cornell_cycles.py: CYCLES_SCENE={variant}: cornell or bunny")
+if variant == "bunny":
+    QUADS = QUADS[:5]  # the room; the bunny takes the blocks' place
+
+
+def read_ply(path):
+    # The binary little-endian PLY of ../shared/models: float x, y, z per vertex, then faces as a
+    # uchar count and that many int32 indices.
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode("ascii").split("\n")
+    if "format binary_little_endian 1.0" not in header:
+        sys.exit(f"{path}: not a binary little-endian PLY")
+    nv = int(next(l for l in header if l.startswith("element vertex")).split()[2])
+    nf = int(next(l for l in header if l.startswith("element face")).split()[2])
+    verts = [struct.unpack_from("<3f", data, end + 12 * i) for i in range(nv)]
+    faces, at = [], end + 12 * nv
+    for _ in range(nf):
+        n = data[at]
+        faces.append(struct.unpack_from(f"<{n}i", data, at + 1))
+        at += 1 + 4 * n
+    return verts, faces
+
+
+def add_bunny(material):
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [os.environ.get("BUNNY_PLY", ""), os.path.join(here, "..", "..", "shared", "models", "stanford-bunny.ply"),
+                  "/work/shared/models/stanford-bunny.ply"]
+    path = next((c for c in candidates if c and os.path.exists(c)), None)
+    if path is None:
+        sys.exit("cornell_cycles.py: stanford-bunny.ply not found (set BUNNY_PLY)")
+    verts, faces = read_ply(path)
+    # scenes/bunny.yaml's transform, first step first: translate, scale 2000, rotate 180 degrees
+    # about y ((x, y, z) -> (-x, y, -z)), translate to (278, 0, 280).
+    t = (0.0168405, -0.032987, 0.001537)
+    placed = [to_blender((278 - 2000 * (v[0] + t[0]), 2000 * (v[1] + t[1]), 280 - 2000 * (v[2] + t[2]))) for v in verts]
+    mesh = bpy.data.meshes.new("bunny")
+    mesh.from_pydata(placed, [], faces)
+    mesh.update()
+    obj = bpy.data.objects.new("bunny", mesh)
+    obj.data.materials.append(material)
+    scene.collection.objects.link(obj)
+
+
 materials = {}
 for color, q in QUADS:
     if color not in materials:
         materials[color] = diffuse_material(f"m{len(materials)}", color)
     add_mesh("quad", [q], materials[color])
 add_mesh("light", [LIGHT], light_material(), face_down=True)
+if variant == "bunny":
+    add_bunny(materials[WHITE])
 
 world = bpy.data.worlds.new("black")
 world.use_nodes = True
