@@ -44,10 +44,10 @@ constexpr float kAlbedoScale = 0.1f, kNormalScale = 0.2f, kDepthScale = 0.02f;
 // and what a strip may use (docs/denoising.md, "Speed and memory").
 constexpr std::size_t kBytesPerPixel = 23 * 4 + 1 + kCandidates * 16;
 constexpr std::size_t kStripBytes = std::size_t{256} << 20;
-constexpr int kBand = 16;
+constexpr int kBand = 16;  // rows per task: fixed, so the work's split never depends on threads
 // The error maps are smoothed over (2 kSureRadius + 1)^2 pixels and the choice blended over
 // (2 kBlendRadius + 1)^2 (docs/denoising.md says how these were chosen).
-constexpr int kSureRadius = 3, kBlendRadius = 2;  // rows per task: fixed, so the work's split never depends on threads
+constexpr int kSureRadius = 3, kBlendRadius = 2;
 
 // Maximum and minimum by value, which the vectoriser turns into selects.
 inline float max2(float a, float b) { return a > b ? a : b; }
