@@ -151,12 +151,15 @@ struct Planes {
 // The albedo the shading is divided by: the pixel's own, not below 0, plus the floor.
 inline float shading_albedo(const Color& albedo, int ch) { return std::max(0.0f, albedo[ch]) + kShadingFloor; }
 
-// The covariance of the albedo's and the colour's means per channel: (a_e - a_o)(c_e - c_o) / 4,
-// smoothed like the variance; with `variance`, the albedo's own variance (a_e - a_o)^2 / 4.
-std::vector<Color> albedo_covariance(const DenoiseInput& in, bool variance) {
+// The covariance of two means per pixel and channel from their halves, (a_e - a_o)(b_e - b_o) / 4,
+// smoothed over 5 x 5 pixels: with a = b the variance of the image's mean (the filter's noise
+// estimate); with the albedo's and the colour's halves their covariance; with the albedo's
+// halves alone the albedo's variance.
+std::vector<Color> half_covariance(const DenoiseInput& in, const Color* ae, const Color* ao, const Color* be,
+                                   const Color* bo) {
     const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
     std::vector<Color> v(n);
-    for (std::size_t i = 0; i < n; ++i) v[i] = (in.even_albedo[i] - in.odd_albedo[i]) * (variance ? in.even_albedo[i] - in.odd_albedo[i] : in.even[i] - in.odd[i]) * 0.25f;
+    for (std::size_t i = 0; i < n; ++i) v[i] = (ae[i] - ao[i]) * (be[i] - bo[i]) * 0.25f;
     return box(v, in.width, in.height, 2);
 }
 
@@ -236,7 +239,8 @@ Planes planes(const DenoiseInput& in, const std::vector<Color>& var) {
     }
     pl.shading = in.albedo && in.even_albedo && in.odd_albedo;
     if (pl.shading) {
-        const std::vector<Color> cov = albedo_covariance(in, false), va = albedo_covariance(in, true);
+        const std::vector<Color> cov = half_covariance(in, in.even_albedo, in.odd_albedo, in.even, in.odd),
+                                 va = half_covariance(in, in.even_albedo, in.odd_albedo, in.even_albedo, in.odd_albedo);
         pl.shading_ok.resize(n);
         for (int ch = 0; ch < 3; ++ch) pl.s[ch].resize(n), pl.cov[ch].resize(n);
         for_rows(h, [&](int y) {
@@ -412,13 +416,7 @@ void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, co
 
 std::vector<Color> denoise_variance(const DenoiseInput& in) {
     check(in);
-    const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
-    std::vector<Color> v(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Color d = in.even[i] - in.odd[i];
-        v[i] = d * d * 0.25f;
-    }
-    return box(v, in.width, in.height, 2);
+    return half_covariance(in, in.even, in.odd, in.even, in.odd);
 }
 
 namespace {
@@ -429,7 +427,8 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
                   double* chosen) {
     // The variance lives on in the planes (pl.v); the planes go once the candidates are computed:
     // the working memory peaks at kBytesPerPixel (docs/denoising.md, "Speed and memory").
-    Planes pl = planes(in, denoise_variance(in));
+    // (denoise() has checked the whole image; a strip is not checked again.)
+    Planes pl = planes(in, half_covariance(in, in.even, in.odd, in.even, in.odd));
     const int w = in.width, h = in.height, r = std::max(0, options.radius);
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     const Color* c = in.color;
