@@ -31,6 +31,11 @@ scenes=(
   "textures-lit scenes/textures-lit.yaml"
   "cloud scenes/volumes/cloud.yaml"
 )
+# The killeroos of the pbrt-v4 scene collection (the issue's sixth scene), when the shared models
+# are there (not in this repository; docs/scene-format.md).
+models=${GLINT_MODEL_PATH:-$here/../shared/models}
+killeroos=$models/pbrt-v4-scenes/killeroos/killeroo-simple.pbrt
+if [[ -f $killeroos ]]; then scenes+=("killeroos $killeroos"); else echo "denoise.sh: no $killeroos: no killeroos" >&2; fi
 mse() { awk -v r="$1" 'BEGIN { printf "%.6f", r * r }'; }
 metrics() { "$here/bench/denoise_metrics.py" "$@" 2>/dev/null || echo "- - - - - -"; }
 /usr/bin/python3 -c "import cv2" 2>/dev/null ||
@@ -39,12 +44,13 @@ printf "%-12s %6s %12s %12s %8s %8s %8s %8s %12s %8s %6s %4s\n" scene spp "raw r
   "raw SSIM" "SSIM" "OpenCV relMSE" "SSIM" "s" "h"
 for entry in "${scenes[@]}"; do
   read -r name file <<<"$entry"
+  [[ $file == /* ]] || file=$here/$file
   ref=$out/$name-ref.exr
-  [[ -f $ref ]] || "$glint" render "$here/$file" --width "$width" --height "$height" --spp "$ref_spp" -q -o "$ref"
+  [[ -f $ref ]] || "$glint" render "$file" --width "$width" --height "$height" --spp "$ref_spp" -q -o "$ref"
   for spp in "${spps[@]}"; do
     raw=$out/$name-$spp.exr
     den=$out/$name-$spp-denoised.exr
-    "$glint" render "$here/$file" --width "$width" --height "$height" --spp "$spp" --aovs -q -o "$raw"
+    "$glint" render "$file" --width "$width" --height "$height" --spp "$spp" --aovs -q -o "$raw"
     secs=$("$glint" denoise "$raw" -o "$den" 2>&1 | sed -n 's/denoised in \([0-9.]*\) s/\1/p')
     r=$(mse "$(relative_rmse "$raw" "$ref")")
     d=$(mse "$(relative_rmse "$den" "$ref")")

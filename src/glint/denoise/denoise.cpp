@@ -39,6 +39,9 @@ constexpr float kEpsilon = 1e-10f;             // keeps a noise-free pixel's dis
 // Feature bandwidths: albedo per channel, normal (unit vectors), depth relative to itself after
 // the plane through the pixel (its gradient) is taken away.
 constexpr float kAlbedoScale = 0.1f, kNormalScale = 0.2f, kDepthScale = 0.02f;
+// The loose set's normal distance is this times the strict set's (a bandwidth 4 times as wide):
+// its colour term already stops it at an edge the colour shows (docs/denoising.md, step 3).
+constexpr float kLooseNormal = 0.0625f;
 // The filter's working memory per pixel of a strip at its peak (while the candidates are
 // computed): the planes (23 floats and a flag) and five candidates with their error estimates;
 // and what a strip may use (docs/denoising.md, "Speed and memory").
@@ -349,9 +352,7 @@ void box3_row(const float* in, float* out, int w) {
     out[w - 1] = in[w - 2] + 2 * in[w - 1];
 }
 
-// The three candidates' weights of (p, p + (dx, dy)) for pixels x in [xa, xb) of row y: the least
-// of the colour weight (the 3 x 3 patch's mean term, rows a, b, c of the row sums) and the
-// feature weight, and the feature weight alone.
+// A pixel's features, from a row's start (weights() reads p's and its neighbour q's).
 struct FeatureRows {
     const float* a[3];
     const float* n[3];
@@ -364,14 +365,15 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
             pl.z.data() + at, pl.inv_z.data() + at, pl.hit.data() + at, pl.gx.data() + at, pl.gy.data() + at};
 }
 
-// The feature distances of a run of pixels (the largest of albedo, normal and depth), into df.
+// The feature distances of a run of pixels (the largest of albedo, normal and depth), into dfo for
+// the strict set and into dfl for the loose set (its normal term scaled down).
 [[gnu::noinline]] void feature_run(const float* __restrict pa0, const float* __restrict pa1, const float* __restrict pa2,
                                    const float* __restrict qa0, const float* __restrict qa1, const float* __restrict qa2,
                                    const float* __restrict pn0, const float* __restrict pn1, const float* __restrict pn2,
                                    const float* __restrict qn0, const float* __restrict qn1, const float* __restrict qn2,
                                    const float* __restrict pz, const float* __restrict qz, const float* __restrict piz,
                                    const float* __restrict ph, const float* __restrict qh, const float* __restrict pgx,
-                                   const float* __restrict pgy, float fdx, float fdy, float* __restrict dfo, int count) {
+                                   const float* __restrict pgy, float fdx, float fdy, float* __restrict dfo, float* __restrict dfl, int count) {
     constexpr float ka = 1 / (3 * kAlbedoScale * kAlbedoScale), kn = 1 / (kNormalScale * kNormalScale);
     for (int x = 0; x < count; ++x) {
         const float a0 = qa0[x] - pa0[x], a1 = qa1[x] - pa1[x], a2 = qa2[x] - pa2[x];
@@ -379,37 +381,42 @@ FeatureRows feature_rows(const Planes& pl, std::size_t at) {
         const float e = (qz[x] - (pz[x] + pgx[x] * fdx + pgy[x] * fdy)) * piz[x];
         const float hd = ph[x] - qh[x];
         const float dz = ph[x] * qh[x] * e * e + hd * hd * 1e30f;
-        dfo[x] = max2(max2((a0 * a0 + a1 * a1 + a2 * a2) * ka, (n0 * n0 + n1 * n1 + n2 * n2) * kn), dz);
+        const float da = max2((a0 * a0 + a1 * a1 + a2 * a2) * ka, dz), dn = (n0 * n0 + n1 * n1 + n2 * n2) * kn;
+        dfo[x] = max2(da, dn);
+        dfl[x] = max2(da, dn * kLooseNormal);
     }
 }
 
 // The weights from the feature distances and the colour terms' row sums. The loose colour
 // distance is the strict one times (k0 / k1)^2: the terms differ only in k^2 beside the variance
 // (and in where the epsilon for a noise-free pair sits, which leaves such a pair's weight 0 or 1).
-[[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict h0a, const float* __restrict h0b,
+[[gnu::noinline]] void weight_run(const float* __restrict dfi, const float* __restrict dfl, const float* __restrict h0a, const float* __restrict h0b,
                                   const float* __restrict h0c, float* __restrict w0, float* __restrict w1,
                                   int count) {
     // exp(-max(a, b)) = min(exp(-a), exp(-b)), and with k1 = 2 k0 the loose colour weight is the
     // strict one's fourth root: two exponentials per neighbour, not three.
     static_assert(kColourK[1] == 2 * kColourK[0], "the loose weight is the strict one's fourth root");
     for (int x = 0; x < count; ++x) {
-        const float feature = exp_neg(dfi[x]);
+        const float feature = exp_neg(dfi[x]), loose = exp_neg(dfl[x]);
         const float colour = exp_neg(max2(0.0f, (h0a[x] + h0b[x] + h0c[x]) * (1.0f / 9)));
         w0[x] = min2(colour, feature);
-        w1[x] = min2(std::sqrt(std::sqrt(colour)), feature);
+        w1[x] = min2(std::sqrt(std::sqrt(colour)), loose);
     }
 }
 
+// The two sets' weights of (p, p + (dx, dy)) for pixels x in [xa, xb) of row y: the least of the
+// colour weight (the 3 x 3 patch's mean term, rows a, b, c of the row sums) and the feature
+// weight, strict and loose.
 void weights(const Planes& pl, int y, int qy, int dx, int dy, int xa, int xb, const float* h0a, const float* h0b,
-             const float* h0c, float* df, float* w0, float* w1) {
+             const float* h0c, float* df, float* dl, float* w0, float* w1) {
     const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa);
     const std::size_t q = static_cast<std::size_t>(qy) * static_cast<std::size_t>(pl.width) + static_cast<std::size_t>(xa + dx);
     const auto s = static_cast<std::size_t>(xa);
     const FeatureRows fp = feature_rows(pl, p), fq = feature_rows(pl, q);
     feature_run(fp.a[0], fp.a[1], fp.a[2], fq.a[0], fq.a[1], fq.a[2], fp.n[0], fp.n[1], fp.n[2], fq.n[0], fq.n[1], fq.n[2],
-                fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s,
+                fp.z, fq.z, fp.inv_z, fp.hit, fq.hit, fp.gx, fp.gy, static_cast<float>(dx), static_cast<float>(dy), df + s, dl + s,
                 xb - xa);
-    weight_run(df + s, h0a + s, h0b + s, h0c + s, w0 + s, w1 + s, xb - xa);
+    weight_run(df + s, dl + s, h0a + s, h0b + s, h0c + s, w0 + s, w1 + s, xb - xa);
 }
 
 }  // namespace
@@ -444,7 +451,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
         const int ty0 = std::max(0, y0 - 1), ty1 = std::min(h, y1 + 1);  // with the patches' halo
         const auto row_size = static_cast<std::size_t>(w);
         std::vector<float> t0(static_cast<std::size_t>(ty1 - ty0) * row_size), h0(t0.size());
-        std::vector<float> wk0(row_size), wk1(row_size), dfr(row_size);
+        std::vector<float> wk0(row_size), wk1(row_size), dfr(row_size), dlr(row_size);
         // The band's sums, plane by plane: per column of offsets (cols) and over the window
         // (moments); the strict set's first, then the loose set's.
         const std::size_t band_pixels = static_cast<std::size_t>(y1 - y0) * row_size;
@@ -483,7 +490,7 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
                                       rb = static_cast<std::size_t>(y - ty0) * row_size,
                                       rc = static_cast<std::size_t>(std::min(ty1 - 1, y + 1) - ty0) * row_size;
                     weights(pl, y, qy, dx, dy, xa, xb, &h0[ra], &h0[rb], &h0[rc],
-                            dfr.data(), wk0.data(), wk1.data());
+                            dfr.data(), dlr.data(), wk0.data(), wk1.data());
                     const std::size_t p0 = static_cast<std::size_t>(y - y0) * row_size, q0 = static_cast<std::size_t>(qy) * row_size;
                     const float* wk[kWeightSets] = {wk0.data(), wk1.data()};
                     const std::size_t xs = static_cast<std::size_t>(xa), qs = q0 + static_cast<std::size_t>(xa + dx);
@@ -527,14 +534,14 @@ void denoise_rows(const DenoiseInput& in, const DenoiseOptions& options, int kee
             // and f the filtered shading, moves with the pixel's colour through f (derivative
             // df) and with its albedo, whose noise goes with the colour's: the risk gains
             // 2 cov(a, c) (f - df s_p) per channel (docs/denoising.md derives it).
-            const auto shading_risk = [&](const float* f, float df, Color* out) {
+            const auto shading_risk = [&](const float* f, float df, Color* value) {
                 float e = 0, g[3];
                 for (int ch = 0; ch < 3; ++ch) {
                     g[ch] = shading_albedo(in.albedo[p], ch) * f[ch];
                     const float d = g[ch] - c[p][ch];
                     e += d * d + pl.v[ch][p] * (2 * df - 1) + 2 * pl.cov[ch][p] * (f[ch] - df * pl.s[ch][p]);
                 }
-                *out = Color{g[0], g[1], g[2]};
+                *value = Color{g[0], g[1], g[2]};
                 return e;
             };
             // The strict weights' mean. The pixel weighs itself by 1, so the sum of weights is at least 1.
