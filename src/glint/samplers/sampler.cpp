@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
+#include <utility>
 
 #include "glint/samplers/hash.h"
+#include "glint/samplers/sobol_avx2.h"
 
-#if defined(__SSE4_1__)
-#include <immintrin.h>
-#endif
 
 namespace glint {
 
@@ -99,102 +99,34 @@ Sample2 PixelSampler::get_2d(std::uint32_t index, std::uint32_t dimension) const
     return {0.5f, 0.5f};
 }
 
-#if defined(__SSE4_1__)
 namespace {
 
-// The scalar steps above, four lanes at a time (unsigned 32-bit arithmetic: wrapping multiplies
-// and logical shifts, as in the scalar code).
-using U4 = __m128i;
-U4 splat(std::uint32_t v) { return _mm_set1_epi32(static_cast<int>(v)); }
-U4 mul(U4 a, U4 b) { return _mm_mullo_epi32(a, b); }
-U4 mul(U4 a, std::uint32_t b) { return _mm_mullo_epi32(a, splat(b)); }
-U4 shr(U4 a, unsigned n) { return _mm_srl_epi32(a, _mm_cvtsi32_si128(static_cast<int>(n))); }
-U4 shl(U4 a, unsigned n) { return _mm_sll_epi32(a, _mm_cvtsi32_si128(static_cast<int>(n))); }
-// (^, & and | on __m128i are GCC's and clang's bitwise vector operators; + would add 64-bit
-// lanes, so additions are spelled out.)
-U4 add(U4 a, U4 b) { return _mm_add_epi32(a, b); }
+#include "glint/samplers/sobol_lanes.inl"
 
-U4 mix32_x4(U4 x) {
-    x = x ^ _mm_srli_epi32(x, 16);
-    x = mul(x, 0x7feb352dU);
-    x = x ^ _mm_srli_epi32(x, 15);
-    x = mul(x, 0x846ca68bU);
-    return x ^ _mm_srli_epi32(x, 16);
-}
-U4 hash_combine_x4(U4 seed, U4 v) {
-    return mix32_x4(seed ^ add(add(v, splat(0x9e3779b9U)), add(_mm_slli_epi32(seed, 6), _mm_srli_epi32(seed, 2))));
-}
-U4 rotl_x4(U4 x, unsigned n) { return n == 0 ? x : shl(x, n) | shr(x, 32 - n); }
-
-U4 reverse_bits_x4(U4 v) {
-    v = _mm_shuffle_epi8(v, _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));
-    const U4 m1 = splat(0x55555555U), m2 = splat(0x33333333U), m4 = splat(0x0f0f0f0fU);
-    v = (_mm_srli_epi32(v, 1) & m1) | _mm_slli_epi32(v & m1, 1);
-    v = (_mm_srli_epi32(v, 2) & m2) | _mm_slli_epi32(v & m2, 2);
-    return (_mm_srli_epi32(v, 4) & m4) | _mm_slli_epi32(v & m4, 4);
-}
-
-U4 owen_scramble_reversed_x4(U4 v, U4 seed) {
-    v = v ^ mul(v, 0x3d20adeaU);
-    v = add(v, seed);
-    v = mul(v, _mm_srli_epi32(seed, 16) | splat(1));
-    v = v ^ mul(v, 0x05526c56U);
-    return v ^ mul(v, 0x53a22864U);
-}
-
-// permute_index(i, n, seed) for a power of two n >= 2, where the Feistel network's output is
-// always below n and no cycle walk is needed.
-U4 permute_index_pow2_x4(U4 i, std::uint32_t n, U4 seed) {
-    const auto bits = static_cast<unsigned>(std::bit_width(n - 1));
-    const unsigned a = bits / 2, c = bits - a;
-    const U4 keys[2] = {seed, mix32_x4(seed)};
-    U4 left = shr(i, c), right = i & splat((1U << c) - 1U);
-    unsigned left_bits = a, right_bits = c;
-    for (unsigned round = 0; round < 4; ++round) {
-        const U4 k = rotl_x4(keys[round & 1], round * 5);
-        const U4 f = mul(mul(right ^ k, 0x9e3779b1U) ^ k, 0x85ebca6bU);
-        const U4 t = left_bits == 0 ? left : left ^ shr(f, 32 - left_bits);
-        left = right;
-        right = t;
-        std::swap(left_bits, right_bits);
-    }
-    return shl(left, right_bits) | right;
-}
-
-void store_x4(U4 xs, U4 ys, Sample2 out[4]) {
-    const __m128 scale = _mm_set1_ps(1.0f / 16777216.0f);
-    const __m128 x = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(xs, 8)), scale);
-    const __m128 y = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(ys, 8)), scale);
-    _mm_storeu_ps(&out[0].x, _mm_unpacklo_ps(x, y));
-    _mm_storeu_ps(&out[2].x, _mm_unpackhi_ps(x, y));
-}
+// Whether the CPU runs the eight-lane kernel (sampler_avx2.cpp).
+const bool kAvx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+}();
 
 }  // namespace
-#endif
 
 void PixelSampler::get_2d_x4(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[4]) const {
     static_assert(sizeof(Sample2) == 2 * sizeof(float));
-#if defined(__SSE4_1__)
     if (type_ == SamplerType::kSobol && spp_ >= 4 && (spp_ & (spp_ - 1)) == 0) {
-        const U4 dims = add(splat(first_dimension), _mm_setr_epi32(0, 1, 2, 3));
-        const U4 seed = hash_combine_x4(splat(seed_), dims);
-        // sobol_index(index, spp, hash_combine(seed, 0x5eed)), lane by lane.
-        const U4 index_seed = hash_combine_x4(seed, splat(0x5eed));
-        const U4 side = (splat(index) ^ _mm_srli_epi32(index_seed, 31)) & splat(1);
-        const std::uint32_t half = spp_ / 2;
-        const U4 i = add(mul(side, half), permute_index_pow2_x4(splat(index >> 1), half, hash_combine_x4(index_seed, side)));
-        // sobol_1_reversed(i): the columns v = 1, 3, 5, 15, ... xored where i has a bit.
-        U4 sobol1 = _mm_setzero_si128();
-        std::uint32_t v = 1;
-        for (unsigned b = 0, n = static_cast<unsigned>(std::bit_width(spp_ - 1)); b < n; ++b, v ^= v << 1)
-            sobol1 = sobol1 ^ (splat(v) & _mm_sub_epi32(_mm_setzero_si128(), shr(i, b) & splat(1)));
-        const U4 xs = reverse_bits_x4(owen_scramble_reversed_x4(i, hash_combine_x4(seed, splat(1))));
-        const U4 ys = reverse_bits_x4(owen_scramble_reversed_x4(sobol1, hash_combine_x4(seed, splat(2))));
-        store_x4(xs, ys, out);
+        sobol_pairs_lanes<4>(seed_, spp_, index, first_dimension, out);
         return;
     }
-#endif
     for (std::uint32_t k = 0; k < 4; ++k) out[k] = get_2d(index, first_dimension + k);
+}
+
+void PixelSampler::get_2d_x8(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[8]) const {
+    if (kAvx2 && type_ == SamplerType::kSobol && spp_ >= 4 && (spp_ & (spp_ - 1)) == 0) {
+        sobol_pairs_avx2(seed_, spp_, index, first_dimension, out);
+        return;
+    }
+    get_2d_x4(index, first_dimension, out);
+    get_2d_x4(index, first_dimension + 4, out + 4);
 }
 
 }  // namespace glint

@@ -34,9 +34,12 @@ public:
     Sample2 get_2d(std::uint32_t index, std::uint32_t dimension) const;
     /// The four pairs first_dimension .. first_dimension + 3 of sample `index`, equal to
     /// get_2d's bit for bit: for the Sobol sampler at a power-of-two spp, computed four lanes at
-    /// once (SSE4.1 integer multiplies; every step is integer arithmetic, so no lane can round
-    /// differently from the scalar code).
+    /// once (sobol_lanes.inl: SSE4.1 integer multiplies; every step is integer arithmetic, so no
+    /// lane can round differently from the scalar code).
     [[gnu::noinline]] void get_2d_x4(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[4]) const;
+    /// The eight pairs first_dimension .. first_dimension + 7, the same way: eight lanes at once
+    /// where the CPU has AVX2 (sampler_avx2.cpp), two get_2d_x4 otherwise.
+    [[gnu::noinline]] void get_2d_x8(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[8]) const;
     std::uint32_t seed() const { return seed_; }
 
 private:
@@ -51,8 +54,8 @@ inline constexpr std::uint32_t kTimeDimension = 0x7fffu;
 
 /// The dimensions of one camera sample, handed out in order: an integrator draws what it needs
 /// per bounce, and the same path always gets the same numbers. Pairs 0 (pixel) and 1 (lens)
-/// belong to the camera; the integrator's start at pair 2. The pairs are computed four at a
-/// time (get_2d_x4) and handed out one by one: a pair's value depends only on its number, so
+/// belong to the camera; the integrator's start at pair 2. The pairs are computed eight at a
+/// time (get_2d_x8) and handed out one by one: a pair's value depends only on its number, so
 /// computing one that is never drawn changes nothing.
 class SampleStream {
 public:
@@ -62,7 +65,7 @@ public:
     // and the call itself would cost as much (the loop outgrew GCC's inlining limits once).
     [[gnu::always_inline]] Sample2 next_2d() {
         if (next_ == kBatch) {
-            sampler_->get_2d_x4(index_, pair_, buffer_);
+            sampler_->get_2d_x8(index_, pair_, buffer_);
             pair_ += kBatch;
             next_ = 0;
         }
@@ -75,7 +78,7 @@ public:
     std::uint32_t stream_seed() const;
 
 private:
-    static constexpr int kBatch = 4;
+    static constexpr int kBatch = 8;
     const PixelSampler* sampler_;
     std::uint32_t index_;
     std::uint32_t pair_;  ///< the first pair not yet computed

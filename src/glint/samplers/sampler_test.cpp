@@ -120,11 +120,12 @@ TEST(Sobol, DimensionsAndPixelsAreDecorrelated) {
     EXPECT_NEAR(product / n, 0.25, 0.005);
 }
 
-TEST(Sampler, FourPairsAtOnceAreTheScalarPairsBitForBit) {
-    // get_2d_x4 (SIMD for the Sobol sampler at power-of-two spp, a loop otherwise) against
-    // get_2d, the reference, for every sampler, counts that are and are not powers of two (and
-    // the small ones the SIMD path leaves to the loop), every index, dimensions near 0 and near
-    // the time pair, and many pixels.
+TEST(Sampler, FourAndEightPairsAtOnceAreTheScalarPairsBitForBit) {
+    // get_2d_x4 and get_2d_x8 (SIMD for the Sobol sampler at power-of-two spp, a loop otherwise;
+    // eight lanes with AVX2 where the CPU has it, else two calls of four) against get_2d, the
+    // reference, for every sampler, counts that are and are not powers of two (and the small ones
+    // the SIMD path leaves to the loop), every index, dimensions near 0 and near the time pair,
+    // and many pixels.
     const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
     for (const SamplerType type : {SamplerType::kSobol, SamplerType::kStratified, SamplerType::kIndependent}) {
         for (const std::uint32_t spp : {1u, 2u, 3u, 4u, 8u, 12u, 64u, 100u, 256u, 4096u, 1u << 20}) {
@@ -135,10 +136,16 @@ TEST(Sampler, FourPairsAtOnceAreTheScalarPairsBitForBit) {
                     for (const std::uint32_t first : {0u, 1u, 2u, 6u, 37u, kTimeDimension - 3}) {
                         Sample2 four[4];
                         s.get_2d_x4(index, first, four);
-                        for (std::uint32_t k = 0; k < 4; ++k) {
+                        Sample2 eight[8];
+                        s.get_2d_x8(index, first, eight);
+                        for (std::uint32_t k = 0; k < 8; ++k) {
                             const Sample2 one = s.get_2d(index, first + k);
-                            ASSERT_EQ(bits(four[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
-                            ASSERT_EQ(bits(four[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
+                            if (k < 4) {
+                                ASSERT_EQ(bits(four[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
+                                ASSERT_EQ(bits(four[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
+                            }
+                            ASSERT_EQ(bits(eight[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
+                            ASSERT_EQ(bits(eight[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
                         }
                     }
                 }
