@@ -47,6 +47,8 @@ cycles_run() {  # spp threads out.exr seed -> seconds
 
 # REPORT_ONLY=1 with OUT set: skip the timed runs, redo the error analysis and the tables.
 [ "${REPORT_ONLY:-0}" = 1 ] && spps=""
+# A new set of timed runs replaces OUT's old ones (the medians are of this run's alone).
+[ -n "$spps" ] && : > "$out/glint.txt" && : > "$out/cycles.txt"
 for spp in $spps; do
   ts=$threads
   [ "$spp" -ge 1024 ] && ts=$threads_high
