@@ -8,7 +8,6 @@
 #include "glint/samplers/hash.h"
 #include "glint/samplers/sobol_avx2.h"
 
-
 namespace glint {
 
 namespace {

@@ -2,7 +2,7 @@
 // steps of sampler.cpp (get_2d) lane by lane on a GCC/clang vector of unsigned 32-bit integers
 // (wrapping multiplies, logical shifts), so every lane gives get_2d's bits. Included by
 // sampler.cpp (4 lanes, SSE4.1) and sampler_avx2.cpp (8 lanes, AVX2) inside their namespaces;
-// each includes <bit> and "glint/samplers/hash.h" first.
+// each includes <bit>, <utility> and the header of Sample2 first.
 
 // The vector types of N lanes (spelled out per N: GCC ignores vector_size on a dependent type).
 template <int N>
