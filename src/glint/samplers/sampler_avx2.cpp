@@ -1,10 +1,8 @@
 // The padded Sobol sampler eight pairs at a time (sobol_lanes.inl), compiled with AVX2.
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <utility>
 
-#include "glint/samplers/hash.h"
 #include "glint/samplers/sobol_avx2.h"
 
 namespace glint {
