@@ -343,8 +343,43 @@ std::optional<LightLiSample> LightSampler::sample_li(const Scene& scene, std::ui
     return sample_li_stored(scene, light, p, u, time);
 }
 
+// The sample is written field by field into the caller's object (the optional below is the
+// return value itself): built as a temporary and copied, its mixed float and byte fields went
+// through the stack in pieces and were read back 16 bytes at a time, a failed store-to-load
+// forward each (docs/performance.md, step 5).
 std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, std::uint32_t light, Point3 p,
                                                             Sample2 u, Float time) const {
+    std::optional<LightLiSample> result{std::in_place};
+    if (!sample_li_into(scene, light, p, u, time, *result)) result.reset();
+    return result;
+}
+
+bool LightSampler::sample_li_into(const Scene& scene, std::uint32_t light, Point3 p, Sample2 u, Float time,
+                                  LightLiSample& s) const {
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    if (light == environment()) {
+        s.distance = kInfinity;
+        s.spectrum = scene.background_spectrum();
+        return std::visit(
+            [&](const auto& b) {
+                using T = std::decay_t<decltype(b)>;
+                if constexpr (std::is_same_v<T, EnvironmentMap>) {
+                    float pdf_uv = 0;
+                    const Point2 uv = b.distribution.sample(u, &pdf_uv);
+                    const float sin_theta = std::sin(uv.y * kPi);
+                    if (pdf_uv <= 0 || sin_theta <= 0) return false;
+                    s.wi = EnvironmentMap::uv_to_direction(uv);
+                    s.L = b.eval(s.wi);
+                    s.pdf = pdf_uv / (2 * kPi * kPi * sin_theta);
+                } else {
+                    s.wi = sample_uniform_sphere(u);
+                    s.L = b.eval(s.wi);
+                    s.pdf = kUniformSpherePdf;
+                }
+                return true;
+            },
+            scene.background);
+    }
     // A moving point or spot light where it is at `time` (a copy only then).
     const Light* chosen = light < lights_.size() ? &lights_[light] : nullptr;
     Light moved;
@@ -352,65 +387,55 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
         moved = scene.light_at(light, time);
         chosen = &moved;
     }
-    if (light == environment()) {
-        auto ls = std::visit(
-            [&](const auto& b) -> std::optional<LightLiSample> {
-                using T = std::decay_t<decltype(b)>;
-                if constexpr (std::is_same_v<T, EnvironmentMap>) {
-                    float pdf_uv = 0;
-                    const Point2 uv = b.distribution.sample(u, &pdf_uv);
-                    const float sin_theta = std::sin(uv.y * kPi);
-                    if (pdf_uv <= 0 || sin_theta <= 0) return std::nullopt;
-                    const Vector3 wi = EnvironmentMap::uv_to_direction(uv);
-                    return LightLiSample{b.eval(wi), wi, pdf_uv / (2 * kPi * kPi * sin_theta),
-                                         std::numeric_limits<float>::infinity()};
-                } else {
-                    const Vector3 wi = sample_uniform_sphere(u);
-                    return LightLiSample{b.eval(wi), wi, kUniformSpherePdf,
-                                         std::numeric_limits<float>::infinity()};
-                }
-            },
-            scene.background);
-        if (ls) ls->spectrum = scene.background_spectrum();
-        return ls;
-    }
-    auto ls = std::visit(
-        [&](const auto& l) -> std::optional<LightLiSample> {
+    const bool found = std::visit(
+        [&](const auto& l) {
             using T = std::decay_t<decltype(l)>;
             if constexpr (std::is_same_v<T, DirectionalLight>) {
-                if (!l.soft()) return LightLiSample{l.intensity, -l.direction, 1,
-                                                    std::numeric_limits<float>::infinity(), true};
-                const Vector3 wi = from_frame(-l.direction, sample_uniform_cone(u, l.one_minus_cos));
-                return LightLiSample{l.intensity / (kPi * l.sin2_half_angle()), wi,
-                                     uniform_cone_pdf(l.one_minus_cos),
-                                     std::numeric_limits<float>::infinity()};
+                s.distance = kInfinity;
+                if (!l.soft()) {
+                    s.L = l.intensity;
+                    s.wi = -l.direction;
+                    s.pdf = 1;
+                    s.delta = true;
+                    return true;
+                }
+                s.wi = from_frame(-l.direction, sample_uniform_cone(u, l.one_minus_cos));
+                s.L = l.intensity / (kPi * l.sin2_half_angle());
+                s.pdf = uniform_cone_pdf(l.one_minus_cos);
+                return true;
             } else if constexpr (std::is_same_v<T, AreaLight>) {
-                Point3 q;
-                Normal3 n;
-                float pdf = 0;
+                s.on_surface = true;
                 MaterialId material = 0;
                 if (l.kind == ShapeKind::kSphere) {
-                    const Sphere& s = scene.spheres[l.index];
-                    material = s.material;
-                    const float omc = sphere_cone(s, p);
+                    const Sphere& sphere = scene.spheres[l.index];
+                    material = sphere.material;
+                    const float omc = sphere_cone(sphere, p);
                     if (omc > 0) {
-                        const Vector3 axis = normalize(s.center - p);
+                        const Vector3 axis = normalize(sphere.center - p);
                         const Vector3 wi = from_frame(axis, sample_uniform_cone(u, omc));
-                        const auto t = s.intersect(Ray{p, wi});
+                        const auto t = sphere.intersect(Ray{p, wi});
                         // Grazing the silhouette, rounding can miss: take the closest approach.
-                        q = p + wi * (t ? *t : dot(s.center - p, wi));
-                        n = normalize(Normal3(q - s.center));
-                        pdf = uniform_cone_pdf(omc);
-                        if (!(scene.emission_of(material).two_sided || dot(n, wi) < 0)) return std::nullopt;
-                        return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, length(q - p), false, true, q, n,
-                                             scene.emission_of(material).spectrum.get()};
+                        const Point3 q = p + wi * (t ? *t : dot(sphere.center - p, wi));
+                        const Normal3 n = normalize(Normal3(q - sphere.center));
+                        const Emission& e = scene.emission_of(material);
+                        if (!(e.two_sided || dot(n, wi) < 0)) return false;
+                        s.L = scene.light_radiance(l, material, q, n, time);
+                        s.wi = wi;
+                        s.pdf = uniform_cone_pdf(omc);
+                        s.distance = length(q - p);
+                        s.p_light = q;
+                        s.n_light = n;
+                        s.spectrum = e.spectrum.get();
+                        return true;
                     }
                 }
+                // The point and normal go straight to the sample (through a local AreaSample
+                // merged across the cases, GCC moved them in overlapping pieces again).
                 float area = 1;
                 const auto from = [&](const auto& shape) {
                     const AreaSample a = shape.sample_area(u);
-                    q = a.p;
-                    n = a.n;
+                    s.p_light = a.p;
+                    s.n_light = a.n;
                     area = shape.area();
                     material = shape.material;
                 };
@@ -420,27 +445,35 @@ std::optional<LightLiSample> LightSampler::sample_li_stored(const Scene& scene, 
                     case ShapeKind::kDisk: from(scene.disks[l.index]); break;
                     case ShapeKind::kTriangle: from(scene.triangles[l.index]); break;
                     case ShapeKind::kMesh: from(scene.world_triangle(l.index, l.prim, time)); break;
-                    case ShapeKind::kPlane: return std::nullopt;
+                    case ShapeKind::kPlane: return false;
                 }
-                const Vector3 d = q - p;
+                const Vector3 d = s.p_light - p;
                 const float dist2 = dot(d, d);
-                if (!(dist2 > 0)) return std::nullopt;
+                if (!(dist2 > 0)) return false;
                 const float dist = std::sqrt(dist2);
                 const Vector3 wi = d / dist;
-                const float cos_l = dot(n, wi);  // < 0: the light faces p
+                const float cos_l = dot(s.n_light, wi);  // < 0: the light faces p
                 const Emission& e = scene.emission_of(material);
-                if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return std::nullopt;
-                pdf = dist2 / (std::abs(cos_l) * area);
-                return LightLiSample{scene.light_radiance(l, material, q, n, time), wi, pdf, dist, false, true, q, n,
-                                     e.spectrum.get()};
+                if (!(e.two_sided ? cos_l != 0 : cos_l < 0)) return false;
+                s.L = scene.light_radiance(l, material, s.p_light, s.n_light, time);
+                s.wi = wi;
+                s.pdf = dist2 / (std::abs(cos_l) * area);
+                s.distance = dist;
+                s.spectrum = e.spectrum.get();
+                return true;
             } else {
-                const LightSample s = l.sample(p);
-                return LightLiSample{s.intensity, s.to_light, 1, s.distance, true};
+                const LightSample ps = l.sample(p);
+                s.L = ps.intensity;
+                s.wi = ps.to_light;
+                s.pdf = 1;
+                s.distance = ps.distance;
+                s.delta = true;
+                return true;
             }
         },
         *chosen);
-    if (ls && !ls->spectrum) ls->spectrum = scene.light_spectrum(light);
-    return ls;
+    if (found && !s.spectrum) s.spectrum = scene.light_spectrum(light);
+    return found;
 }
 
 float LightSampler::pdf_li(const Scene& scene, std::uint32_t light, Point3 p, Vector3 wi,

@@ -105,6 +105,10 @@ public:
     }
 
 private:
+    /// sample_li_stored's work, written into `s` (default-constructed) field by field; false when
+    /// the light gives no sample from p.
+    bool sample_li_into(const Scene& scene, std::uint32_t light, Point3 p, Sample2 u, Float time,
+                        LightLiSample& s) const;
     std::vector<Light> lights_;  ///< the file's lights, then the area lights; the environment is last
     bool env_ = false;
     LightSamplerKind kind_ = LightSamplerKind::kBvh;
