@@ -220,10 +220,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         ++counter.rays;
         ray.time = time;
         const auto hit = scene.intersect(ray);
-        const Ray line = ray;  // the ray before the medium may turn it
 
         // Through the medium up to the surface (or forever): delta tracking.
         if (medium != kNoMedium) {
+            const Ray line = ray;  // the ray before the medium may turn it
             bool scattered = false, terminated = false;
             const float t_max = hit ? hit->t : std::numeric_limits<float>::infinity();
             const Medium& m = scene.media[medium];
@@ -451,13 +451,15 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         ++depth;
         crossings = 0;
         if (!roulette(beta, eta_scale, r_u, depth, u_rr)) break;
-        const Ray next = spawn_ray(si.p, si.n, bs->wi);
+        // The next ray is written where the path keeps it (a `next` copied into `ray` went
+        // through the stack in pieces and was read back whole: a failed store forward a bounce).
+        const Vector3 incoming = ray.direction;
+        ray = spawn_ray(si.p, si.n, bs->wi);
         if (scene.footprint && (differential || depth == 1)) {
-            differential = bs->specular ? scatter_differential(scene, si, ray.direction, differential ? &*differential : nullptr,
-                                                               bs->wi, bs->eta, next.origin)
+            differential = bs->specular ? scatter_differential(scene, si, incoming, differential ? &*differential : nullptr,
+                                                               bs->wi, bs->eta, ray.origin)
                                         : std::nullopt;
         }
-        ray = next;
     }
     if (wl) radiance = film_rgb(radiance, *wl) + seen_rgb;
     if (settings_.white_balance > 0) radiance = balance_(radiance);

@@ -530,14 +530,15 @@ float Bsdf::pdf_lobes(Vector3 wo, Vector3 wi) const {
 }
 
 std::optional<BsdfSample> Bsdf::sample_lobes(Vector3 wo, float uc, Sample2 u) const {
-    if (count_ == 0) return std::nullopt;
-    // Choose a lobe with uc, then reuse the remainder of uc inside it.
+    // Choose a lobe with uc, then reuse the remainder of uc inside it. One named result on
+    // every path, as in sample().
     std::size_t k = 0;
     float lo = 0;
     while (k + 1 < static_cast<std::size_t>(count_) && uc >= lo + select_[k]) lo += select_[k++];
-    const float uc_lobe = std::clamp((uc - lo) / select_[k], 0.0f, 0x1.fffffep-1f);
-    auto s = std::visit([&](const auto& l) { return l.sample(wo, uc_lobe, u); }, lobes_[k]);
-    if (!s) return std::nullopt;
+    const float uc_lobe = count_ == 0 ? 0 : std::clamp((uc - lo) / select_[k], 0.0f, 0x1.fffffep-1f);
+    auto s = count_ == 0 ? std::optional<BsdfSample>{}
+                         : std::visit([&](const auto& l) { return l.sample(wo, uc_lobe, u); }, lobes_[k]);
+    if (!s) return s;
     if (s->specular || count_ == 1) {
         s->f = s->f * weight_[k];
         s->pdf *= select_[k];
@@ -557,7 +558,7 @@ std::optional<BsdfSample> Bsdf::sample_lobes(Vector3 wo, float uc, Sample2 u) co
         s->f = f;
         s->pdf = p;
     }
-    if (!(s->pdf > 0)) return std::nullopt;
+    if (!(s->pdf > 0)) s.reset();
     return s;
 }
 
@@ -630,9 +631,10 @@ float Bsdf::pdf(Vector3 wo_w, Vector3 wi_w) const {
 
 std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const {
     const Vector3 wo = to_local(wo_w);
+    // One named result returned on every path, so that it is built in the caller's object
+    // (returning a temporary on one path made GCC copy the sample, read back over its pieces).
     std::optional<BsdfSample> s = layered() ? sample_layered(wo, uc, u) : sample_lobes(wo, uc, u);
-    if (!s) return std::nullopt;
-    s->wi = to_world(s->wi);
+    if (s) s->wi = to_world(s->wi);
     return s;
 }
 
