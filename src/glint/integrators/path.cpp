@@ -473,8 +473,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 // pbrt-v4's min(1, max throughput) from depth 1 ended paths early enough to cost the Cornell box
 // 40 % and the materials scene 14 % in efficiency (1 / (variance x time), docs/benchmarks.md).
 bool PathIntegrator::roulette(Color& beta, float eta_scale, Color r_u, int depth, float u) const {
+    if (depth < settings_.rr_depth) return true;  // before the square root, not after it
     const float rr = std::sqrt((beta * eta_scale / average(r_u)).max_component());
-    if (depth >= settings_.rr_depth && rr < 1) {
+    if (rr < 1) {
         const float q = std::max(0.0f, 1 - rr);
         if (u < q) return false;
         beta = beta / (1 - q);
