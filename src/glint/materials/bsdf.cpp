@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "glint/materials/fresnel.h"
@@ -493,7 +494,7 @@ Bsdf::Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes) {
     float total = 0;
     for (const auto& [lobe, weight] : lobes) {
         if (!(weight > 0) || count_ == 3) continue;
-        lobes_[static_cast<std::size_t>(count_)] = lobe;
+        std::construct_at(&lobes_[static_cast<std::size_t>(count_)], lobe);  // raw storage until now
         weight_[static_cast<std::size_t>(count_)] = weight;
         total += weight;
         has_non_delta_ |= std::visit(
