@@ -19,6 +19,9 @@ struct Hit {
     std::uint32_t index;  ///< into the scene's array of that kind (kMesh: the instance)
     std::uint32_t prim = 0;  ///< kMesh: the triangle within the instance's mesh
     Float b1 = 0, b2 = 0;    ///< kMesh: barycentric weights of the triangle's 2nd and 3rd vertex
+    /// kMesh, found by glint's own BVH: the triangle's object-space vertices in the packet the
+    /// traversal tested (vertex i, axis a at [12 i + 4 a]: MeshHit::vertices), else null.
+    const float* vertices = nullptr;
 };
 
 struct SurfaceInteraction {

@@ -143,7 +143,7 @@ std::vector<Ray> random_rays(int n) {
 
 TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
     const Scene s = mixed_scene(GetParam().accel, GetParam().isa);
-    int hits = 0;
+    int hits = 0, mesh_hits = 0;
     std::array<int, 6> kinds{};
     for (const Ray& r : random_rays(testing::scaled(10000))) {
         const auto a = s.intersect(r), b = s.intersect_brute_force(r);
@@ -159,7 +159,17 @@ TEST_P(BvhBackends, ClosestAndAnyHitAgreeWithBruteForceOnEveryShapeKind) {
         EXPECT_EQ(a->index, b->index);
         EXPECT_EQ(a->prim, b->prim);
         EXPECT_EQ(a->b1, b->b1);
+        if (a->kind == ShapeKind::kMesh) {
+            // The traversal hands on the hit triangle's vertices from its packet (shading reads
+            // them there): exactly the mesh's vertices of that triangle, in the mesh's order.
+            ++mesh_hits;
+            ASSERT_NE(a->vertices, nullptr);
+            const auto v = s.meshes[s.instances[a->index].mesh].vertices(a->prim);
+            for (int i = 0; i < 3; ++i)
+                for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(a->vertices[12 * i + 4 * axis], v[i][axis]);
+        }
     }
+    EXPECT_GT(mesh_hits, testing::scaled(20));
     EXPECT_GT(hits, testing::scaled(1000));
     for (ShapeKind k : {ShapeKind::kSphere, ShapeKind::kQuad, ShapeKind::kDisk, ShapeKind::kTriangle,
                         ShapeKind::kMesh})

@@ -18,6 +18,9 @@ namespace glint {
 struct MeshHit {
     TriangleHit hit;
     std::uint32_t prim;
+    /// The hit triangle's vertices where the traversal found them: &packet.p[0][0][lane] of the
+    /// packet it tested (vertex i, axis a at [12 i + 4 a]), still in cache when the hit is shaded.
+    const float* vertices = nullptr;
 };
 
 /// Four triangles, structure of arrays: p[vertex][axis][lane]. A leaf's last packet repeats its
@@ -28,6 +31,7 @@ struct alignas(16) TrianglePacket {
     std::uint32_t prim[4];
 };
 static_assert(sizeof(TrianglePacket) == 160);
+static_assert(sizeof(TrianglePacket::p[0]) == 12 * sizeof(float));  // MeshHit::vertices' stride
 
 /// The instruction sets the mesh traversal has kernels for.
 enum class SimdIsa { kSse4, kAvx2, kAvx512 };

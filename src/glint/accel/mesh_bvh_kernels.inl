@@ -214,6 +214,7 @@ inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const Tri
                     t_max = h.t;
                     out.hit = h;
                     out.prim = p.prim[lane];
+                    out.vertices = &p.p[0][0][lane];
                     found = true;
                 }
             }
@@ -238,6 +239,7 @@ inline bool closest_in_leaf(const MeshTraversal& m, std::uint32_t ref, const Tri
         t_max = t[best];
         out.hit = TriangleHit{t[best], b1[best], b2[best]};
         out.prim = p.prim[best];
+        out.vertices = &p.p[0][0][best];
         found = true;
     }
     return found;

@@ -48,6 +48,12 @@ struct TriangleMesh {
         return {positions[indices[3 * tri]], positions[indices[3 * tri + 1]],
                 positions[indices[3 * tri + 2]]};
     }
+    /// b0 a + b1 b + b2 c (b0 = 1 - b1 - b2), axis by axis: interpolate's arithmetic for points.
+    static Point3 mix_points(Point3 a, Point3 b, Point3 c, Float b1, Float b2) {
+        const Float b0 = 1 - b1 - b2;
+        const auto m = [&](Float x, Float y, Float z) { return b0 * x + b1 * y + b2 * z; };
+        return {m(a.x, b.x, c.x), m(a.y, b.y, c.y), m(a.z, b.z, c.z)};
+    }
     /// A per-vertex attribute (positions, normals, uvs, colours, tangents) of triangle `tri` at
     /// barycentric (b1, b2): b0 a0 + b1 a1 + b2 a2.
     template <typename T>
