@@ -83,16 +83,16 @@ protected:
 // The renders these tests stop and resume: long enough to be stopped several times, a quarter of
 // the samples under the sanitizers, where each sample costs 5-20 times more.
 const std::string kLongSpp = glint::testing::kSanitized ? "64" : "256";
+// The one stopped three times needs three checkpoints before the end: passes double, so each
+// doubling of the spp adds one. At 256 spp a quiet machine finished after two (2026-11-28, once
+// the path tracer was 15 % faster); 1024 leaves two more.
+const std::string kThreeStopSpp = glint::testing::kSanitized ? "64" : "1024";
 
 // Interrupted by SIGINT, then SIGTERM, then SIGKILL, each time resumed from the checkpoint: the
 // final image is the uninterrupted one, bit for bit. After SIGINT and SIGTERM the exit status is
 // 3 and the image of the completed passes is whole; after SIGKILL the last checkpoint is whole.
 TEST_F(LongRender, InterruptedAndResumedRendersEqualTheUninterruptedOne) {
-    // Three interruptions need three checkpoints before the end: passes double, so each
-    // doubling of the spp adds one. At 256 spp a quiet machine finished after two
-    // (2026-11-28, once the path tracer was 15 % faster); 1024 leaves two more.
-    const std::string spp = glint::testing::kSanitized ? "64" : "1024";
-    const std::string scene = cornell_ + " --width 96 --height 72 --spp " + spp + " --threads 2";
+    const std::string scene = cornell_ + " --width 96 --height 72 --spp " + kThreeStopSpp + " --threads 2";
     ASSERT_EQ(run("render " + scene + " -q -o full.exr").status, 0);
     const std::vector<float> full = pixels(dir_ / "full.exr");
     ASSERT_FALSE(full.empty());

@@ -223,11 +223,6 @@ void Scene::commit() {
 
 namespace {
 
-// A triangle's vertices from MeshHit::vertices (vertex i, axis a at [12 i + 4 a]).
-std::array<Point3, 3> packet_vertices(const float* v) {
-    return {Point3{v[0], v[4], v[8]}, Point3{v[12], v[16], v[20]}, Point3{v[24], v[28], v[32]}};
-}
-
 struct AlphaContext {
     const Scene* scene;
     std::uint32_t instance;
@@ -685,10 +680,10 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
             // The vertices from the packet the traversal hit where it says (the same floats,
             // still in cache; through the index array they cost the bunny 4 % of its time),
             // else from the mesh.
-            const auto [p0, p1, p2] = hit.vertices ? packet_vertices(hit.vertices) : m.vertices(tri);
+            const auto [p0, p1, p2] = hit.vertices ? packet_triangle(hit.vertices) : m.vertices(tri);
             // The point from the barycentrics (on the triangle, whatever the ray's round-off),
             // in object space, then carried to the world: interpolate's arithmetic.
-            const Point3 po = TriangleMesh::mix_points(p0, p1, p2, hit.b1, hit.b2);
+            const Point3 po = TriangleMesh::mix_xyz(p0, p1, p2, hit.b1, hit.b2);
             SurfaceInteraction si{place.point(po), Normal3{0, 0, 1},
                                   instance_material(hit.index, tri), hit.kind, hit.index};
             si.prim = tri;

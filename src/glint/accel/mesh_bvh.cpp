@@ -54,8 +54,8 @@ SimdIsa default_simd_isa() {
 }
 
 bool intersect_packet_lane(const TrianglePacket& p, int lane, const WatertightRay& ray, TriangleHit& out) {
-    const auto vertex = [&](int v) { return Point3{p.p[v][0][lane], p.p[v][1][lane], p.p[v][2][lane]}; };
-    const auto h = intersect_triangle(vertex(0), vertex(1), vertex(2), ray);
+    const auto [p0, p1, p2] = packet_triangle(&p.p[0][0][lane]);
+    const auto h = intersect_triangle(p0, p1, p2, ray);
     if (h) out = *h;
     return h.has_value();
 }

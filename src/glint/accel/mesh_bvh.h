@@ -5,6 +5,7 @@
 // four triangles (their vertices copied in leaf order, one SIMD lane per triangle), tested at once
 // with the watertight test of shapes/triangle.h, lane for lane the same arithmetic, so every ISA
 // gives the same hits bit for bit.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -31,7 +32,14 @@ struct alignas(16) TrianglePacket {
     std::uint32_t prim[4];
 };
 static_assert(sizeof(TrianglePacket) == 160);
-static_assert(sizeof(TrianglePacket::p[0]) == 12 * sizeof(float));  // MeshHit::vertices' stride
+static_assert(sizeof(TrianglePacket::p[0]) == 12 * sizeof(float));  // packet_triangle's stride
+
+/// The triangle of one lane of a packet, from &packet.p[0][0][lane] (as MeshHit::vertices
+/// holds it): vertex i, axis a at [12 i + 4 a].
+inline std::array<Point3, 3> packet_triangle(const float* lane) {
+    const auto vertex = [&](int v) { return Point3{lane[12 * v], lane[12 * v + 4], lane[12 * v + 8]}; };
+    return {vertex(0), vertex(1), vertex(2)};
+}
 
 /// The instruction sets the mesh traversal has kernels for.
 enum class SimdIsa { kSse4, kAvx2, kAvx512 };

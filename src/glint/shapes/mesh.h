@@ -48,11 +48,12 @@ struct TriangleMesh {
         return {positions[indices[3 * tri]], positions[indices[3 * tri + 1]],
                 positions[indices[3 * tri + 2]]};
     }
-    /// b0 a + b1 b + b2 c (b0 = 1 - b1 - b2), axis by axis: interpolate's arithmetic for points.
-    static Point3 mix_points(Point3 a, Point3 b, Point3 c, Float b1, Float b2) {
+    /// b0 a + b1 b + b2 c (b0 = 1 - b1 - b2), axis by axis, for points and normals: what
+    /// interpolate computes for them, also for vertices that come from elsewhere (a BVH packet).
+    template <typename T>
+    static T mix_xyz(const T& a, const T& b, const T& c, Float b1, Float b2) {
         const Float b0 = 1 - b1 - b2;
-        const auto m = [&](Float x, Float y, Float z) { return b0 * x + b1 * y + b2 * z; };
-        return {m(a.x, b.x, c.x), m(a.y, b.y, c.y), m(a.z, b.z, c.z)};
+        return T{b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y, b0 * a.z + b1 * b.z + b2 * c.z};
     }
     /// A per-vertex attribute (positions, normals, uvs, colours, tangents) of triangle `tri` at
     /// barycentric (b1, b2): b0 a0 + b1 a1 + b2 a2.
@@ -72,7 +73,7 @@ struct TriangleMesh {
         } else if constexpr (std::is_same_v<T, std::array<Float, 4>>) {
             return {mix(a[0], b[0], c[0]), mix(a[1], b[1], c[1]), mix(a[2], b[2], c[2]), mix(a[3], b[3], c[3])};
         } else {  // Point3, Normal3
-            return T{mix(a.x, b.x, c.x), mix(a.y, b.y, c.y), mix(a.z, b.z, c.z)};
+            return mix_xyz(a, b, c, b1, b2);
         }
     }
     Bounds3 bounds() const {
