@@ -18,9 +18,11 @@ import math
 import os
 import struct
 import sys
-import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_setup import cycles_settings, one_sided_emission, render_timed  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 out, spp, threads = argv[0], int(argv[1]), int(argv[2])
@@ -79,17 +81,7 @@ def light_material():
     nodes, links = m.node_tree.nodes, m.node_tree.links
     nodes.clear()
     out_node = nodes.new("ShaderNodeOutputMaterial")
-    emission = nodes.new("ShaderNodeEmission")
-    emission.inputs["Color"].default_value = (17, 12, 4, 1)
-    emission.inputs["Strength"].default_value = 1
-    black = nodes.new("ShaderNodeBsdfDiffuse")
-    black.inputs["Color"].default_value = (0, 0, 0, 1)
-    geometry = nodes.new("ShaderNodeNewGeometry")
-    mix = nodes.new("ShaderNodeMixShader")
-    links.new(geometry.outputs["Backfacing"], mix.inputs["Fac"])
-    links.new(emission.outputs["Emission"], mix.inputs[1])
-    links.new(black.outputs["BSDF"], mix.inputs[2])
-    links.new(mix.outputs["Shader"], out_node.inputs["Surface"])
+    links.new(one_sided_emission(nodes, links, (17, 12, 4)), out_node.inputs["Surface"])
     return m
 
 
@@ -183,37 +175,17 @@ scene.collection.objects.link(cam)
 scene.camera = cam
 
 r = scene.render
-r.engine = "CYCLES"
 r.resolution_x = r.resolution_y = size
-r.resolution_percentage = 100
-r.threads_mode = "FIXED"
-r.threads = threads
-r.use_persistent_data = False
-r.image_settings.file_format = "OPEN_EXR"
-r.image_settings.color_depth = "32"
-r.image_settings.exr_codec = "ZIP"
-scene.view_settings.view_transform = "Standard"
-c = scene.cycles
-c.device = "CPU"
-c.samples = spp
+c = cycles_settings(scene, out, spp, threads, seed)
 c.use_adaptive_sampling = threshold > 0
 if threshold > 0:
     c.adaptive_threshold = threshold
     c.adaptive_min_samples = 0  # Cycles' automatic minimum
-c.use_denoising = False
-c.seed = seed
-c.pixel_filter_type = "BOX"
 c.max_bounces = 15
 c.diffuse_bounces = 15
 c.glossy_bounces = 15
 c.transmission_bounces = 15
-c.sample_clamp_direct = 0
-c.sample_clamp_indirect = 0
 c.caustics_reflective = True
 c.caustics_refractive = True
 c.blur_glossy = 0
-r.filepath = out
-
-start = time.time()
-bpy.ops.render.render(write_still=True)
-print(f"cycles render seconds: {time.time() - start:.3f}")
+render_timed()

@@ -21,10 +21,12 @@
 import math
 import os
 import sys
-import time
 
 import bpy
 from mathutils import Matrix, Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_setup import cycles_settings, render_timed  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 which, out, spp, threads = argv[0], argv[1], int(argv[2]), int(argv[3])
@@ -173,31 +175,10 @@ elif which in ("cloud", "cloud-absorb"):
 else:
     sys.exit(f"unknown scene {which}")
 
-r = scene.render
-r.engine = "CYCLES"
-r.resolution_percentage = 100
-r.threads_mode = "FIXED"
-r.threads = threads
-r.image_settings.file_format = "OPEN_EXR"
-r.image_settings.color_depth = "32"
-r.image_settings.exr_codec = "ZIP"
-scene.view_settings.view_transform = "Standard"
-c = scene.cycles
-c.device = "CPU"
-c.samples = spp
-c.use_adaptive_sampling = False
-c.use_denoising = False
-c.seed = seed
-c.pixel_filter_type = "BOX"
+c = cycles_settings(scene, out, spp, threads, seed)
 c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.volume_bounces = \
     {"fog": 15, "cloud": 1023, "cloud-absorb": 0}[which] if bounces is None else bounces
 c.transparent_max_bounces = {"fog": 64, "cloud": 1023, "cloud-absorb": 1023}[which]
-c.sample_clamp_direct = 0
-c.sample_clamp_indirect = 0
 c.volume_step_rate = step_rate
 c.volume_max_steps = 4096
-r.filepath = out
-
-start = time.time()
-bpy.ops.render.render(write_still=True)
-print(f"cycles render seconds: {time.time() - start:.3f}")
+render_timed()
