@@ -24,13 +24,13 @@ import sys
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
 from cycles_setup import cycles_settings, one_sided_emission, render_timed  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 out, spp, threads = argv[0], int(argv[1]), int(argv[2])
 seed = int(argv[3]) if len(argv) > 3 else 0
-here = os.path.dirname(os.path.abspath(__file__))
 
 
 # glint's frame is left-handed (+y up, the camera along +z, +x to the right); Blender's is
@@ -176,7 +176,7 @@ def add_disk(name, center, normal, radius, mat, sides=256):
     return add_object(name, mesh, mat)
 
 
-ground = add_polygon("ground", [(-20, 0, -20), (-20, 0, 20), (20, 0, 20), (20, 0, -20)], material("ground", checker))
+add_polygon("ground", [(-20, 0, -20), (-20, 0, 20), (20, 0, 20), (20, 0, -20)], material("ground", checker))
 add_sphere("clay", (-3.6, 0.8, 0), 0.8, material("clay", diffuse((0.8, 0.3, 0.2))))
 add_sphere("plastic", (-1.8, 0.8, 0.6), 0.8, material("plastic", principled((0.1, 0.35, 0.8), 0, 0.25)))
 add_sphere("gold", (0, 0.8, 0), 0.8, material("gold", principled(GOLD, 1, 0.35)))
