@@ -11,17 +11,24 @@
 #   frosted  Glass BSDF, GGX, roughness 0.3      = glint's rough dielectric (alpha = roughness^2 in both)
 #
 # The images therefore differ (the plastic and gold most), and bench/compare_cycles.sh measures
-# each renderer's error against its own reference for this scene. Spheres are Cycles' analytic
-# point-cloud spheres (Geometry Nodes' Mesh to Points), not meshes; the disk light is a
-# 256-sided polygon of the disk's area, emitting on its front face only, as glint's.
+# each renderer's error against its own reference for this scene. The three opaque spheres are
+# Cycles' analytic point-cloud spheres (Geometry Nodes' Mesh to Points); the two glass spheres
+# are smooth-shaded 256 x 128 UV-sphere meshes, because Cycles 3.4 renders rough glass on a point
+# sphere as another, blurrier material (add_mesh_sphere). The disk light is a 256-sided polygon
+# of the disk's area, emitting on its front face only, as glint's.
 #
-#   blender -b --factory-startup -P bench/materials_cycles.py -- OUT.exr SPP THREADS [SEED]
+#   blender -b --factory-startup -P bench/materials_cycles.py -- OUT.exr SPP THREADS [SEED [ONLY]]
+#
+# ONLY = frosted or frosted-points: the rough glass sphere alone (as a mesh, or as a point
+# sphere) over the ground under a uniform sky (0.8, 0.85, 1), no lamp, only the window of pixels
+# [600, 760) x [125, 295) around it (bench/rough_glass_twin.sh).
 #
 # Prints "cycles render seconds: S" (the render alone, without Blender's start-up).
 import math
 import os
 import sys
 
+import bmesh
 import bpy
 
 here = os.path.dirname(os.path.abspath(__file__))
@@ -31,6 +38,9 @@ from cycles_setup import cycles_settings, one_sided_emission, render_timed  # no
 argv = sys.argv[sys.argv.index("--") + 1:]
 out, spp, threads = argv[0], int(argv[1]), int(argv[2])
 seed = int(argv[3]) if len(argv) > 3 else 0
+only = argv[4] if len(argv) > 4 else None
+if only not in (None, "frosted", "frosted-points"):
+    sys.exit(f"materials_cycles.py: ONLY={only}: frosted or frosted-points")
 
 
 # glint's frame is left-handed (+y up, the camera along +z, +x to the right); Blender's is
@@ -141,6 +151,23 @@ def add_sphere(name, center, radius, mat):
     obj.modifiers.new("points", "NODES").node_group = group
 
 
+def add_mesh_sphere(name, center, radius, mat):
+    # A smooth-shaded UV sphere of 256 x 128 segments, for the glass spheres: Cycles 3.4 renders
+    # a rough glass point sphere as a different, blurrier and brighter material than pbrt-v4 and
+    # glint render (and than its own mesh sphere, which matches both), so a point is not a
+    # closed glass body there. Its interpolated normals are the sphere's to within the facets.
+    mesh = bpy.data.meshes.new(name)
+    bm = bmesh.new()
+    bmesh.ops.create_uvsphere(bm, u_segments=256, v_segments=128, radius=radius)
+    bm.to_mesh(mesh)
+    bm.free()
+    for polygon in mesh.polygons:
+        polygon.use_smooth = True
+    obj = add_object(name, mesh, mat)
+    obj.location = to_blender(center)
+    return obj
+
+
 def add_polygon(name, points, mat):
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([to_blender(p) for p in points], [], [tuple(range(len(points)))])
@@ -177,12 +204,14 @@ def add_disk(name, center, normal, radius, mat, sides=256):
 
 
 add_polygon("ground", [(-20, 0, -20), (-20, 0, 20), (20, 0, 20), (20, 0, -20)], material("ground", checker))
-add_sphere("clay", (-3.6, 0.8, 0), 0.8, material("clay", diffuse((0.8, 0.3, 0.2))))
-add_sphere("plastic", (-1.8, 0.8, 0.6), 0.8, material("plastic", principled((0.1, 0.35, 0.8), 0, 0.25)))
-add_sphere("gold", (0, 0.8, 0), 0.8, material("gold", principled(GOLD, 1, 0.35)))
-add_sphere("glass", (1.8, 0.8, 0.6), 0.8, material("glass", glass(0)))
-add_sphere("frosted", (3.6, 0.8, 0), 0.8, material("frosted", glass(0.3)))
-add_disk("lamp", (3, 5, -3), (-0.4, -1, 0.4), 1, material("lamp", lamp))
+if only is None:
+    add_sphere("clay", (-3.6, 0.8, 0), 0.8, material("clay", diffuse((0.8, 0.3, 0.2))))
+    add_sphere("plastic", (-1.8, 0.8, 0.6), 0.8, material("plastic", principled((0.1, 0.35, 0.8), 0, 0.25)))
+    add_sphere("gold", (0, 0.8, 0), 0.8, material("gold", principled(GOLD, 1, 0.35)))
+    add_mesh_sphere("glass", (1.8, 0.8, 0.6), 0.8, material("glass", glass(0)))
+(add_sphere if only == "frosted-points" else add_mesh_sphere)("frosted", (3.6, 0.8, 0), 0.8, material("frosted", glass(0.3)))
+if only is None:
+    add_disk("lamp", (3, 5, -3), (-0.4, -1, 0.4), 1, material("lamp", lamp))
 
 # The sky: glint's map has its centre column along +z (Blender +y) and its right half towards +x;
 # Cycles' equirectangular lookup, u = 1/2 - atan2(y, x) / 2 pi, has its centre along +x and its
@@ -201,7 +230,10 @@ mapping.vector_type = "VECTOR"
 mapping.inputs["Rotation"].default_value = (0, 0, math.radians(-90))
 wl.new(coords.outputs["Generated"], mapping.inputs["Vector"])
 wl.new(mapping.outputs["Vector"], env.inputs["Vector"])
-wl.new(env.outputs["Color"], wn["Background"].inputs["Color"])
+if only is None:
+    wl.new(env.outputs["Color"], wn["Background"].inputs["Color"])
+else:
+    wn["Background"].inputs["Color"].default_value = (0.8, 0.85, 1, 1)
 wn["Background"].inputs["Strength"].default_value = 1
 scene.world = world
 
@@ -223,6 +255,10 @@ scene.camera = cam
 
 r = scene.render
 r.resolution_x, r.resolution_y = 800, 400
+if only is not None:  # Blender's border counts rows from the bottom
+    r.use_border = r.use_crop_to_border = True
+    r.border_min_x, r.border_max_x = 600 / 800, 760 / 800
+    r.border_min_y, r.border_max_y = (400 - 295) / 400, (400 - 125) / 400
 c = cycles_settings(scene, out, spp, threads, seed)
 # glint's max_depth 12 counts scattering events including the first hit; Cycles counts bounces
 # after it.
