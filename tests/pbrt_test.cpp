@@ -232,6 +232,22 @@ TEST(Pbrt, ParameterNamesArePbrtV4s) {
     EXPECT_NE(first_error("WorldBegin\nTexture \"c\" \"float\" \"checkerboard\" \"integer dimension\" 3 \"float uscale\" 4\n")
                   .find("unknown parameter \"float uscale\""),
               std::string::npos);
+    // A 2D checkerboard (pbrt-v4's default dimension) is glint's checker on uv, with the mapping's
+    // scales and offsets.
+    const SceneDescription u = parse("WorldBegin\nTexture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 "
+                                     "\"float vscale\" 4 \"float udelta\" 0.5 \"float vdelta\" -0.25 \"rgb tex1\" [0.2 0.2 0.2]\n"
+                                     "MakeNamedMaterial \"m\" \"string type\" \"diffuse\" \"texture reflectance\" \"c\"\n");
+    ASSERT_EQ(u.materials.size(), 1u);
+    const CheckerTexture& k = u.materials[0].material.color.checker;
+    EXPECT_TRUE(k.on_uv);
+    EXPECT_EQ(k.size, 1.0f);
+    EXPECT_EQ(k.u_scale, 8.0f);
+    EXPECT_EQ(k.v_scale, 4.0f);
+    EXPECT_EQ(k.u_offset, 0.5f);
+    EXPECT_EQ(k.v_offset, -0.25f);
+    EXPECT_EQ(k.even, Color{0.2f});
+    EXPECT_EQ(k.odd, Color{0.0f});
+    EXPECT_TRUE(u.warnings.empty()) << u.warnings[0].message;
     const SceneDescription f = parse("Film \"rgb\" \"float iso\" 200 \"float fnumber\" 2\nWorldBegin\n");
     ASSERT_EQ(f.warnings.size(), 1u);
     EXPECT_NE(f.warnings[0].message.find("fnumber"), std::string::npos) << f.warnings[0].message;

@@ -197,7 +197,7 @@ void Scene::commit() {
                     const std::uint8_t filtered = t.filtered() ? kReadsFootprint : 0;
                     return std::uint8_t((t.uv_set == 0 ? kReadsUv : kReadsUv | kReadsMoreUvs) | filtered);
                 }
-                if constexpr (std::is_same_v<T, CheckerTexture>) return kReadsFootprint;
+                if constexpr (std::is_same_v<T, CheckerTexture>) return std::uint8_t(t.on_uv ? kReadsUv | kReadsFootprint : kReadsFootprint);
                 if constexpr (std::is_same_v<T, VertexColorTexture>) return kReadsVertexColor;
                 if constexpr (std::is_same_v<T, ScaleTexture>)
                     return texture_reads_[t.texture] | texture_reads_[t.factor];

@@ -175,7 +175,7 @@ struct Scene {
         // The article's textures inline; the rest go through the general (recursive) evaluate.
         const Texture& t = textures[id];
         if (const auto* c = std::get_if<ConstantTexture>(&t)) return c->value;
-        if (const auto* k = std::get_if<CheckerTexture>(&t); k && !footprint) return k->eval(si.p);
+        if (const auto* k = std::get_if<CheckerTexture>(&t); k && !footprint && !k->on_uv) return k->eval(si.p);
         return texture_general(id, si);
     }
     /// The reflectance spectrum of texture `id`, if it is a constant given as one (spectral mode

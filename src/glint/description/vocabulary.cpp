@@ -83,7 +83,7 @@ const std::vector<VocabularyEntry>& table() {
         {"metal", "platinum", {}},
         {"metal", "silver", {}},
         {"texture", "constant", {"type", "color", "spectrum"}},
-        {"texture", "checker", {"type", "size", "even", "odd"}},
+        {"texture", "checker", {"type", "size", "even", "odd", "space", "uv_scale", "uv_offset"}},
         {"texture", "image", {"type", "filename", "pixels", "encoding", "wrap", "size"}},
         {"texture", "scale", {"type", "texture", "factor"}},
         {"texture", "mix", {"type", "a", "b", "amount"}},

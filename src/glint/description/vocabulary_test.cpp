@@ -266,6 +266,18 @@ TEST(Vocabulary, TheWriterKeepsWhatTheReaderRead) {
         const auto [c, d] = round_trip(std::string("integrator: {type: ") + kind + "}\n");
         EXPECT_EQ(d.integrator.kind, c.integrator.kind) << kind;
     }
+    // A checker on uv (pbrt-v4's 2D checkerboard) keeps its space, scales and offsets.
+    const auto [u, v] = round_trip(
+        "materials:\n  m: {type: diffuse, albedo: {type: checker, size: 0.5, even: [1, 1, 1], odd: [0, 0, 0],\n"
+        "      space: uv, uv_scale: [8, 4], uv_offset: [0.25, -0.5]}}\n");
+    ASSERT_EQ(v.materials.size(), 1u);
+    const CheckerTexture& k = v.materials[0].material.color.checker;
+    EXPECT_TRUE(k.on_uv);
+    EXPECT_EQ(k.size, 0.5f);
+    EXPECT_EQ(k.u_scale, 8.0f);
+    EXPECT_EQ(k.v_scale, 4.0f);
+    EXPECT_EQ(k.u_offset, 0.25f);
+    EXPECT_EQ(k.v_offset, -0.5f);
 }
 
 }  // namespace

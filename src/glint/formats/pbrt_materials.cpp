@@ -282,15 +282,22 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
     // pbrt-v4 reads a 2D mapping's parameters (uscale, vscale, udelta, vdelta, mapping) only
     // for textures looked up by (u, v): an image and a 2D checkerboard; elsewhere they are
     // unknown, as in pbrt-v4.
-    double us = 1, vs = 1;
-    const auto uv_mapping = [&] {
-        for (const char* n : {"mapping", "udelta", "vdelta"})
-            ignore(pl, n, fmt::format("texture \"{}\": \"{}\" ignored", name, n));
+    double us = 1, vs = 1, ud = 0, vd = 0;
+    // `deltas`: whether the texture applies udelta and vdelta (the checkerboard); elsewhere ignored.
+    const auto uv_mapping = [&](bool deltas) {
+        if (const auto mapping = get_string(pl, "mapping"); mapping && *mapping != "uv")
+            warn(pl.find("mapping")->loc, fmt::format("texture \"{}\": mapping \"{}\" not supported; using uv", name, *mapping));
+        for (const char* n : {"udelta", "vdelta"})
+            if (!deltas) ignore(pl, n, fmt::format("texture \"{}\": \"{}\" ignored", name, n));
         us = get_float(pl, "uscale").value_or(1);
         vs = get_float(pl, "vscale").value_or(1);
+        if (deltas) {
+            ud = get_float(pl, "udelta").value_or(0);
+            vd = get_float(pl, "vdelta").value_or(0);
+        }
     };
     if (type == "imagemap") {
-        uv_mapping();
+        uv_mapping(false);
         for (const char* quiet : {"filter", "maxanisotropy"})  // filtering is glint's own choice
             if (Param* p = pl.find(quiet)) p->used = true;
         ignore(pl, "invert", fmt::format("texture \"{}\": \"invert\" ignored", name));
@@ -350,12 +357,20 @@ void Parser::texture(const Token& t, const std::string& name, const std::string&
             if (!uniform || o[0] != 0 || o[1] != 0 || o[2] != 0 || !(size > 0))
                 warn(t.loc(), "3D checkerboard: only a uniform scale of its space is applied");
             if (!(size > 0) || !std::isfinite(size)) size = 1;
-        } else {
-            uv_mapping();
-            size = 1 / std::max(us, 1e-6);
-            warn(dim ? pl.find("dimension")->loc : t.loc(), "2D checkerboard rendered as glint's 3D checker");
         }
         e.desc.checker = CheckerTexture{Float(size), constant("tex1", 1), constant("tex2", 0)};
+        if (dim && *dim != 2 && *dim != 3)
+            warn(pl.find("dimension")->loc, fmt::format("checkerboard of dimension {}: using 2 (pbrt-v4 has 2 and 3)", *dim));
+        if (!dim || *dim != 3) {
+            // pbrt-v4's 2D checkerboard: cells of 1 over (s, t) = (uscale u + udelta, vscale v + vdelta).
+            uv_mapping(true);
+            CheckerTexture& c = e.desc.checker;
+            c.on_uv = true;
+            c.u_scale = Float(us);
+            c.v_scale = Float(vs);
+            c.u_offset = Float(ud);
+            c.v_offset = Float(vd);
+        }
     } else {
         warn(t.loc(), fmt::format("texture \"{}\" not supported; using a constant 0.5", type));
         pl.use_all();

@@ -107,9 +107,16 @@ std::string Writer::texture(const TextureDesc& t) const {
     switch (t.kind) {
         case K::kConstant:
             return t.spectrum ? fmt::format("{{type: constant, spectrum: {}}}", spectrum_yaml(*t.spectrum)) : vec(t.value);
-        case K::kChecker:
-            return fmt::format("{{type: checker, size: {}, even: {}, odd: {}}}", num(t.checker.size), vec(t.checker.even),
-                               vec(t.checker.odd));
+        case K::kChecker: {
+            const CheckerTexture& c = t.checker;
+            std::string s = fmt::format("{{type: checker, size: {}, even: {}, odd: {}", num(c.size), vec(c.even), vec(c.odd));
+            if (c.on_uv) {
+                s += ", space: uv";
+                if (c.u_scale != 1 || c.v_scale != 1) s += fmt::format(", uv_scale: [{}, {}]", num(c.u_scale), num(c.v_scale));
+                if (c.u_offset != 0 || c.v_offset != 0) s += fmt::format(", uv_offset: [{}, {}]", num(c.u_offset), num(c.v_offset));
+            }
+            return s + "}";
+        }
         case K::kImage: {
             if (t.pixels) throw IoError("convert: image textures given as pixels are not written yet");
             std::string s = fmt::format("{{type: image, filename: {}", yaml_quoted(file(t.filename.value)));

@@ -63,6 +63,22 @@ std::optional<TextureDesc> SceneParser::texture(const YAML::Node& node) {
         assign(m.get("size"), t.checker.size, positive("size"));
         assign(m.require("even"), t.checker.even, color());
         assign(m.require("odd"), t.checker.odd, color());
+        if (const auto n = m.get("space")) {
+            if (const auto uv = choice<bool>(*n, "space", {{"world", false}, {"uv", true}})) t.checker.on_uv = *uv;
+        }
+        // On uv: (s, t) = (u_scale u + u_offset, v_scale v + v_offset), pbrt-v4's uscale, udelta, ...
+        const auto uv_pair = [&](const char* key, Float& a, Float& b) {
+            const auto n = m.get(key);
+            if (!n) return;
+            if (!t.checker.on_uv) {
+                r_.error(*n, fmt::format("checker texture: '{}' needs 'space: uv'", key));
+            } else if (const auto p = r_.pair(*n, key)) {
+                a = static_cast<Float>((*p)[0]);
+                b = static_cast<Float>((*p)[1]);
+            }
+        };
+        uv_pair("uv_scale", t.checker.u_scale, t.checker.v_scale);
+        uv_pair("uv_offset", t.checker.u_offset, t.checker.v_offset);
     } else if (*type == "image") {
         t.kind = TextureDesc::Kind::kImage;
         MapReader m(r_, node, "image texture", vocabulary_keys("texture", "image"));

@@ -87,6 +87,22 @@ TEST(SceneYaml, OutOfRangeValuesAreReported) {
     EXPECT_NE(e.find("scene.yaml:7:85: error: shininess must be in [0, 1], got 2\n"), std::string::npos) << e;
 }
 
+// A checker's uv mapping: only on uv, two numbers each, and a space it knows.
+TEST(SceneYaml, CheckerUvKeysAreCheckedWhereTheyStand) {
+    const std::string e = errors_of(
+        "materials:\n"
+        "  a: {color: {type: checker, even: [1, 1, 1], odd: [0, 0, 0], uv_scale: [2, 2]}}\n"
+        "  b: {color: {type: checker, even: [1, 1, 1], odd: [0, 0, 0], space: uv, uv_offset: [1, 2, 3]}}\n"
+        "  c: {color: {type: checker, even: [1, 1, 1], odd: [0, 0, 0], space: xyz}}\n");
+    EXPECT_NE(e.find("scene.yaml:2:73: error: checker texture: 'uv_scale' needs 'space: uv'\n"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.yaml:3:85: error: uv_offset: expected a list of 2 numbers [u, v], got a list of 3\n"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("scene.yaml:4:70: error: unknown space 'xyz' (known: world, uv)\n"), std::string::npos) << e;
+    EXPECT_EQ(errors_of("materials:\n  a: {color: {type: checker, even: [1, 1, 1], odd: [0, 0, 0], space: uv, uv_scale: [2, 0.5]}}\n"),
+              "");
+}
+
 TEST(SceneYaml, NonFiniteNumbersAreReported) {
     const std::string text =
         "lights:\n"

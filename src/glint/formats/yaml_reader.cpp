@@ -106,6 +106,10 @@ std::optional<std::array<double, 3>> YamlReader::triple(const YAML::Node& node) 
     return fixed_list<3>(*this, node, "", "[x, y, z]");
 }
 
+std::optional<std::array<double, 2>> YamlReader::pair(const YAML::Node& node, const char* what) {
+    return fixed_list<2>(*this, node, fmt::format("{}: ", what), "[u, v]");
+}
+
 std::optional<std::array<double, 4>> YamlReader::bounds(const YAML::Node& node, const char* what) {
     const auto b = fixed_list<4>(*this, node, fmt::format("{}: ", what), "[x0, x1, y0, y1]");
     if (!b) return std::nullopt;

@@ -35,6 +35,8 @@ public:
     std::optional<bool> boolean(const YAML::Node& node);
     std::optional<std::string> string(const YAML::Node& node);
     std::optional<std::array<double, 3>> triple(const YAML::Node& node);
+    /// Two finite numbers [a, b]; `what` names them in errors.
+    std::optional<std::array<double, 2>> pair(const YAML::Node& node, const char* what);
     /// Four finite numbers [x0, x1, y0, y1] with x0 < x1 and y0 < y1 (windows, crops).
     std::optional<std::array<double, 4>> bounds(const YAML::Node& node, const char* what);
 

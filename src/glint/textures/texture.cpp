@@ -28,26 +28,39 @@ float to_texels(Float u, int n, WrapMode wrap) {
     return u * static_cast<float>(n) - 0.5f;
 }
 
-Color CheckerTexture::eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const {
+Color CheckerTexture::box_mean(const double* x, const double* h, int n, Color point) const {
     // The square wave (-1)^floor(x) and its integral from 0, a triangle wave of period 2.
-    const auto wave = [](double x) { return (static_cast<std::int64_t>(std::floor(x)) & 1) == 0 ? 1.0 : -1.0; };
-    const auto integral = [](double x) { return 1 - std::abs(x - 2 * std::floor(x / 2) - 1); };
-    double h[3], widest = 0;
-    for (int a = 0; a < 3; ++a) {
-        h[a] = 0.5 * (std::abs(dpdx[a]) + std::abs(dpdy[a])) / size;
-        widest = std::max(widest, h[a]);
-    }
-    if (!(widest > 0)) return eval(p);
+    const auto wave = [](double v) { return (static_cast<std::int64_t>(std::floor(v)) & 1) == 0 ? 1.0 : -1.0; };
+    const auto integral = [](double v) { return 1 - std::abs(v - 2 * std::floor(v / 2) - 1); };
+    double widest = 0;
+    for (int a = 0; a < n; ++a) widest = std::max(widest, h[a]);
+    if (!(widest > 0)) return point;
     double product = 1;
-    for (int a = 0; a < 3; ++a) {
-        const double x = static_cast<double>(p[a]) / size;
-        if (!std::isfinite(x) || !std::isfinite(h[a]) || std::abs(x) > 0x1p52) return eval(p);
+    for (int a = 0; a < n; ++a) {
+        if (!std::isfinite(x[a]) || !std::isfinite(h[a]) || std::abs(x[a]) > 0x1p52) return point;
         // An axis the footprint hardly spans (a plane's normal axis, up to rounding) is read at the
         // point: a plane lying on a cell boundary would otherwise average both sides to grey.
-        product *= h[a] > 1e-3 * widest ? (integral(x + h[a]) - integral(x - h[a])) / (2 * h[a]) : wave(x);
+        product *= h[a] > 1e-3 * widest ? (integral(x[a] + h[a]) - integral(x[a] - h[a])) / (2 * h[a]) : wave(x[a]);
     }
     const float k = static_cast<float>(product);
     return (even + odd) * 0.5f + (even - odd) * (0.5f * k);
+}
+
+Color CheckerTexture::eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const {
+    double x[3], h[3];
+    for (int a = 0; a < 3; ++a) {
+        x[a] = static_cast<double>(p[a]) / size;
+        h[a] = 0.5 * (std::abs(dpdx[a]) + std::abs(dpdy[a])) / size;
+    }
+    return box_mean(x, h, 3, eval(p));
+}
+
+Color CheckerTexture::eval_uv_filtered(Point2 uv, Point2 duvdx, Point2 duvdy) const {
+    const double su = static_cast<double>(u_scale) / size, sv = static_cast<double>(v_scale) / size;
+    const double x[2] = {su * uv.x + static_cast<double>(u_offset) / size, sv * uv.y + static_cast<double>(v_offset) / size};
+    const double h[2] = {0.5 * std::abs(su) * (std::abs(duvdx.x) + std::abs(duvdy.x)),
+                         0.5 * std::abs(sv) * (std::abs(duvdx.y) + std::abs(duvdy.y))};
+    return box_mean(x, h, 2, eval_uv(uv));
 }
 
 namespace {
@@ -95,6 +108,10 @@ Color evaluate(const std::vector<Texture>& textures, const std::vector<Image>& i
             [](const ConstantTexture& t) { return t.value; },
             [&](const VertexColorTexture& t) { return t.alpha ? Color{ctx.vertex_alpha} : ctx.vertex_color; },
             [&](const CheckerTexture& t) {
+                if (t.on_uv) {
+                    const bool footprint = ctx.duvdx.x != 0 || ctx.duvdx.y != 0 || ctx.duvdy.x != 0 || ctx.duvdy.y != 0;
+                    return footprint ? t.eval_uv_filtered(ctx.uv, ctx.duvdx, ctx.duvdy) : t.eval_uv(ctx.uv);
+                }
                 const bool footprint = dot(ctx.dpdx, ctx.dpdx) > 0 || dot(ctx.dpdy, ctx.dpdy) > 0;
                 return footprint ? t.eval_filtered(ctx.p, ctx.dpdx, ctx.dpdy) : t.eval(ctx.p);
             },

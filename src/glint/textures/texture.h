@@ -74,22 +74,24 @@ struct ConstantTexture {
     std::shared_ptr<const Spectrum> spectrum;
 };
 
-/// A 3D checkerboard of cubes of side `size`: `even` where floor(x/s)+floor(y/s)+floor(z/s) is
-/// even, `odd` elsewhere. On a plane y = k this is a 2D checkerboard whose parity is shifted by
-/// floor(k/s).
+/// A checkerboard. In space (the default): a 3D checkerboard of cubes of side `size`, `even` where
+/// floor(x/s)+floor(y/s)+floor(z/s) is even, `odd` elsewhere; on a plane y = k this is a 2D
+/// checkerboard whose parity is shifted by floor(k/s). On uv (`on_uv`, pbrt-v4's 2D
+/// checkerboard): squares of side `size` over (s, t) = (u_scale u + u_offset, v_scale v + v_offset),
+/// `even` where floor(s/size) + floor(t/size) is even.
 struct CheckerTexture {
     Float size;
     Color even;
     Color odd;
+    bool on_uv = false;
+    Float u_scale = 1, v_scale = 1, u_offset = 0, v_offset = 0;
+
     Color eval(Point3 p) const {
-        const Float inv = 1 / size;
-        const auto cell = [inv](Float v) {
-            const Float f = std::floor(v * inv);
-            // Past 2^62 (or infinite or NaN, from an absurdly small size) the cell index is
-            // meaningless and converting it would be undefined behaviour: use cell 0.
-            return std::abs(f) < 0x1p62f ? static_cast<std::int64_t>(f) : std::int64_t{0};
-        };
         const std::int64_t sum = cell(p.x) + cell(p.y) + cell(p.z);
+        return (sum & 1) == 0 ? even : odd;
+    }
+    Color eval_uv(Point2 uv) const {
+        const std::int64_t sum = cell(u_scale * uv.x + u_offset) + cell(v_scale * uv.y + v_offset);
         return (sum & 1) == 0 ? even : odd;
     }
     /// The mean over the box around p that holds the pixel's footprint (half-widths
@@ -97,6 +99,19 @@ struct CheckerTexture {
     /// (even - odd) / 2 times a product of square waves, one per axis, and a box average of a
     /// product of one-axis functions is the product of their averages.
     Color eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const;
+    /// The same over uv's footprint (duvdx, duvdy), on_uv.
+    Color eval_uv_filtered(Point2 uv, Point2 duvdx, Point2 duvdy) const;
+
+private:
+    std::int64_t cell(Float v) const {
+        const Float f = std::floor(v * (1 / size));
+        // Past 2^62 (or infinite or NaN, from an absurdly small size) the cell index is
+        // meaningless and converting it would be undefined behaviour: use cell 0.
+        return std::abs(f) < 0x1p62f ? static_cast<std::int64_t>(f) : std::int64_t{0};
+    }
+    /// (even + odd) / 2 + (even - odd) / 2 times the product over `n` axes of the square wave's
+    /// mean over [x - h, x + h] (x in cells); `point` where a coordinate is out of range.
+    Color box_mean(const double* x, const double* h, int n, Color point) const;
 };
 
 /// An image over uv, covering `size` x `size` units of uv space, after an optional affine map

@@ -106,5 +106,48 @@ TEST(Checker, FilteredIsTheBoxMeanOfThePointLookups) {
     EXPECT_EQ(c.eval_filtered({0.1f, 0.2f, 0.7f}, {}, {}).g, c.eval({0.1f, 0.2f, 0.7f}).g);
 }
 
+// pbrt-v4's 2D checkerboard: cells of `size` over (s, t) = (u_scale u + u_offset, v_scale v + v_offset),
+// `even` where floor(s / size) + floor(t / size) is even; the point does not matter.
+TEST(Checker, OnUvTheCellsFollowTheScaledAndShiftedCoordinates) {
+    CheckerTexture c{1, kEven, kOdd};
+    c.on_uv = true;
+    c.u_scale = 8;
+    c.v_scale = 4;
+    c.u_offset = 0.5f;
+    // s = 8u + 0.5, t = 4v: (0, 0) is in cell (0, 0); u = 0.07 gives s = 1.06, cell 1.
+    EXPECT_EQ(c.eval_uv({0.0f, 0.0f}), kEven);
+    EXPECT_EQ(c.eval_uv({0.07f, 0.0f}), kOdd);
+    EXPECT_EQ(c.eval_uv({0.07f, 0.3f}), kEven);  // t = 1.2
+    EXPECT_EQ(c.eval_uv({-0.07f, 0.0f}), kOdd);  // s = -0.06, cell -1
+    c.size = 2;                                   // cells of 2 in (s, t)
+    EXPECT_EQ(c.eval_uv({0.07f, 0.3f}), kEven);  // s / 2 = 0.53, t / 2 = 0.6
+    EXPECT_EQ(c.eval_uv({0.2f, 0.3f}), kOdd);    // s / 2 = 1.05
+    // Through evaluate: the uv of the context, not its point.
+    const std::vector<Texture> t{c};
+    EXPECT_EQ(evaluate(t, {}, 0, TextureContext{{0.5f, 0.5f, 0.5f}, {0.2f, 0.3f}}), kOdd);
+}
+
+// The uv checker's closed-form box filter against the mean of point lookups over the uv box.
+TEST(Checker, OnUvFilteredIsTheBoxMeanOfThePointLookups) {
+    CheckerTexture c{0.5f, Color{0.9f}, Color{0.1f}};
+    c.on_uv = true;
+    c.u_scale = 3;
+    c.v_scale = -2;
+    c.u_offset = 0.3f;
+    c.v_offset = 0.1f;
+    for (int k = 0; k < 60; ++k) {
+        const Point2 uv{0.137f * k - 3, 0.071f * k - 1};
+        const Point2 dx{0.05f * (k % 7), 0.02f * (k % 3) + 0.01f}, dy{0.03f * (k % 4), 0.07f * (k % 2)};
+        const float hu = 0.5f * (std::abs(dx.x) + std::abs(dy.x)), hv = 0.5f * (std::abs(dx.y) + std::abs(dy.y));
+        constexpr int kN = 200;
+        double sum = 0;
+        for (int i = 0; i < kN; ++i)
+            for (int j = 0; j < kN; ++j)
+                sum += c.eval_uv({uv.x + hu * (2 * (i + 0.5f) / kN - 1), uv.y + hv * (2 * (j + 0.5f) / kN - 1)}).g;
+        EXPECT_NEAR(c.eval_uv_filtered(uv, dx, dy).g, sum / (kN * kN), 0.01) << k;
+    }
+    EXPECT_EQ(c.eval_uv_filtered({0.1f, 0.2f}, {}, {}).g, c.eval_uv({0.1f, 0.2f}).g);
+}
+
 }  // namespace
 }  // namespace glint
