@@ -28,16 +28,16 @@ float to_texels(Float u, int n, WrapMode wrap) {
     return u * static_cast<float>(n) - 0.5f;
 }
 
-Color CheckerTexture::box_mean(const double* x, const double* h, int n, Color point) const {
+std::optional<Color> CheckerTexture::box_mean(const double* x, const double* h, int n) const {
     // The square wave (-1)^floor(x) and its integral from 0, a triangle wave of period 2.
     const auto wave = [](double v) { return (static_cast<std::int64_t>(std::floor(v)) & 1) == 0 ? 1.0 : -1.0; };
     const auto integral = [](double v) { return 1 - std::abs(v - 2 * std::floor(v / 2) - 1); };
     double widest = 0;
     for (int a = 0; a < n; ++a) widest = std::max(widest, h[a]);
-    if (!(widest > 0)) return point;
+    if (!(widest > 0)) return std::nullopt;
     double product = 1;
     for (int a = 0; a < n; ++a) {
-        if (!std::isfinite(x[a]) || !std::isfinite(h[a]) || std::abs(x[a]) > 0x1p52) return point;
+        if (!std::isfinite(x[a]) || !std::isfinite(h[a]) || std::abs(x[a]) > 0x1p52) return std::nullopt;
         // An axis the footprint hardly spans (a plane's normal axis, up to rounding) is read at the
         // point: a plane lying on a cell boundary would otherwise average both sides to grey.
         product *= h[a] > 1e-3 * widest ? (integral(x[a] + h[a]) - integral(x[a] - h[a])) / (2 * h[a]) : wave(x[a]);
@@ -52,7 +52,8 @@ Color CheckerTexture::eval_filtered(Point3 p, Vector3 dpdx, Vector3 dpdy) const 
         x[a] = static_cast<double>(p[a]) / size;
         h[a] = 0.5 * (std::abs(dpdx[a]) + std::abs(dpdy[a])) / size;
     }
-    return box_mean(x, h, 3, eval(p));
+    const auto mean = box_mean(x, h, 3);
+    return mean ? *mean : eval(p);
 }
 
 Color CheckerTexture::eval_uv_filtered(Point2 uv, Point2 duvdx, Point2 duvdy) const {
@@ -60,7 +61,8 @@ Color CheckerTexture::eval_uv_filtered(Point2 uv, Point2 duvdx, Point2 duvdy) co
     const double x[2] = {su * uv.x + static_cast<double>(u_offset) / size, sv * uv.y + static_cast<double>(v_offset) / size};
     const double h[2] = {0.5 * std::abs(su) * (std::abs(duvdx.x) + std::abs(duvdy.x)),
                          0.5 * std::abs(sv) * (std::abs(duvdx.y) + std::abs(duvdy.y))};
-    return box_mean(x, h, 2, eval_uv(uv));
+    const auto mean = box_mean(x, h, 2);
+    return mean ? *mean : eval_uv(uv);
 }
 
 namespace {

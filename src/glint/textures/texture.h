@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -110,8 +111,9 @@ private:
         return std::abs(f) < 0x1p62f ? static_cast<std::int64_t>(f) : std::int64_t{0};
     }
     /// (even + odd) / 2 + (even - odd) / 2 times the product over `n` axes of the square wave's
-    /// mean over [x - h, x + h] (x in cells); `point` where a coordinate is out of range.
-    Color box_mean(const double* x, const double* h, int n, Color point) const;
+    /// mean over [x - h, x + h] (x in cells); none without a footprint or where a coordinate is
+    /// out of range (the caller reads the point).
+    std::optional<Color> box_mean(const double* x, const double* h, int n) const;
 };
 
 /// An image over uv, covering `size` x `size` units of uv space, after an optional affine map
