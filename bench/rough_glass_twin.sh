@@ -40,18 +40,13 @@ for only in frosted frosted-points; do
   oiiotool "$out/cycles-$only.exr" --ch R,G,B --cut 160x170+0+0 -o "$out/cycles-$only.exr"
 done
 
-mean() { oiiotool "$1" --ch R,G,B --printstats 2>&1 | sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' | awk '{printf "%.4f", ($1 + $2 + $3) / 3}'; }
-rmse() {
-  oiiotool "$1" --ch R,G,B "$2" --ch R,G,B --sub --dup --mul --printstats 2>&1 |
-    sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' | awk '{printf "%.4f", sqrt(($1 + $2 + $3) / 3)}'
-}
 echo "The rough glass sphere alone, 160x170 window, $spp spp, $threads threads ($out)"
 echo
 echo "| image | mean | RMSE against glint | relative RMSE against glint |"
 echo "|---|---|---|---|"
-echo "| glint | $(mean "$out/glint.exr") | | |"
-echo "| glint, another seed | $(mean "$out/glint-seed7.exr") | $(rmse "$out/glint-seed7.exr" "$out/glint.exr") | $(relative_rmse "$out/glint-seed7.exr" "$out/glint.exr") |"
+echo "| glint | $(mean_rgb "$out/glint.exr") | | |"
+echo "| glint, another seed | $(mean_rgb "$out/glint-seed7.exr") | $(rmse "$out/glint-seed7.exr" "$out/glint.exr") | $(relative_rmse "$out/glint-seed7.exr" "$out/glint.exr") |"
 for only in frosted frosted-points; do
   img="$out/cycles-$only.exr"
-  echo "| Cycles, $([ "$only" = frosted ] && echo "UV-sphere mesh" || echo "point sphere") | $(mean "$img") | $(rmse "$img" "$out/glint.exr") | $(relative_rmse "$img" "$out/glint.exr") |"
+  echo "| Cycles, $([ "$only" = frosted ] && echo "UV-sphere mesh" || echo "point sphere") | $(mean_rgb "$img") | $(rmse "$img" "$out/glint.exr") | $(relative_rmse "$img" "$out/glint.exr") |"
 done
