@@ -8,6 +8,8 @@
 // from a piecewise-constant table of f1 over [-radius, radius] (kBins bins, inverted CDF), which
 // keeps stratified inputs stratified.
 #include <array>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "glint/samplers/stratified.h"
@@ -39,14 +41,22 @@ public:
     Sample sample(Sample2 u) const;
     /// The density of one axis' offsets (for tests).
     float pdf_1d(float x) const;
+    static constexpr int kBins = 256;
+    /// The table inverted (for tests): cdf()[k] = the probability of bins 0 .. k-1, k <= kBins.
+    std::span<const float> cdf() const { return {cdf_.data(), kBins + 1}; }
 
 private:
-    static constexpr int kBins = 256;
     float sample_1d(float u, float& pdf) const;
 
     FilterDesc filter_;
     std::array<float, kBins> pdf_{};      ///< per bin, normalised over [-r, r]
-    std::array<float, kBins + 1> cdf_{};  ///< cdf_[0] = 0, cdf_[kBins] = 1
+    /// cdf_[0] = 0, cdf_[kBins] = 1, then +inf: a search window may reach past the end.
+    std::array<float, 2 * kBins + 2> cdf_{};
+    /// guide_[j]: the last CDF entry <= j / kGuide, so that u's bin lies in [guide_[j],
+    /// guide_[j + 1]] for j = floor(u kGuide): a search of `window_` entries, not of all.
+    static constexpr int kGuide = 1024;
+    std::array<std::uint16_t, kGuide + 1> guide_{};
+    int window_ = 1;  ///< the most entries any guide interval holds
 };
 
 }  // namespace glint

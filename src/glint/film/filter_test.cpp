@@ -34,6 +34,32 @@ TEST(Filter, ProfilesHandValues) {
     EXPECT_NEAR(filter_profile(bh, 1.5f), 0.35875 - 0.48829 + 0.14128 - 0.01168, 1e-6);
 }
 
+TEST(Filter, TheOffsetIsTheInvertedTableByALinearScan) {
+    // The bin search against the plainest one: the last CDF entry not above u, found by scanning;
+    // at every entry exactly, one float either side of it, and on a grid of u.
+    for (const FilterDesc& f : kFilters) {
+        if (f.type == FilterType::kBox) continue;  // sampled in closed form, no table
+        const FilterSampler sampler(f);
+        const auto& cdf = sampler.cdf();
+        std::vector<float> us;
+        for (const float c : cdf)
+            for (const float u : {std::nextafter(c, 0.0f), c, std::nextafter(c, 1.0f)})
+                if (u >= 0 && u < 1) us.push_back(u);
+        for (int i = 0; i < 4096; ++i) us.push_back(static_cast<float>(i) / 4096);
+        const float width = 2 * f.radius / FilterSampler::kBins;
+        for (const float u : us) {
+            int bin = 0;
+            for (int k = 0; k <= FilterSampler::kBins; ++k)
+                if (cdf[static_cast<std::size_t>(k)] <= u) bin = std::min(k, FilterSampler::kBins - 1);
+            const auto b = static_cast<std::size_t>(bin);
+            const float span = cdf[b + 1] - cdf[b];
+            const float frac = span > 0 ? (u - cdf[b]) / span : 0.5f;
+            const float want = -f.radius + (static_cast<float>(bin) + std::clamp(frac, 0.0f, 1.0f)) * width;
+            ASSERT_EQ(sampler.sample({u, 0.5f}).dx, want) << static_cast<int>(f.type) << " u " << u;
+        }
+    }
+}
+
 TEST(Filter, OffsetsFollowTheTabulatedDensity) {
     // Chi-square of the sampled x offsets against the sampler's own pdf, 32 bins.
     for (const FilterDesc& f : kFilters) {
