@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "glint/samplers/hash.h"
@@ -68,6 +69,32 @@ TEST(Triangle, HitsAtHandValuesAndMissesOutside) {
     EXPECT_NEAR(*t, std::sqrt(1 + 0.25 + 25), 1e-5);
     EXPECT_NEAR(tri.area(), 2, 1e-6);
     EXPECT_NEAR(tri.normal().z, 1, 1e-6);  // (2,0,0) x (0,2,0) = (0,0,4)
+}
+
+TEST(Triangle, TheWatertightAxesFollowTheLargestComponentAndTheSign) {
+    // Woop et al.'s rule written out plainly: z is the first axis of largest |d|, x and y follow
+    // it cyclically and swap when d points down z. Over the axes, both signs, ties and zeros.
+    const float values[] = {-2.0f, -1.0f, -0.5f, -0.0f, 0.0f, 0.5f, 1.0f, 2.0f};
+    for (const float x : values) {
+        for (const float y : values) {
+            for (const float z : values) {
+                if (x == 0 && y == 0 && z == 0) continue;
+                const float c[3] = {x, y, z};
+                int kz = 0;
+                for (int k = 1; k < 3; ++k)
+                    if (std::abs(c[k]) > std::abs(c[kz])) kz = k;
+                int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
+                if (c[kz] < 0) std::swap(kx, ky);
+                const WatertightRay w(Ray{{0, 0, 0}, Vector3{x, y, z}});
+                EXPECT_EQ(w.kz, kz) << x << " " << y << " " << z;
+                EXPECT_EQ(w.kx, kx) << x << " " << y << " " << z;
+                EXPECT_EQ(w.ky, ky) << x << " " << y << " " << z;
+                EXPECT_EQ(w.sx, c[kx] / c[kz]);
+                EXPECT_EQ(w.sy, c[ky] / c[kz]);
+                EXPECT_EQ(w.sz, 1 / c[kz]);
+            }
+        }
+    }
 }
 
 TEST(Triangle, RaysThroughSharedEdgesAndVerticesNeverSlipThrough) {
