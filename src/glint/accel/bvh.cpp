@@ -6,9 +6,11 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 namespace glint {
 
@@ -182,7 +184,7 @@ class Builder {
 public:
     using Node = BvhNode<W>;
     Builder(std::span<const Bounds3> bounds, const BvhBuildOptions& options,
-            std::vector<std::uint32_t>& order, std::vector<Node>& nodes)
+            std::vector<std::uint32_t>& order, std::span<Node> nodes)
         : bounds_(bounds), options_(options), order_(order), nodes_(nodes) {
         centroid_.resize(bounds.size());
         for (std::size_t i = 0; i < bounds.size(); ++i) centroid_[i] = centre(bounds[i]);
@@ -257,7 +259,7 @@ private:
     std::span<const Bounds3> bounds_;
     const BvhBuildOptions& options_;
     std::vector<std::uint32_t>& order_;
-    std::vector<Node>& nodes_;
+    std::span<Node> nodes_;
     std::vector<Point3> centroid_;
     std::atomic<std::uint32_t> next_node_{0};
     std::atomic<int> depth_{0};
@@ -302,7 +304,7 @@ class SpatialBuilder {
 public:
     using Node = BvhNode<W>;
     SpatialBuilder(const BvhBuildOptions& options, BvhClipper clip, const void* context,
-                   std::vector<Node>& nodes, float root_area)
+                   std::span<Node> nodes, float root_area)
         : options_(options), clip_(clip), context_(context), nodes_(nodes), min_overlap_(options.split_alpha * root_area) {}
 
     std::uint32_t build(RefSet&& r, int depth) {
@@ -498,7 +500,7 @@ private:
     const BvhBuildOptions& options_;
     BvhClipper clip_;
     const void* context_;
-    std::vector<Node>& nodes_;
+    std::span<Node> nodes_;
     float min_overlap_;
     std::mutex mutex_;
     std::vector<std::vector<std::uint32_t>> leaves_;
@@ -511,6 +513,13 @@ private:
 template <int W>
 void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& options_in, BvhClipper clipper,
                    const void* clip_context) {
+    // The builders write nodes into a pool sized for the worst case (a node per primitive), of
+    // which a W-wide tree uses about a (W - 1)th. The pool is left uninitialised (new[] of a
+    // trivial type), so only the pages of the nodes written are ever touched; a vector resized to
+    // the worst case zeroed all of it (224 MB for a million triangles at W = 8: a fifth of the
+    // build's time in page faults and memset on this machine, docs/benchmarks.md).
+    static_assert(std::is_trivially_default_constructible_v<Node>);
+    using NodePool = std::unique_ptr<Node[]>;
     BvhBuildOptions options = options_in;
     options.max_leaf_size = std::clamp(options.max_leaf_size, 1, (1 << Node::kCountBits) - 1);
     order_.clear();
@@ -535,23 +544,25 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
         RefSet root = RefSet::of(std::move(refs), budget);
         bounds_ = root.bounds;
         // A W-wide tree over m references has fewer than m nodes, and m <= n + budget.
-        nodes_.resize(order_.size() + static_cast<std::size_t>(budget) + 1);
-        SpatialBuilder<W> builder(options, clipper, clip_context, nodes_, half_area(bounds_));
+        const std::size_t capacity = order_.size() + static_cast<std::size_t>(budget) + 1;
+        const NodePool pool(new Node[capacity]);
+        SpatialBuilder<W> builder(options, clipper, clip_context, std::span<Node>(pool.get(), capacity),
+                                  half_area(bounds_));
         const std::uint32_t root_ref = builder.build(std::move(root), 0);
         order_.clear();
         root_ = builder.place_leaves(root_ref, order_);
-        nodes_.resize(builder.node_count());
+        nodes_.assign(pool.get(), pool.get() + builder.node_count());
         depth_ = builder.depth() + 1;
     } else {
-        nodes_.resize(order_.size());  // a W-wide tree over n leaves-worth of primitives has < n nodes
-        Builder<W> builder(bounds, options, order_, nodes_);
+        const std::size_t capacity = order_.size();  // a W-wide tree over n leaves-worth of primitives has < n nodes
+        const NodePool pool(new Node[capacity]);
+        Builder<W> builder(bounds, options, order_, std::span<Node>(pool.get(), capacity));
         const Range root = builder.root_range(static_cast<std::uint32_t>(order_.size()));
         bounds_ = root.bounds;
         root_ = builder.build(root, 0);
-        nodes_.resize(builder.node_count());
+        nodes_.assign(pool.get(), pool.get() + builder.node_count());
         depth_ = builder.depth() + 1;
     }
-    nodes_.shrink_to_fit();
     order_.shrink_to_fit();
 }
 

@@ -108,8 +108,14 @@ void clip_triangle(const void* context, std::uint32_t prim, const Bounds3& box, 
 template <int W>
 void pack_leaves(Bvh<W>& bvh, const TriangleMesh& mesh, std::vector<TrianglePacket>& packets) {
     using Node = BvhNode<W>;
+    // Counted first, so that the vector is allocated once at its size (no copy to shrink it).
+    std::size_t total = 0;
+    bvh.remap_leaves([&](std::uint32_t first, std::uint32_t count) {
+        total += (count + 3) / 4;
+        return Node::make_leaf(first, count);
+    });
     packets.clear();
-    packets.reserve(bvh.order().size() / 2 + 1);
+    packets.reserve(total);
     const auto& order = bvh.order();
     bvh.remap_leaves([&](std::uint32_t first, std::uint32_t count) {
         const auto p0 = static_cast<std::uint32_t>(packets.size());
@@ -126,7 +132,6 @@ void pack_leaves(Bvh<W>& bvh, const TriangleMesh& mesh, std::vector<TrianglePack
         }
         return Node::make_leaf(p0, static_cast<std::uint32_t>(packets.size()) - p0);
     });
-    packets.shrink_to_fit();
 }
 
 }  // namespace
