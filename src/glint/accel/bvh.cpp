@@ -551,7 +551,7 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
         const std::uint32_t root_ref = builder.build(std::move(root), 0);
         order_.clear();
         root_ = builder.place_leaves(root_ref, order_);
-        nodes_.assign(pool.get(), pool.get() + builder.node_count());
+        nodes_ = std::vector<Node>(pool.get(), pool.get() + builder.node_count());  // exactly its size
         depth_ = builder.depth() + 1;
     } else {
         const std::size_t capacity = order_.size();  // a W-wide tree over n leaves-worth of primitives has < n nodes
@@ -560,7 +560,7 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
         const Range root = builder.root_range(static_cast<std::uint32_t>(order_.size()));
         bounds_ = root.bounds;
         root_ = builder.build(root, 0);
-        nodes_.assign(pool.get(), pool.get() + builder.node_count());
+        nodes_ = std::vector<Node>(pool.get(), pool.get() + builder.node_count());  // exactly its size
         depth_ = builder.depth() + 1;
     }
     order_.shrink_to_fit();

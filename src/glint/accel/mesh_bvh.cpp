@@ -114,7 +114,7 @@ void pack_leaves(Bvh<W>& bvh, const TriangleMesh& mesh, std::vector<TrianglePack
         total += (count + 3) / 4;
         return Node::make_leaf(first, count);
     });
-    packets.clear();
+    packets = std::vector<TrianglePacket>();  // no capacity left from an earlier build
     packets.reserve(total);
     const auto& order = bvh.order();
     bvh.remap_leaves([&](std::uint32_t first, std::uint32_t count) {
