@@ -92,6 +92,9 @@ const char* accel_name(AccelKind kind) {
 void Scene::commit() {
     if (bounded_count() > kRefMask) throw std::length_error("too many shapes and instances for one scene");
     index_motion();
+    constant_reflectance_.assign(textures.size(), std::nullopt);
+    for (std::size_t t = 0; t < textures.size(); ++t)
+        if (const auto* c = std::get_if<ConstantTexture>(&textures[t])) constant_reflectance_[t].emplace(c->value);
     // Bottom level: one BVH per mesh (not built when Embree replaces both levels, so that what
     // the Embree backend's build costs is Embree's alone).
     const bool ours = accel != AccelKind::kEmbree;

@@ -33,6 +33,7 @@
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
 #include "glint/shapes/triangle.h"
+#include "glint/spectra/rgb_spectrum.h"
 #include "glint/textures/mipmap.h"
 #include "glint/textures/texture.h"
 
@@ -95,6 +96,12 @@ struct Scene {
     const Spectrum* background_spectrum() const {
         const auto* c = std::get_if<ConstantBackground>(&background);
         return c ? c->spectrum.get() : nullptr;
+    }
+    /// A constant texture's colour ready to be read as a reflectance spectrum (set by commit());
+    /// null for the other textures. Spectral mode reads it instead of upsampling the colour at
+    /// every hit: the same values, bit for bit, without the table lookup.
+    const RgbReflectance* texture_reflectance(TextureId id) const {
+        return id < constant_reflectance_.size() && constant_reflectance_[id] ? &*constant_reflectance_[id] : nullptr;
     }
     /// Participating media, and the one the camera (and so everything no boundary encloses) is in.
     std::vector<Medium> media;
@@ -283,6 +290,7 @@ private:
     std::vector<std::uint32_t> top_refs_;  ///< leaf order
     std::vector<MeshBvh> mesh_bvhs_;
     SphereSet sphere_set_;  ///< replaces top_ for scenes of spheres (and planes) alone
+    std::vector<std::optional<RgbReflectance>> constant_reflectance_;  ///< per texture (commit())
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
     /// texture() for the textures that are neither constants nor checkers (out of line, so that
     /// the two common cases stay small enough to inline).

@@ -119,10 +119,18 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     }
     // An emitter's radiance at the path's wavelengths: its own spectrum (Y = 1) times its RGB
     // stand-in's luminance, or its RGB upsampled as an illuminant.
+    // The last RGB emitter's radiance at the path's wavelengths is kept (upsample_illuminant's
+    // value, without its table lookups each time the path meets or samples that light again).
+    struct {
+        Color rgb, value;
+        bool valid = false;
+    } last_emitter;
     const auto E = [&](Color rgb, const Spectrum* s = nullptr) {
         if (!wl) return rgb;
         if (s) return s->at(*wl) * luminance(rgb);
-        return upsample_illuminant(rgb, *wl);
+        if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};  // as upsampled; keeps the last light
+        if (!last_emitter.valid || !(last_emitter.rgb == rgb)) last_emitter = {rgb, upsample_illuminant(rgb, *wl), true};
+        return last_emitter.value;
     };
 
     int depth = 0;
@@ -410,7 +418,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 
         bool dispersive = false;
         const Bsdf bsdf = make_bsdf(scene, si, wl, &dispersive);
-        if (dispersive) terminate_secondary(wl_storage);
+        if (dispersive) terminate_secondary(wl_storage), last_emitter.valid = false;
         if (bsdf.has_smooth_part()) want_features = false;
         const Sample2 choices = samples.next_2d();
         const Sample2 u_light = samples.next_2d();

@@ -36,8 +36,10 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
     const auto R = [wl](Color c) { return wl ? upsample_reflectance(c, *wl) : c; };
     // A constant given as a reflectance spectrum is read as it is.
     const auto tex = [&](TextureId id) {
-        if (wl)
+        if (wl) {
             if (const Spectrum* s = scene.texture_spectrum(id)) return s->at(*wl);
+            if (const RgbReflectance* r = scene.texture_reflectance(id)) return r->at(*wl);
+        }
         return R(scene.texture(id, si));
     };
     return std::visit(

@@ -63,13 +63,17 @@ RgbSigmoid rgb_sigmoid(Color rgb) {
     return s;
 }
 
-Color upsample_reflectance(Color rgb, const Wavelengths& wl) {
+RgbReflectance::RgbReflectance(Color rgb) {
     // A grey is its own value at every wavelength (its sigmoid is a constant).
-    if (rgb.r == rgb.g && rgb.g == rgb.b) {
-        const float g = rgb.r > 0 ? (rgb.r < 1 ? rgb.r : 1.0f) : 0.0f;
-        return Color{g};
-    }
-    const RgbSigmoid s = rgb_sigmoid(rgb);
+    if (rgb.r == rgb.g && rgb.g == rgb.b)
+        grey_ = rgb.r > 0 ? (rgb.r < 1 ? rgb.r : 1.0f) : 0.0f;
+    else
+        sigmoid_ = rgb_sigmoid(rgb);
+}
+
+Color RgbReflectance::at(const Wavelengths& wl) const {
+    if (grey_ >= 0) return Color{grey_};
+    const RgbSigmoid& s = sigmoid_;
     // The three sigmoids at once (four lanes, one spare): the polynomial, then
     // 1/2 + x / (2 sqrt(1 + x^2)) with one square root and one division for all.
     const auto t = [&](int i) { return wavelength_t(wl.lambda[i]); };
@@ -82,6 +86,8 @@ Color upsample_reflectance(Color rgb, const Wavelengths& wl) {
     _mm_store_ps(v, _mm_add_ps(half, _mm_div_ps(_mm_mul_ps(half, x), root)));
     return {v[0], v[1], v[2]};
 }
+
+Color upsample_reflectance(Color rgb, const Wavelengths& wl) { return RgbReflectance(rgb).at(wl); }
 
 Color upsample_unbounded(Color rgb, const Wavelengths& wl) {
     const float m = std::max({rgb.r, rgb.g, rgb.b});

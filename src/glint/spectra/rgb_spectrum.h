@@ -19,6 +19,21 @@ struct RgbSigmoid {
 /// The coefficients for a reflectance rgb (components clamped to [0, 1]).
 RgbSigmoid rgb_sigmoid(Color rgb);
 
+/// A reflectance rgb made ready to be read at any wavelengths: RgbReflectance(rgb).at(wl) is
+/// upsample_reflectance(rgb, wl) bit for bit. The table lookup (rgb_sigmoid) is the costly part;
+/// the scene keeps one of these per constant texture (Scene::commit), so a hit pays for the
+/// polynomial alone.
+class RgbReflectance {
+public:
+    RgbReflectance() = default;
+    explicit RgbReflectance(Color rgb);
+    Color at(const Wavelengths& wl) const;
+
+private:
+    RgbSigmoid sigmoid_;
+    float grey_ = -1;  ///< a grey's value (its own at every wavelength); -1 for a colour
+};
+
 Color upsample_reflectance(Color rgb, const Wavelengths& wl);
 Color upsample_unbounded(Color rgb, const Wavelengths& wl);
 Color upsample_illuminant(Color rgb, const Wavelengths& wl);
