@@ -120,15 +120,18 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     // An emitter's radiance at the path's wavelengths: its own spectrum (Y = 1) times its RGB
     // stand-in's luminance, or its RGB upsampled as an illuminant.
     // The last RGB emitter's radiance at the path's wavelengths is kept (upsample_illuminant's
-    // value, without its table lookups each time the path meets or samples that light again).
+    // value, without its table lookup each time the path meets or samples that light again).
+    // Only lights at a finite distance are remembered (`remember`): an environment's colour
+    // changes with the direction and would only push the lamp's out.
     struct {
         Color rgb, value;
         bool valid = false;
     } last_emitter;
-    const auto E = [&](Color rgb, const Spectrum* s = nullptr) {
+    const auto E = [&](Color rgb, const Spectrum* s = nullptr, bool remember = false) {
         if (!wl) return rgb;
         if (s) return s->at(*wl) * luminance(rgb);
-        if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};  // as upsampled; keeps the last light
+        if (!remember) return upsample_illuminant(rgb, *wl);
+        if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};  // as upsampled
         if (!last_emitter.valid || !(last_emitter.rgb == rgb)) last_emitter = {rgb, upsample_illuminant(rgb, *wl), true};
         return last_emitter.value;
     };
@@ -150,9 +153,10 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 
     // Emission reached by a BSDF sample (or the camera): weighted against light sampling.
     // `rgb` and `s`: the emitter's colour and spectrum (null: its colour upsampled).
-    const auto add_emission = [&](Color rgb, const Spectrum* s, std::uint32_t light, Point3 on_light) {
+    // `on_surface`: an area light's (remembered by E), not a distant one's.
+    const auto add_emission = [&](Color rgb, const Spectrum* s, std::uint32_t light, Point3 on_light, bool on_surface) {
         if (specular && seen_exactly(rgb, s)) return;
-        const Color le = E(rgb, s);
+        const Color le = E(rgb, s, on_surface);
         if (le.max_component() <= 0) return;
         if (specular) {
             radiance += beta * le / average(r_u);
@@ -178,7 +182,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!(pmf > 0)) return;
         const auto ls = lights.sample_li(scene, l, p, u_light, time);
         if (!ls || !(ls->pdf > 0) || ls->L.max_component() <= 0) return;
-        const Color L = E(ls->L, ls->spectrum);
+        const Color L = E(ls->L, ls->spectrum, std::isfinite(ls->distance));
         const Color f = f_of(ls->wi);
         if (f.max_component() <= 0) return;
         ++counter.rays;
@@ -390,7 +394,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 const bool seen = specular && l == lights.environment();
                 const Float spread = differential ? differential->spread(ray.direction) : -1;
                 add_emission(seen ? scene.background_seen(ray.direction, spread) : lights.distant_radiance(scene, l, ray.direction, time),
-                             l == lights.environment() ? scene.background_spectrum() : scene.light_spectrum(l), l, {});
+                             l == lights.environment() ? scene.background_spectrum() : scene.light_spectrum(l), l, {}, false);
             }
             // A background that is no light (black has no power) still shows to the camera.
             if (lights.environment() == kNoLight && depth == 0 &&
@@ -410,7 +414,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         }
         const Vector3 wo = -ray.direction;
         add_emission(scene.emitted(si, wo), scene.emission_of(si.material).spectrum.get(),
-                     lights.light_of(si.shape, si.shape_index, si.prim), si.p);
+                     lights.light_of(si.shape, si.shape_index, si.prim), si.p, true);
         if (want_features) {
             *first = {article_view(scene, si).color, face_forward(si.ns, ray.direction), feature_distance + hit->t, true};
         }
