@@ -1,8 +1,10 @@
 // Spectral rendering (issue 36) against independent values: the CIE tables' published sums,
 // D65's chromaticity, Planck's and Stefan-Boltzmann's laws, Schott's catalogue indices of BK7,
-// RGB round trips through the upsampling, the sampled wavelengths' density, and through the
-// path tracer: white furnaces, a gold mirror against the closed-form Fresnel integrated over the
-// spectrum, the bits for one thread and two, and the RGB mode left as it was.
+// RGB round trips through the upsampling (and the scene's constant colours, upsampled once, against
+// the scalar sigmoid), the sampled wavelengths' density, and through the path tracer: white
+// furnaces, a gold mirror against the closed-form Fresnel integrated over the spectrum, two lamps
+// of different colours against RGB mode, the bits for one thread and two, and the RGB mode left
+// as it was.
 #include "glint/spectra/spectrum.h"
 
 #include <gtest/gtest.h>
@@ -374,7 +376,7 @@ TEST(Spectra, ConstantColoursAreUpsampledOnceAtCommit) {
             const Color v = r->at(wl);
             for (int i = 0; i < 3; ++i) {
                 const float expected = grey ? std::clamp(c->value.r, 0.0f, 1.0f) : sigmoid(wl.lambda[i]);
-                EXPECT_NEAR((&v.r)[i], expected, 1e-6f) << id << " at " << wl.lambda[i] << " nm";
+                EXPECT_NEAR(v[i], expected, 1e-6f) << id << " at " << wl.lambda[i] << " nm";
             }
         }
     }
@@ -402,10 +404,11 @@ TEST(Spectra, TwoLightsOfDifferentColoursKeepTheirColours) {
     const Color spectral = mean(render_job(job_from(scene), 1024));
     const Color reference = mean(render_job(job_from(scene, rgb), 1024));
     for (int i = 0; i < 3; ++i)
-        EXPECT_NEAR((&spectral.r)[i], (&reference.r)[i], 0.01f * reference.max_component())
+        EXPECT_NEAR(spectral[i], reference[i], 0.01f * reference.max_component())
             << "channel " << i << ": " << spectral.r << " " << spectral.g << " " << spectral.b << " vs " << reference.r
             << " " << reference.g << " " << reference.b;
-    std::printf("two lights: spectral %.4f %.4f %.4f, rgb %.4f %.4f %.4f\n", spectral.r, spectral.g, spectral.b, reference.r, reference.g, reference.b);
+    std::printf("two lights: spectral %.4f %.4f %.4f, rgb %.4f %.4f %.4f\n", spectral.r, spectral.g, spectral.b,
+                reference.r, reference.g, reference.b);
 }
 
 TEST(Spectra, OneThreadOrTwoGiveTheSameBits) {
