@@ -131,7 +131,8 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!wl) return rgb;
         if (s) return s->at(*wl) * luminance(rgb);
         if (!remember) return upsample_illuminant(rgb, *wl);
-        if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};  // as upsampled
+        // Black (every surface that emits nothing) upsamples to 0 and would push the lamp's out.
+        if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};
         if (!last_emitter.valid || !(last_emitter.rgb == rgb)) last_emitter = {rgb, upsample_illuminant(rgb, *wl), true};
         return last_emitter.value;
     };
@@ -422,7 +423,7 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
 
         bool dispersive = false;
         const Bsdf bsdf = make_bsdf(scene, si, wl, &dispersive);
-        if (dispersive) terminate_secondary(wl_storage), last_emitter.valid = false;
+        if (dispersive) terminate_secondary(wl_storage);  // the wavelengths stay: E's value holds
         if (bsdf.has_smooth_part()) want_features = false;
         const Sample2 choices = samples.next_2d();
         const Sample2 u_light = samples.next_2d();
