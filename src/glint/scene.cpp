@@ -12,6 +12,7 @@
 #include "glint/accel/embree.h"
 #include "glint/math/snap.h"
 #include "glint/samplers/hash.h"
+#include "glint/shapes/triangle_sse.h"
 
 namespace glint {
 
@@ -299,8 +300,7 @@ bool Scene::any_instance(std::uint32_t i, const Ray& ray) const {
     return mesh_bvhs_[inst.mesh].any(local);
 }
 
-void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
-                        std::optional<Hit>& best) const {
+void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRaySse& wr, std::optional<Hit>& best) const {
     const std::uint32_t i = ref & kRefMask;
     if ((ref >> kRefShift) == kMovingRef) return closest_moving(i, ray, best);
     switch (static_cast<ShapeKind>(ref >> kRefShift)) {
@@ -308,9 +308,7 @@ void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
         case ShapeKind::kQuad: closest_one(quads[i], ShapeKind::kQuad, i, ray, best); break;
         case ShapeKind::kDisk: closest_one(disks[i], ShapeKind::kDisk, i, ray, best); break;
         case ShapeKind::kTriangle: {
-            WatertightRay wr = wr_in;
-            wr.t_max = ray.t_max;
-            if (const auto h = intersect_triangle(triangles[i], wr)) {
+            if (const auto h = intersect_triangle_sse(triangles[i], wr, ray.t_max)) {
                 ray.t_max = h->t;
                 best = Hit{h->t, ShapeKind::kTriangle, i};
             }
@@ -326,7 +324,7 @@ void Scene::closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr_in,
     }
 }
 
-bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const {
+bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRaySse& wr) const {
     const std::uint32_t i = ref & kRefMask;
     if ((ref >> kRefShift) == kMovingRef) return any_moving(i, ray);
     switch (static_cast<ShapeKind>(ref >> kRefShift)) {
@@ -334,7 +332,7 @@ bool Scene::any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) 
         case ShapeKind::kQuad: return quads[i].intersect(ray).has_value();
         case ShapeKind::kDisk: return disks[i].intersect(ray).has_value();
         case ShapeKind::kTriangle:
-            return intersect_triangle(triangles[i], wr).has_value();
+            return intersect_triangle_sse(triangles[i], wr, ray.t_max).has_value();
         case ShapeKind::kMesh: return any_instance(i, ray);
         case ShapeKind::kPlane: return false;
     }
@@ -361,7 +359,8 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
     }
     if (top_.empty()) return best;
     // The lone triangles' shared set-up (a mesh's triangles have their own, in object space).
-    const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
+    WatertightRaySse wr;
+    if (!triangles.empty()) wr = WatertightRaySse(WatertightRay(ray));
     top_.closest(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k) closest_top(top_refs_[k], ray, wr, best);
     });
@@ -376,7 +375,8 @@ bool Scene::occluded(const Ray& ray) const {
 #endif
     if (!sphere_set_.empty()) return sphere_set_.any(ray);
     if (top_.empty()) return false;
-    const WatertightRay wr = triangles.empty() ? WatertightRay{} : WatertightRay(ray);
+    WatertightRaySse wr;
+    if (!triangles.empty()) wr = WatertightRaySse(WatertightRay(ray));
     return top_.any(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k)
             if (any_top(top_refs_[k], ray, wr)) return true;

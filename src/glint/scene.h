@@ -39,6 +39,8 @@
 
 namespace glint {
 
+struct WatertightRaySse;  // shapes/triangle_sse.h
+
 /// glint's BVH, the same with spatial splits in the mesh BVHs, or Embree 3 (when built in).
 enum class AccelKind { kBvh, kSbvh, kEmbree };
 const char* accel_name(AccelKind kind);  ///< "bvh", "sbvh", "embree"
@@ -270,8 +272,8 @@ private:
         return spheres.size() + quads.size() + disks.size() + triangles.size() + instances.size();
     }
     /// Tests top-level primitive `ref` (kind in the top bits, index below) against the ray.
-    void closest_top(std::uint32_t ref, Ray& ray, const WatertightRay& wr, std::optional<Hit>& best) const;
-    bool any_top(std::uint32_t ref, const Ray& ray, const WatertightRay& wr) const;
+    void closest_top(std::uint32_t ref, Ray& ray, const WatertightRaySse& wr, std::optional<Hit>& best) const;
+    bool any_top(std::uint32_t ref, const Ray& ray, const WatertightRaySse& wr) const;
     /// The interaction of a hit on a moving analytic shape: found where the shape is stored, moved.
     SurfaceInteraction moving_interaction(const Motion& motion, const Ray& ray, const Hit& hit) const;
     /// Fills shape_motion_ and tells which shapes move (for commit()).

@@ -2,7 +2,9 @@
 // (points on the shape, uniform by area, density 1/area).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "glint/shapes/quad.h"
 #include "glint/shapes/sphere.h"
 #include "glint/shapes/triangle.h"
+#include "glint/shapes/triangle_sse.h"
 #include "stats.h"
 
 namespace glint {
@@ -168,6 +171,60 @@ TEST(Triangle, RaysAtRandomSharedEdgesNeverSlipThrough) {
     }
     EXPECT_EQ(cracks, 0);
     EXPECT_GT(mt_cracks, n / 100);  // the rays really are hard
+}
+
+TEST(Triangle, TheSseTestGivesTheScalarTestsBits) {
+    // intersect_triangle_sse (the scene's lone triangles) against intersect_triangle, the
+    // reference it replaces: the same hit or miss, t and barycentrics to the bit, for random
+    // triangles and rays in every direction (so every axis permutation and sign), t_max cut
+    // before, at and after the hit, rays aimed exactly at vertices and along shared edges (where
+    // an edge function is zero and the scalar test decides in double), and a triangle seen
+    // edge-on.
+    const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    int hits = 0, edge_on = 0, checked = 0;
+    const auto check = [&](const Triangle& t, const Ray& r, float t_max) {
+        WatertightRay w(r);
+        w.t_max = t_max;
+        const WatertightRaySse sse(WatertightRay{r});
+        const auto a = intersect_triangle(t, w);
+        const auto b = intersect_triangle_sse(t, sse, t_max);
+        ++checked;
+        ASSERT_EQ(a.has_value(), b.has_value()) << checked;
+        if (!a) return;
+        ++hits;
+        ASSERT_EQ(bits(a->t), bits(b->t)) << checked;
+        ASSERT_EQ(bits(a->b1), bits(b->b1)) << checked;
+        ASSERT_EQ(bits(a->b2), bits(b->b2)) << checked;
+    };
+    for (std::uint32_t k = 0; k < 40000; ++k) {
+        auto u = [k](std::uint32_t j) { return to_unit_float(mix32(k * 32 + j)); };
+        const Triangle t{{u(0) * 4 - 2, u(1) * 4 - 2, u(2) * 4 - 2},
+                         {u(3) * 4 - 2, u(4) * 4 - 2, u(5) * 4 - 2},
+                         {u(6) * 4 - 2, u(7) * 4 - 2, u(8) * 4 - 2}};
+        const Point3 o{u(9) * 12 - 6, u(10) * 12 - 6, u(11) * 12 - 6};
+        // Aimed inside the triangle, at a vertex, or at a point of an edge.
+        const float b1 = u(12), b2 = u(13) * (1 - b1);
+        Point3 target = t.p0 + (t.p1 - t.p0) * b1 + (t.p2 - t.p0) * b2;
+        if (k % 4 == 1) target = t.p1;
+        if (k % 4 == 2) target = t.p0 + (t.p2 - t.p0) * u(14);
+        const Ray r = ray(o, target - o);
+        const float hit_t = intersect_triangle(t, WatertightRay(r)).value_or(TriangleHit{1, 0, 0}).t;
+        for (const float t_max : {kInfinity, hit_t, std::nextafter(hit_t, kInfinity), hit_t * 0.5f})
+            check(t, Ray{r.origin, r.direction, t_max}, t_max);
+        // The same ray in the reverse direction (a miss behind the origin).
+        check(t, Ray{r.origin, -r.direction}, kInfinity);
+    }
+    // Edge-on: rays in the triangle's own plane, and rays through an axis-aligned triangle's
+    // edge along the axes (edge functions of exactly zero).
+    const Triangle flat{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    for (const Ray& r : {Ray{{-1, 0.25f, 0}, {1, 0, 0}}, Ray{{0.5f, 0, -1}, {0, 0, 1}}, Ray{{0, 0, -1}, {0, 0, 1}},
+                         Ray{{0.25f, 0.25f, -1}, {0, 0, 1}}, Ray{{0.5f, 0.5f, 2}, {0, 0, -1}}}) {
+        check(flat, r, kInfinity);
+        ++edge_on;
+    }
+    EXPECT_EQ(checked, 40000 * 5 + edge_on);
+    EXPECT_GT(hits, 40000);  // the rays really meet the triangles
 }
 
 // Samples must lie on the shape, and their mean must be its centroid (a uniform density by

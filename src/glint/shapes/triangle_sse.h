@@ -1,0 +1,89 @@
+#pragma once
+// The watertight test of one stored triangle (shapes/triangle.h) with SSE: the three vertices
+// moved to the ray's frame as three vectors, the edge functions as one. Every lane is the scalar
+// code's operation on the same operands, in the same order (no fused multiply-adds: the baseline
+// ISA has none, and intrinsics are never contracted), so the hit is intersect_triangle's to the
+// bit (triangle_sse_test.cpp checks that on random and on edge-on rays). Where an edge function
+// is exactly zero, the scalar test decides, as it does (in double).
+//
+// For the baseline build only: not to be included by the per-ISA kernels (accel/*_kernels.inl),
+// whose copies of these inline functions would be compiled for another ISA under the same name.
+#include <emmintrin.h>
+#include <smmintrin.h>
+#include <tmmintrin.h>
+
+#include <cstdint>
+#include <optional>
+
+#include "glint/shapes/triangle.h"
+
+namespace glint {
+
+/// WatertightRay as SSE vectors: its origin, its axis permutation as a byte shuffle, its shear.
+struct WatertightRaySse {
+    __m128 origin;  ///< (ox, oy, oz, 0)
+    __m128i order;  ///< lane i of a permuted vector is lane k[i] of the original: kx, ky, kz, 3
+    __m128 sx, sy, sz;
+    WatertightRay scalar;  ///< for the edge-on case
+    WatertightRaySse() = default;  ///< unusable until assigned (for scenes with no lone triangles)
+    explicit WatertightRaySse(const WatertightRay& r) : scalar(r) {
+        origin = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0);
+        const auto lane = [](int k) { return static_cast<std::uint32_t>(0x03020100u + 0x04040404u * static_cast<std::uint32_t>(k)); };
+        order = _mm_setr_epi32(static_cast<int>(lane(r.kx)), static_cast<int>(lane(r.ky)), static_cast<int>(lane(r.kz)),
+                               static_cast<int>(lane(3)));
+        sx = _mm_set1_ps(r.sx);
+        sy = _mm_set1_ps(r.sy);
+        sz = _mm_set1_ps(r.sz);
+    }
+};
+
+static_assert(sizeof(Triangle) >= 40, "intersect_triangle_sse reads 16 bytes at p2");
+
+/// intersect_triangle(t, r) with r.t_max = t_max, the same bits.
+inline std::optional<TriangleHit> intersect_triangle_sse(const Triangle& t, const WatertightRaySse& r, Float t_max) {
+    // Each vertex less the origin (the fourth lane is the next field's, never read), permuted.
+    const auto vertex = [&](const Point3& p) {
+        const __m128 d = _mm_sub_ps(_mm_loadu_ps(&p.x), r.origin);
+        return _mm_castsi128_ps(_mm_shuffle_epi8(_mm_castps_si128(d), r.order));
+    };
+    const __m128 a = vertex(t.p0), b = vertex(t.p1), c = vertex(t.p2);
+    // Transposed: x, y and z of (a, b, c).
+    const __m128 ab_lo = _mm_unpacklo_ps(a, b), ab_hi = _mm_unpackhi_ps(a, b);  // ax bx ay by; az bz
+    const __m128 x = _mm_movelh_ps(ab_lo, c);                                   // ax bx cx
+    const __m128 y = _mm_shuffle_ps(ab_lo, c, _MM_SHUFFLE(1, 1, 3, 2));         // ay by cy
+    const __m128 z = _mm_shuffle_ps(ab_hi, c, _MM_SHUFFLE(2, 2, 1, 0));         // az bz cz
+    // Sheared: ax = a.x - sx a.z, ay = a.y - sy a.z, and so on.
+    const __m128 sxv = _mm_sub_ps(x, _mm_mul_ps(r.sx, z));
+    const __m128 syv = _mm_sub_ps(y, _mm_mul_ps(r.sy, z));
+    // (u, v, w) = (cx by - cy bx, ax cy - ay cx, bx ay - by ax).
+    const __m128 x201 = _mm_shuffle_ps(sxv, sxv, _MM_SHUFFLE(3, 1, 0, 2));  // cx ax bx
+    const __m128 x120 = _mm_shuffle_ps(sxv, sxv, _MM_SHUFFLE(3, 0, 2, 1));  // bx cx ax
+    const __m128 y120 = _mm_shuffle_ps(syv, syv, _MM_SHUFFLE(3, 0, 2, 1));  // by cy ay
+    const __m128 y201 = _mm_shuffle_ps(syv, syv, _MM_SHUFFLE(3, 1, 0, 2));  // cy ay by
+    const __m128 uvw = _mm_sub_ps(_mm_mul_ps(x201, y120), _mm_mul_ps(y201, x120));
+    const __m128 zero = _mm_setzero_ps();
+    if (_mm_movemask_ps(_mm_cmpeq_ps(uvw, zero)) & 7) {  // on an edge in float: the scalar test
+        WatertightRay w = r.scalar;
+        w.t_max = t_max;
+        return intersect_triangle(t, w);
+    }
+    const int negative = _mm_movemask_ps(_mm_cmplt_ps(uvw, zero)) & 7;
+    const int positive = _mm_movemask_ps(_mm_cmpgt_ps(uvw, zero)) & 7;
+    if (negative && positive) return std::nullopt;
+    alignas(16) float e[4], s[4];
+    _mm_store_ps(e, uvw);
+    const Float det = e[0] + e[1] + e[2];
+    if (det == 0) return std::nullopt;
+    // t det = u sz a.z + v sz b.z + w sz c.z.
+    _mm_store_ps(s, _mm_mul_ps(uvw, _mm_mul_ps(r.sz, z)));
+    const Float t_scaled = s[0] + s[1] + s[2];
+    if (det > 0 ? !(t_scaled >= kRayTMin * det && t_scaled < t_max * det)
+                : !(t_scaled <= kRayTMin * det && t_scaled > t_max * det))
+        return std::nullopt;
+    const Float dist = t_scaled / det;
+    if (!(dist >= kRayTMin && dist < t_max)) return std::nullopt;
+    const Float inv_det = 1 / det;
+    return TriangleHit{dist, e[1] * inv_det, e[2] * inv_det};
+}
+
+}  // namespace glint
