@@ -360,7 +360,7 @@ std::optional<Hit> Scene::intersect(const Ray& ray_in) const {
     if (top_.empty()) return best;
     // The lone triangles' shared set-up (a mesh's triangles have their own, in object space).
     WatertightRaySse wr;
-    if (!triangles.empty()) wr = WatertightRaySse(WatertightRay(ray));
+    if (!triangles.empty()) wr = WatertightRaySse(ray);
     top_.closest(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k) closest_top(top_refs_[k], ray, wr, best);
     });
@@ -376,7 +376,7 @@ bool Scene::occluded(const Ray& ray) const {
     if (!sphere_set_.empty()) return sphere_set_.any(ray);
     if (top_.empty()) return false;
     WatertightRaySse wr;
-    if (!triangles.empty()) wr = WatertightRaySse(WatertightRay(ray));
+    if (!triangles.empty()) wr = WatertightRaySse(ray);
     return top_.any(BvhRay(ray), ray.t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t k = first; k < first + count; ++k)
             if (any_top(top_refs_[k], ray, wr)) return true;

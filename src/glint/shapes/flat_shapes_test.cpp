@@ -186,7 +186,7 @@ TEST(Triangle, TheSseTestGivesTheScalarTestsBits) {
     const auto check = [&](const Triangle& t, const Ray& r, float t_max) {
         WatertightRay w(r);
         w.t_max = t_max;
-        const WatertightRaySse sse(WatertightRay{r});
+        const WatertightRaySse sse(r);
         const auto a = intersect_triangle(t, w);
         const auto b = intersect_triangle_sse(t, sse, t_max);
         ++checked;

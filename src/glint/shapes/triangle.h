@@ -21,6 +21,20 @@ struct WatertightRay {
     explicit WatertightRay(const Ray& ray);
 };
 
+/// WatertightRay's axes for a direction of magnitudes (ax, ay, az) whose components below zero
+/// are the bits of `negative` (x in bit 0): the largest becomes z (the first of equals); x and y
+/// follow cyclically and swap when that component is negative, to keep the triangle's winding.
+/// Selects, not branches: a diffuse bounce's direction is random, and branches here mispredicted
+/// their way to 6 % of a Cornell box render.
+inline void watertight_axes(Float ax, Float ay, Float az, int negative, int& kx, int& ky, int& kz) {
+    const int y_wins = ay > ax, z_wins = az > (ay > ax ? ay : ax);
+    kz = y_wins + z_wins * (2 - y_wins);
+    const int next = kz == 2 ? 0 : kz + 1, after = 3 - kz - next;
+    const int swap = (next ^ after) & -((negative >> kz) & 1);  // next ^ after, or 0
+    kx = next ^ swap;
+    ky = after ^ swap;
+}
+
 /// A hit on a triangle: the distance and the barycentric weights of p1 and p2.
 struct TriangleHit {
     Float t, b1, b2;

@@ -12,6 +12,7 @@
 #include <smmintrin.h>
 #include <tmmintrin.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -19,24 +20,35 @@
 
 namespace glint {
 
-/// WatertightRay as SSE vectors: its origin, its axis permutation as a byte shuffle, its shear.
+/// WatertightRay's set-up as SSE vectors: the ray's origin, its axis permutation as a byte
+/// shuffle, its shear, computed from the ray with the same choice of axes and the same
+/// divisions (so the same bits), without WatertightRay's round trip through memory.
 struct WatertightRaySse {
-    __m128 origin;  ///< (ox, oy, oz, 0)
+    __m128 origin;  ///< (ox, oy, oz, *): the fourth lane is never read
     __m128i order;  ///< lane i of a permuted vector is lane k[i] of the original: kx, ky, kz, 3
     __m128 sx, sy, sz;
-    WatertightRay scalar;  ///< for the edge-on case
+    const Ray* ray;  ///< for the edge-on case (the scalar test), which builds its WatertightRay from it
     WatertightRaySse() = default;  ///< unusable until assigned (for scenes with no lone triangles)
-    explicit WatertightRaySse(const WatertightRay& r) : scalar(r) {
-        origin = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0);
-        const auto lane = [](int k) { return static_cast<std::uint32_t>(0x03020100u + 0x04040404u * static_cast<std::uint32_t>(k)); };
-        order = _mm_setr_epi32(static_cast<int>(lane(r.kx)), static_cast<int>(lane(r.ky)), static_cast<int>(lane(r.kz)),
-                               static_cast<int>(lane(3)));
-        sx = _mm_set1_ps(r.sx);
-        sy = _mm_set1_ps(r.sy);
-        sz = _mm_set1_ps(r.sz);
+    /// `r` must outlive this.
+    explicit WatertightRaySse(const Ray& r) : ray(&r) {
+        const __m128 d = _mm_setr_ps(r.direction.x, r.direction.y, r.direction.z, 0);
+        int kx, ky, kz;
+        watertight_axes(std::abs(r.direction.x), std::abs(r.direction.y), std::abs(r.direction.z),
+                        _mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())), kx, ky, kz);
+        const auto lane = [](int k) { return static_cast<int>(0x03020100u + 0x04040404u * static_cast<std::uint32_t>(k)); };
+        order = _mm_setr_epi32(lane(kx), lane(ky), lane(kz), lane(3));
+        origin = _mm_loadu_ps(&r.origin.x);
+        // (d[kx], d[ky], 1, 1) / d[kz]: the three divisions as one, each correctly rounded.
+        const __m128 permuted = _mm_castsi128_ps(_mm_shuffle_epi8(_mm_castps_si128(d), order));
+        const __m128 q = _mm_div_ps(_mm_blend_ps(permuted, _mm_set1_ps(1), 0xc),
+                                    _mm_shuffle_ps(permuted, permuted, _MM_SHUFFLE(2, 2, 2, 2)));
+        sx = _mm_shuffle_ps(q, q, _MM_SHUFFLE(0, 0, 0, 0));
+        sy = _mm_shuffle_ps(q, q, _MM_SHUFFLE(1, 1, 1, 1));
+        sz = _mm_shuffle_ps(q, q, _MM_SHUFFLE(2, 2, 2, 2));
     }
 };
 
+static_assert(sizeof(Ray) >= 16, "WatertightRaySse reads 16 bytes at the origin");
 static_assert(sizeof(Triangle) >= 40, "intersect_triangle_sse reads 16 bytes at p2");
 
 /// intersect_triangle(t, r) with r.t_max = t_max, the same bits.
@@ -63,7 +75,7 @@ inline std::optional<TriangleHit> intersect_triangle_sse(const Triangle& t, cons
     const __m128 uvw = _mm_sub_ps(_mm_mul_ps(x201, y120), _mm_mul_ps(y201, x120));
     const __m128 zero = _mm_setzero_ps();
     if (_mm_movemask_ps(_mm_cmpeq_ps(uvw, zero)) & 7) {  // on an edge in float: the scalar test
-        WatertightRay w = r.scalar;
+        WatertightRay w(*r.ray);
         w.t_max = t_max;
         return intersect_triangle(t, w);
     }
