@@ -3,8 +3,9 @@
 // moved to the ray's frame as three vectors, the edge functions as one. Every lane is the scalar
 // code's operation on the same operands, in the same order (no fused multiply-adds: the baseline
 // ISA has none, and intrinsics are never contracted), so the hit is intersect_triangle's to the
-// bit (triangle_sse_test.cpp checks that on random and on edge-on rays). Where an edge function
-// is exactly zero, the scalar test decides, as it does (in double).
+// bit (`Triangle.TheSseTestGivesTheScalarTestsBits` in flat_shapes_test.cpp checks that on random
+// and on edge-on rays). Where an edge function is exactly zero, the scalar test decides, as it
+// does (in double).
 //
 // For the baseline build only: not to be included by the per-ISA kernels (accel/*_kernels.inl),
 // whose copies of these inline functions would be compiled for another ISA under the same name.
