@@ -83,6 +83,22 @@ struct Triangle {
 
 namespace triangle_detail {
 
+/// The watertight test's end, shared by its scalar and SSE forms: from edge functions u, v, w
+/// that do not differ in sign and the vertices' sheared z (az = sz a.z, ...), the determinant,
+/// the range test on t det (so that only hits pay for the division) and the hit.
+inline std::optional<TriangleHit> hit_from_edges(Float u, Float v, Float w, Float az, Float bz, Float cz, Float t_max) {
+    const Float det = u + v + w;
+    if (det == 0) return std::nullopt;
+    const Float t_scaled = u * az + v * bz + w * cz;  // t * det
+    if (det > 0 ? !(t_scaled >= kRayTMin * det && t_scaled < t_max * det)
+                : !(t_scaled <= kRayTMin * det && t_scaled > t_max * det))
+        return std::nullopt;
+    const Float t = t_scaled / det;
+    if (!(t >= kRayTMin && t < t_max)) return std::nullopt;  // rounding at the ends
+    const Float inv_det = 1 / det;
+    return TriangleHit{t, v * inv_det, w * inv_det};
+}
+
 /// The watertight test on the vertices relative to the ray's origin, permuted so that the ray's
 /// main axis is z (intersect_triangle's body).
 inline std::optional<TriangleHit> intersect_permuted(Vector3 a, Vector3 b, Vector3 c, const WatertightRay& r) {
@@ -100,19 +116,7 @@ inline std::optional<TriangleHit> intersect_permuted(Vector3 a, Vector3 b, Vecto
         w = static_cast<Float>(static_cast<double>(bx) * ay - static_cast<double>(by) * ax);
     }
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
-    const Float det = u + v + w;
-    if (det == 0) return std::nullopt;
-
-    const Float az = sz * a.z, bz = sz * b.z, cz = sz * c.z;
-    const Float t_scaled = u * az + v * bz + w * cz;  // t * det
-    // The range test on t * det, so that only hits pay for the division.
-    if (det > 0 ? !(t_scaled >= kRayTMin * det && t_scaled < r.t_max * det)
-                : !(t_scaled <= kRayTMin * det && t_scaled > r.t_max * det))
-        return std::nullopt;
-    const Float t = t_scaled / det;
-    if (!(t >= kRayTMin && t < r.t_max)) return std::nullopt;  // rounding at the ends
-    const Float inv_det = 1 / det;
-    return TriangleHit{t, v * inv_det, w * inv_det};
+    return hit_from_edges(u, v, w, sz * a.z, sz * b.z, sz * c.z, r.t_max);
 }
 
 }  // namespace triangle_detail

@@ -83,20 +83,10 @@ inline std::optional<TriangleHit> intersect_triangle_sse(const Triangle& t, cons
     const int negative = _mm_movemask_ps(_mm_cmplt_ps(uvw, zero)) & 7;
     const int positive = _mm_movemask_ps(_mm_cmpgt_ps(uvw, zero)) & 7;
     if (negative && positive) return std::nullopt;
-    alignas(16) float e[4], s[4];
+    alignas(16) float e[4], z_sheared[4];
     _mm_store_ps(e, uvw);
-    const Float det = e[0] + e[1] + e[2];
-    if (det == 0) return std::nullopt;
-    // t det = u sz a.z + v sz b.z + w sz c.z.
-    _mm_store_ps(s, _mm_mul_ps(uvw, _mm_mul_ps(r.sz, z)));
-    const Float t_scaled = s[0] + s[1] + s[2];
-    if (det > 0 ? !(t_scaled >= kRayTMin * det && t_scaled < t_max * det)
-                : !(t_scaled <= kRayTMin * det && t_scaled > t_max * det))
-        return std::nullopt;
-    const Float dist = t_scaled / det;
-    if (!(dist >= kRayTMin && dist < t_max)) return std::nullopt;
-    const Float inv_det = 1 / det;
-    return TriangleHit{dist, e[1] * inv_det, e[2] * inv_det};
+    _mm_store_ps(z_sheared, _mm_mul_ps(r.sz, z));  // az = sz a.z, bz, cz
+    return triangle_detail::hit_from_edges(e[0], e[1], e[2], z_sheared[0], z_sheared[1], z_sheared[2], t_max);
 }
 
 }  // namespace glint
