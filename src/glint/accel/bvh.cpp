@@ -510,6 +510,36 @@ private:
 
 }  // namespace
 
+/// The built nodes copied out in the order a traversal meets them: depth first, each node's
+/// inner children placed side by side when the node is reached (as Embree allocates them), so
+/// that siblings share cache lines and pages and a subtree lies in one stretch of memory. The
+/// builders number nodes as they make them, and with two threads the two halves of the tree
+/// interleave. Only the node indices change: every box and every child order stays, so every
+/// traversal visits the same boxes in the same order. Returns the new root reference.
+template <int W>
+std::uint32_t lay_out_nodes(const BvhNode<W>* pool, std::uint32_t count, std::uint32_t root,
+                            std::vector<BvhNode<W>>& out) {
+    using Node = BvhNode<W>;
+    out.clear();
+    if (root & Node::kLeaf) return root;
+    out.reserve(count);
+    out.push_back(pool[root]);
+    std::vector<std::uint32_t> pending{0};  // placed nodes whose children still name pool nodes
+    while (!pending.empty()) {
+        const std::uint32_t at = pending.back();
+        pending.pop_back();
+        const auto first = static_cast<std::uint32_t>(out.size());
+        for (int i = 0; i < W; ++i) {
+            const std::uint32_t c = out[at].child[i];
+            if (c & Node::kLeaf) continue;
+            out[at].child[i] = static_cast<std::uint32_t>(out.size());
+            out.push_back(pool[c]);
+        }
+        for (auto k = static_cast<std::uint32_t>(out.size()); k-- > first;) pending.push_back(k);  // first child first
+    }
+    return 0;
+}
+
 template <int W>
 void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& options_in, BvhClipper clipper,
                    const void* clip_context) {
@@ -551,8 +581,7 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
                                   half_area(bounds_));
         const std::uint32_t root_ref = builder.build(std::move(root), 0);
         order_.clear();
-        root_ = builder.place_leaves(root_ref, order_);
-        nodes_ = std::vector<Node>(pool.get(), pool.get() + builder.node_count());  // exactly its size
+        root_ = lay_out_nodes<W>(pool.get(), builder.node_count(), builder.place_leaves(root_ref, order_), nodes_);
         depth_ = builder.depth() + 1;
     } else {
         const std::size_t capacity = order_.size();  // a W-wide tree over n leaves-worth of primitives has < n nodes
@@ -560,8 +589,7 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
         Builder<W> builder(bounds, options, order_, std::span<Node>(pool.get(), capacity));
         const Range root = builder.root_range(static_cast<std::uint32_t>(order_.size()));
         bounds_ = root.bounds;
-        root_ = builder.build(root, 0);
-        nodes_ = std::vector<Node>(pool.get(), pool.get() + builder.node_count());  // exactly its size
+        root_ = lay_out_nodes<W>(pool.get(), builder.node_count(), builder.build(root, 0), nodes_);
         depth_ = builder.depth() + 1;
     }
     order_.shrink_to_fit();

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -301,6 +302,50 @@ TEST(Bvh, TreeInvariants) {
     };
     check(0);
     EXPECT_LT(bvh.depth(), 20);
+}
+
+// The nodes lie as a traversal meets them (bvh.cpp, lay_out_nodes): each node's inner children
+// side by side, and every subtree below a node in one stretch, also when two threads built the
+// tree (whose builders number nodes as they make them, the two halves interleaved).
+TEST(Bvh, NodesLieInTraversalOrder) {
+    auto g = rng(41);
+    std::vector<Bounds3> boxes(100000);
+    for (auto& b : boxes) {
+        const Point3 c = random_point(g, 10);
+        b.extend(c);
+        b.extend(c + to_vector(random_point(g, 0.05f)));
+    }
+    Bvh8 bvh;
+    tbb::task_arena(2).execute([&] { bvh.build(boxes); });
+    ASSERT_EQ(bvh.root(), 0u);
+    std::vector<int> placed(bvh.nodes().size(), 0);
+    placed[0] = 1;
+    // The indices of the nodes below ref (ref itself not included): checked to be one stretch.
+    std::function<std::pair<std::uint32_t, std::uint32_t>(std::uint32_t)> below =
+        [&](std::uint32_t ref) -> std::pair<std::uint32_t, std::uint32_t> {
+        std::uint32_t lo = UINT32_MAX, hi = 0, count = 0, previous = 0;
+        const Bvh8Node& n = bvh.nodes()[ref];
+        for (const std::uint32_t c : n.child) {
+            if (c & Bvh8Node::kLeaf) continue;
+            if (count > 0) EXPECT_EQ(c, previous + 1) << "children of node " << ref;
+            EXPECT_GT(c, ref);
+            ++placed[c];
+            previous = c;
+            lo = std::min(lo, c), hi = std::max(hi, c), ++count;
+        }
+        for (const std::uint32_t c : n.child) {
+            if (c & Bvh8Node::kLeaf) continue;
+            const auto [l, h] = below(c);
+            if (l > h) continue;  // c has no inner children
+            const std::uint32_t size = h - l + 1;
+            lo = std::min(lo, l), hi = std::max(hi, h), count += size;
+        }
+        if (count > 0) EXPECT_EQ(hi - lo + 1, count) << "the nodes below node " << ref << " are not one stretch";
+        return {lo, count > 0 ? hi : 0};
+    };
+    below(0);
+    EXPECT_GT(bvh.nodes().size(), 1000u);
+    for (std::size_t i = 0; i < placed.size(); ++i) EXPECT_EQ(placed[i], 1) << "node " << i;
 }
 
 TEST_P(BvhBackends, RaysAtSharedVerticesAndEdgesNeverSlipThrough) {
