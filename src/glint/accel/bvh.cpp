@@ -508,8 +508,6 @@ private:
     std::atomic<int> depth_{0};
 };
 
-}  // namespace
-
 /// The built nodes copied out in the order a traversal meets them: depth first, each node's
 /// inner children placed side by side when the node is reached (as Embree allocates them), so
 /// that siblings share cache lines and pages and a subtree lies in one stretch of memory. The
@@ -539,6 +537,8 @@ std::uint32_t lay_out_nodes(const BvhNode<W>* pool, std::uint32_t count, std::ui
     }
     return 0;
 }
+
+}  // namespace
 
 template <int W>
 void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& options_in, BvhClipper clipper,
