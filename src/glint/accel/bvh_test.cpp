@@ -256,14 +256,21 @@ TEST(Sbvh, TheTreeIsTheSameForAnyThreadCount) {
     }
 }
 
-TEST(Bvh, TreeInvariants) {
-    auto g = rng(3);
-    std::vector<Bounds3> boxes(5000);
+// n boxes at random in a cube of half-size 10, each spanning a corner and a point within `size`
+// of it.
+std::vector<Bounds3> random_boxes(std::mt19937& g, std::size_t n, float size) {
+    std::vector<Bounds3> boxes(n);
     for (auto& b : boxes) {
         const Point3 c = random_point(g, 10);
         b.extend(c);
-        b.extend(c + to_vector(random_point(g, 0.5f)));
+        b.extend(c + to_vector(random_point(g, size)));
     }
+    return boxes;
+}
+
+TEST(Bvh, TreeInvariants) {
+    auto g = rng(3);
+    std::vector<Bounds3> boxes = random_boxes(g, 5000, 0.5f);
     // Bad input is left out, not a crash: a NaN and an infinite box.
     boxes[10].lo.x = std::numeric_limits<float>::quiet_NaN();
     boxes[20].hi.y = std::numeric_limits<float>::infinity();
@@ -309,12 +316,7 @@ TEST(Bvh, TreeInvariants) {
 // tree (whose builders number nodes as they make them, the two halves interleaved).
 TEST(Bvh, NodesLieInTraversalOrder) {
     auto g = rng(41);
-    std::vector<Bounds3> boxes(100000);
-    for (auto& b : boxes) {
-        const Point3 c = random_point(g, 10);
-        b.extend(c);
-        b.extend(c + to_vector(random_point(g, 0.05f)));
-    }
+    const std::vector<Bounds3> boxes = random_boxes(g, 100000, 0.05f);
     Bvh8 bvh;
     tbb::task_arena(2).execute([&] { bvh.build(boxes); });
     ASSERT_EQ(bvh.root(), 0u);
