@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "glint/samplers/hash.h"
-#include "glint/samplers/sobol_avx2.h"
+#include "glint/samplers/sobol_kernels.h"
 
 namespace glint {
 
@@ -102,10 +102,17 @@ namespace {
 
 #include "glint/samplers/sobol_lanes.inl"
 
-// Whether the CPU runs the eight-lane kernel (sampler_avx2.cpp).
+// Whether the CPU runs the eight-lane kernel (sampler_avx2.cpp) and the sixteen-lane one
+// (sampler_avx512.cpp, compiled for x86-64-v4).
 const bool kAvx2 = [] {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") != 0;
+}();
+const bool kAvx512 = [] {
+    __builtin_cpu_init();
+    return kAvx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512cd");
 }();
 
 }  // namespace
@@ -126,6 +133,15 @@ void PixelSampler::get_2d_x8(std::uint32_t index, std::uint32_t first_dimension,
     }
     get_2d_x4(index, first_dimension, out);
     get_2d_x4(index, first_dimension + 4, out + 4);
+}
+
+int PixelSampler::get_2d_batch(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[16]) const {
+    if (kAvx512 && type_ == SamplerType::kSobol && spp_ >= 4 && (spp_ & (spp_ - 1)) == 0) {
+        sobol_pairs_avx512(seed_, spp_, index, first_dimension, out);
+        return 16;
+    }
+    get_2d_x8(index, first_dimension, out);
+    return 8;
 }
 
 }  // namespace glint

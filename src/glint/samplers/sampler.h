@@ -40,6 +40,11 @@ public:
     /// The eight pairs first_dimension .. first_dimension + 7, the same way: eight lanes at once
     /// where the CPU has AVX2 (sampler_avx2.cpp), two get_2d_x4 otherwise.
     [[gnu::noinline]] void get_2d_x8(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[8]) const;
+    /// The pairs first_dimension, first_dimension + 1, ... of sample `index`, as many as one call
+    /// computes best on this CPU: sixteen in the lanes of one 512-bit vector where the CPU has
+    /// AVX-512 (sampler_avx512.cpp; the Sobol sampler at a power-of-two spp), else get_2d_x8's
+    /// eight. Returns how many it wrote; each is get_2d's bits.
+    [[gnu::noinline]] int get_2d_batch(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[16]) const;
     std::uint32_t seed() const { return seed_; }
 
 private:
@@ -54,9 +59,9 @@ inline constexpr std::uint32_t kTimeDimension = 0x7fffu;
 
 /// The dimensions of one camera sample, handed out in order: an integrator draws what it needs
 /// per bounce, and the same path always gets the same numbers. Pairs 0 (pixel) and 1 (lens)
-/// belong to the camera; the integrator's start at pair 2. The pairs are computed eight at a
-/// time (get_2d_x8) and handed out one by one: a pair's value depends only on its number, so
-/// computing one that is never drawn changes nothing.
+/// belong to the camera; the integrator's start at pair 2. The pairs are computed eight or
+/// sixteen at a time (get_2d_batch) and handed out one by one: a pair's value depends only on its
+/// number, so computing one that is never drawn changes nothing.
 class SampleStream {
 public:
     SampleStream(const PixelSampler& sampler, std::uint32_t index, std::uint32_t first_pair = 2)
@@ -64,9 +69,9 @@ public:
     // Inlined where it is drawn (the path loop): three of four calls are a load and an increment,
     // and the call itself would cost as much (the loop outgrew GCC's inlining limits once).
     [[gnu::always_inline]] Sample2 next_2d() {
-        if (next_ == kBatch) {
-            sampler_->get_2d_x8(index_, pair_, buffer_);
-            pair_ += kBatch;
+        if (next_ == filled_) {
+            filled_ = sampler_->get_2d_batch(index_, pair_, buffer_);
+            pair_ += static_cast<std::uint32_t>(filled_);
             next_ = 0;
         }
         return buffer_[next_++];
@@ -78,12 +83,12 @@ public:
     std::uint32_t stream_seed() const;
 
 private:
-    static constexpr int kBatch = 8;
     const PixelSampler* sampler_;
     std::uint32_t index_;
     std::uint32_t pair_;  ///< the first pair not yet computed
-    int next_ = kBatch;   ///< the next of buffer_ to hand out
-    Sample2 buffer_[kBatch];
+    int next_ = 0;        ///< the next of buffer_ to hand out
+    int filled_ = 0;      ///< how many of buffer_ hold pairs
+    Sample2 buffer_[16];
 };
 
 }  // namespace glint

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "glint/samplers/sobol_avx2.h"
+#include "glint/samplers/sobol_kernels.h"
 
 namespace glint {
 namespace {

@@ -1,4 +1,5 @@
 #include "glint/samplers/sampler.h"
+#include "glint/samplers/sobol_kernels.h"
 
 #include <gtest/gtest.h>
 
@@ -120,38 +121,60 @@ TEST(Sobol, DimensionsAndPixelsAreDecorrelated) {
     EXPECT_NEAR(product / n, 0.25, 0.005);
 }
 
-TEST(Sampler, FourAndEightPairsAtOnceAreTheScalarPairsBitForBit) {
-    // get_2d_x4 and get_2d_x8 (SIMD for the Sobol sampler at power-of-two spp, a loop otherwise;
-    // eight lanes with AVX2 where the CPU has it, else two calls of four) against get_2d, the
-    // reference, for every sampler, counts that are and are not powers of two (and the small ones
-    // the SIMD path leaves to the loop), every index, dimensions near 0 and near the time pair,
-    // and many pixels.
+TEST(Sampler, PairsComputedAtOnceAreTheScalarPairsBitForBit) {
+    // get_2d_x4, get_2d_x8 and get_2d_batch (SIMD for the Sobol sampler at power-of-two spp, a
+    // loop otherwise), and the eight- and sixteen-lane kernels called directly where this CPU has
+    // their instruction sets (so that each is checked whichever one the dispatch picks), against
+    // get_2d, the reference: every sampler, counts that are and are not powers of two (and the
+    // small ones the SIMD path leaves to the loop), every index, dimensions near 0 and near the
+    // time pair, and many pixels.
     const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+    __builtin_cpu_init();
+    const bool avx2 = __builtin_cpu_supports("avx2");
+    const bool avx512 = avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                        __builtin_cpu_supports("avx512cd");
+    int kernel_checks = 0;
     for (const SamplerType type : {SamplerType::kSobol, SamplerType::kStratified, SamplerType::kIndependent}) {
         for (const std::uint32_t spp : {1u, 2u, 3u, 4u, 8u, 12u, 64u, 100u, 256u, 4096u, 1u << 20}) {
+            const bool simd = type == SamplerType::kSobol && spp >= 4 && (spp & (spp - 1)) == 0;
             for (std::uint32_t px = 0; px < 12; ++px) {
-                const PixelSampler s(type, spp, pixel_seed(px * 977u, px, 3 * px));
+                const std::uint32_t seed = pixel_seed(px * 977u, px, 3 * px);
+                const PixelSampler s(type, spp, seed);
                 for (std::uint32_t i = 0; i < std::min(spp, 70u); ++i) {
                     const std::uint32_t index = spp > 70 ? (i * 2654435761u) % spp : i;
                     for (const std::uint32_t first : {0u, 1u, 2u, 6u, 37u, kTimeDimension - 3}) {
-                        Sample2 four[4];
-                        s.get_2d_x4(index, first, four);
-                        Sample2 eight[8];
-                        s.get_2d_x8(index, first, eight);
-                        for (std::uint32_t k = 0; k < 8; ++k) {
-                            const Sample2 one = s.get_2d(index, first + k);
-                            if (k < 4) {
-                                ASSERT_EQ(bits(four[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
-                                ASSERT_EQ(bits(four[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
+                        const auto check = [&](const Sample2* got, int n, const char* what) {
+                            for (int k = 0; k < n; ++k) {
+                                const Sample2 one = s.get_2d(index, first + static_cast<std::uint32_t>(k));
+                                ASSERT_EQ(bits(got[k].x), bits(one.x)) << what << " " << spp << " " << index << " " << first + k;
+                                ASSERT_EQ(bits(got[k].y), bits(one.y)) << what << " " << spp << " " << index << " " << first + k;
                             }
-                            ASSERT_EQ(bits(eight[k].x), bits(one.x)) << spp << " " << index << " " << first + k;
-                            ASSERT_EQ(bits(eight[k].y), bits(one.y)) << spp << " " << index << " " << first + k;
+                        };
+                        Sample2 four[4], eight[8], batch[16];
+                        s.get_2d_x4(index, first, four);
+                        check(four, 4, "x4");
+                        s.get_2d_x8(index, first, eight);
+                        check(eight, 8, "x8");
+                        const int n = s.get_2d_batch(index, first, batch);
+                        ASSERT_TRUE(n == 8 || n == 16);
+                        check(batch, n, "batch");
+                        if (simd && avx2) {
+                            sobol_pairs_avx2(seed, spp, index, first, eight);
+                            check(eight, 8, "avx2");
+                            ++kernel_checks;
+                        }
+                        if (simd && avx512) {
+                            sobol_pairs_avx512(seed, spp, index, first, batch);
+                            check(batch, 16, "avx512");
+                            ++kernel_checks;
                         }
                     }
                 }
             }
         }
     }
+    if (avx2) EXPECT_GT(kernel_checks, 1000);
 }
 
 TEST(Sampler, AStreamHandsOutThePairsInOrder) {

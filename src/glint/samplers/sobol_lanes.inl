@@ -1,7 +1,8 @@
 // The padded Sobol sampler's pairs, several dimension pairs of one sample at once: the scalar
 // steps of sampler.cpp (get_2d) lane by lane on a GCC/clang vector of unsigned 32-bit integers
 // (wrapping multiplies, logical shifts), so every lane gives get_2d's bits. Included by
-// sampler.cpp (4 lanes, SSE4.1) and sampler_avx2.cpp (8 lanes, AVX2) inside their namespaces;
+// sampler.cpp (4 lanes, SSE4.1), sampler_avx2.cpp (8 lanes, AVX2) and sampler_avx512.cpp (16
+// lanes, AVX-512) inside their namespaces;
 // each includes <bit>, <utility> and the header of Sample2 first.
 
 // The vector types of N lanes (spelled out per N: GCC ignores vector_size on a dependent type).
@@ -20,6 +21,14 @@ struct Lanes<8> {
     using I = std::int32_t __attribute__((vector_size(32)));
     using F = float __attribute__((vector_size(32)));
     using Bytes = std::uint8_t __attribute__((vector_size(32)));
+};
+
+template <>
+struct Lanes<16> {
+    using U = std::uint32_t __attribute__((vector_size(64)));
+    using I = std::int32_t __attribute__((vector_size(64)));
+    using F = float __attribute__((vector_size(64)));
+    using Bytes = std::uint8_t __attribute__((vector_size(64)));
 };
 
 template <class V>
@@ -55,10 +64,14 @@ typename Lanes<N>::U reverse_bits_lanes(typename Lanes<N>::U v) {
     Bytes r;
     if constexpr (N == 4) {
         r = __builtin_shufflevector(b, b, 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12);
-    } else {
-        static_assert(N == 8);
+    } else if constexpr (N == 8) {
         r = __builtin_shufflevector(b, b, 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, 19, 18, 17, 16, 23, 22,
                                     21, 20, 27, 26, 25, 24, 31, 30, 29, 28);
+    } else {
+        static_assert(N == 16);
+        r = __builtin_shufflevector(b, b, 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, 19, 18, 17, 16, 23, 22,
+                                    21, 20, 27, 26, 25, 24, 31, 30, 29, 28, 35, 34, 33, 32, 39, 38, 37, 36, 43, 42, 41,
+                                    40, 47, 46, 45, 44, 51, 50, 49, 48, 55, 54, 53, 52, 59, 58, 57, 56, 63, 62, 61, 60);
     }
     v = std::bit_cast<V>(r);
     v = ((v >> 1) & 0x55555555U) | ((v & 0x55555555U) << 1);

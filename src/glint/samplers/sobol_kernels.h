@@ -1,0 +1,20 @@
+#pragma once
+// The padded Sobol sampler's SIMD kernels: eight lanes compiled for AVX2 (sampler_avx2.cpp),
+// sixteen compiled for AVX-512 (sampler_avx512.cpp); each called only on a CPU that has its
+// instruction set (PixelSampler asks).
+#include <cstdint>
+
+#include "glint/samplers/stratified.h"
+
+namespace glint {
+
+/// Pairs first_dimension .. first_dimension + 7 of sample `index` of the pixel with seed
+/// `pixel_seed`, for a power-of-two spp >= 4: PixelSampler::get_2d's bits.
+void sobol_pairs_avx2(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
+                      Sample2 out[8]);
+
+/// The same for the sixteen pairs first_dimension .. first_dimension + 15.
+void sobol_pairs_avx512(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
+                        Sample2 out[16]);
+
+}  // namespace glint
