@@ -72,13 +72,6 @@ void closest_one(const Shape& s, ShapeKind kind, std::uint32_t i, Ray& ray, std:
     }
 }
 
-Bounds3 ball_bounds(Point3 c, Float r) {
-    Bounds3 b;
-    b.extend(c - Vector3{r, r, r});
-    b.extend(c + Vector3{r, r, r});
-    return b;
-}
-
 }  // namespace
 
 const char* accel_name(AccelKind kind) {
@@ -132,16 +125,8 @@ void Scene::commit() {
     };
     for (std::uint32_t i = 0; i < spheres.size(); ++i)
         add(ShapeKind::kSphere, i, ball_bounds(spheres[i].center, spheres[i].radius));
-    for (std::uint32_t i = 0; i < quads.size(); ++i) {
-        const Quad& q = quads[i];
-        Bounds3 b;
-        b.extend(q.corner);
-        b.extend(q.corner + q.edge1);
-        b.extend(q.corner + q.edge2);
-        b.extend(q.corner + q.edge1 + q.edge2);
-        add(ShapeKind::kQuad, i, b);
-    }
-    for (std::uint32_t i = 0; i < disks.size(); ++i)  // a disk lies in its ball
+    for (std::uint32_t i = 0; i < quads.size(); ++i) add(ShapeKind::kQuad, i, quads[i].bounds());
+    for (std::uint32_t i = 0; i < disks.size(); ++i)
         add(ShapeKind::kDisk, i, ball_bounds(disks[i].center, disks[i].radius));
     for (std::uint32_t i = 0; i < triangles.size(); ++i) {
         Bounds3 b;

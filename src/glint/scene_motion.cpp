@@ -72,18 +72,10 @@ void Scene::index_motion() {
 Bounds3 Scene::moving_bounds(std::uint32_t m) const {
     const MovingShape& ms = moving_shapes[m];
     Bounds3 b;
-    const auto ball = [&](Point3 c, Float r) {
-        b.extend(c - Vector3{r, r, r});
-        b.extend(c + Vector3{r, r, r});
-    };
     switch (ms.kind) {
-        case ShapeKind::kSphere: ball(spheres[ms.index].center, spheres[ms.index].radius); break;
-        case ShapeKind::kDisk: ball(disks[ms.index].center, disks[ms.index].radius); break;  // a disk lies in its ball
-        case ShapeKind::kQuad: {
-            const Quad& q = quads[ms.index];
-            for (const Point3 p : {q.corner, q.corner + q.edge1, q.corner + q.edge2, q.corner + q.edge1 + q.edge2}) b.extend(p);
-            break;
-        }
+        case ShapeKind::kSphere: b = ball_bounds(spheres[ms.index].center, spheres[ms.index].radius); break;
+        case ShapeKind::kDisk: b = ball_bounds(disks[ms.index].center, disks[ms.index].radius); break;
+        case ShapeKind::kQuad: b = quads[ms.index].bounds(); break;
         case ShapeKind::kTriangle:
             for (const Point3 p : {triangles[ms.index].p0, triangles[ms.index].p1, triangles[ms.index].p2}) b.extend(p);
             break;

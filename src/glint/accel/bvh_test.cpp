@@ -548,6 +548,60 @@ TEST(Transform, InverseRotationAndLookAt) {
     EXPECT_TRUE(Transform::scale({-1, 1, 1}).flips());
 }
 
+// A quad's own test accepts a hit whose rounded point lies a rounding error outside the quad's
+// flat box; the tree must not cull it there (a ray grazing the Cornell box light's edge once met
+// the wall behind through the tree and the light by brute force). Rays from inside a box of quads
+// at the Cornell box's scale, aimed at points on the quads' edges and just either side of them.
+TEST(Bvh, QuadHitsAtTheirEdgesAreTheBruteForceHits) {
+    auto g = rng(23);
+    Scene s;
+    s.materials.push_back(DiffuseMaterial{0});
+    s.textures.push_back(ConstantTexture{Color{0.5f}});
+    s.quads.push_back(Quad::make({343, 548.7f, 227}, {0, 0, 105}, {-130, 0, 0}));  // the light
+    s.quads.push_back(Quad::make({0, 0, 0}, {556, 0, 0}, {0, 0, 559.2f}));          // floor
+    s.quads.push_back(Quad::make({0, 548.8f, 0}, {0, 0, 559.2f}, {556, 0, 0}));     // ceiling
+    s.quads.push_back(Quad::make({0, 0, 559.2f}, {556, 0, 0}, {0, 548.8f, 0}));     // back
+    for (int i = 0; i < 12; ++i) {  // axis-aligned and tilted quads inside
+        const Point3 c{uniform(g, 50, 450), uniform(g, 50, 450), uniform(g, 50, 450)};
+        const bool flat = i % 2 == 0;
+        const Vector3 e1 = flat ? Vector3{uniform(g, 20, 120), 0, 0} : to_vector(random_point(g, 100));
+        const Vector3 e2 = flat ? Vector3{0, 0, uniform(g, 20, 120)} : to_vector(random_point(g, 100));
+        s.quads.push_back(Quad::make(c, e1, e2));
+    }
+    s.accel = AccelKind::kBvh;
+    s.commit();
+    int hits = 0, quad_edge_hits = 0;
+    for (int i = 0; i < testing::scaled(200000); ++i) {
+        const Quad& q = s.quads[static_cast<std::size_t>(i) % s.quads.size()];
+        float a = uniform(g, 0, 1), b = uniform(g, 0, 1);
+        const float edge = (i / 3) % 2 == 0 ? 0.0f : 1.0f;
+        ((i / 7) % 2 == 0 ? a : b) = edge + ((i % 3) - 1) * uniform(g, 0, 1e-6f);  // on, inside, outside
+        const Point3 target = q.corner + q.edge1 * a + q.edge2 * b;
+        // Half the rays start far away, half a short way off the quad's plane (as from the
+        // ceiling 0.1 above the light), where the box test's relative widening is tiny.
+        const Point3 origin = i % 2 == 0 ? Point3{uniform(g, 10, 540), uniform(g, 10, 540), uniform(g, -700, 540)}
+                                         : target + to_vector(q.normal()) * uniform(g, -0.5f, 0.5f) +
+                                               to_vector(random_point(g, 2));
+        const Vector3 d = target - origin;
+        if (length(d) < 1e-3f) continue;
+        const Ray r{origin, normalize(d)};
+        const auto x = s.intersect(r), y = s.intersect_brute_force(r);
+        ASSERT_EQ(x.has_value(), y.has_value()) << i;
+        ASSERT_EQ(s.occluded(r), y.has_value()) << i;
+        if (!x) continue;
+        ++hits;
+        if (x->index == y->index) {
+            ASSERT_EQ(x->t, y->t) << i;
+        } else {  // two quads meeting at an edge: either may hold the nearest hit, an ulp apart
+            ASSERT_NEAR(x->t, y->t, 1e-5f * y->t) << i << ": quad " << x->index << " against " << y->index;
+            ASSERT_EQ(s.quads[x->index].intersect(r), std::optional<Float>(x->t)) << i;
+        }
+        quad_edge_hits += &s.quads[x->index] == &q;
+    }
+    EXPECT_GT(hits, testing::scaled(150000));
+    EXPECT_GT(quad_edge_hits, testing::scaled(50000));
+}
+
 #if GLINT_EMBREE
 TEST(Embree, AgreesWithBruteForceWithinFloatNoise) {
   for (const bool alpha : {false, true}) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -88,25 +89,15 @@ struct UserShapes {
     bool still(unsigned i) const { return !scene->has_motion() || !scene->motion_of(kind, i); }
 };
 
-// Spheres and disks: the box of the ball (a disk lies in its ball).
+// The boxes glint's own BVH uses (padded for the shapes' rounding, math/bounds.h): spheres' and
+// disks' balls (a disk lies in its ball), quads' corners.
 template <typename Shape>
 void shape_bounds(const RTCBoundsFunctionArguments* args) {
     const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
     const Shape& s = (*u->shapes)[args->primID];
-    RTCBounds* b = args->bounds_o;
-    b->lower_x = s.center.x - s.radius, b->lower_y = s.center.y - s.radius, b->lower_z = s.center.z - s.radius;
-    b->upper_x = s.center.x + s.radius, b->upper_y = s.center.y + s.radius, b->upper_z = s.center.z + s.radius;
-}
-
-template <>
-void shape_bounds<Quad>(const RTCBoundsFunctionArguments* args) {
-    const auto* u = static_cast<const UserShapes<Quad>*>(args->geometryUserPtr);
-    const Quad& q = (*u->shapes)[args->primID];
     Bounds3 bb;
-    bb.extend(q.corner);
-    bb.extend(q.corner + q.edge1);
-    bb.extend(q.corner + q.edge2);
-    bb.extend(q.corner + q.edge1 + q.edge2);
+    if constexpr (std::is_same_v<Shape, Quad>) bb = s.bounds();
+    else bb = ball_bounds(s.center, s.radius);
     RTCBounds* b = args->bounds_o;
     b->lower_x = bb.lo.x, b->lower_y = bb.lo.y, b->lower_z = bb.lo.z;
     b->upper_x = bb.hi.x, b->upper_y = bb.hi.y, b->upper_z = bb.hi.z;

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "glint/interaction.h"
+#include "glint/math/bounds.h"
 #include "glint/ray.h"
 #include "glint/samplers/stratified.h"
 #include "glint/shapes/area_sample.h"
@@ -42,6 +43,13 @@ struct Quad {
     Point2 uv_at(Point3 p) const {
         const Vector3 w = p - corner;
         return {dot(cross(w, edge2), n_raw) * inv_len2, dot(cross(edge1, w), n_raw) * inv_len2};
+    }
+
+    /// The box of the four corners, padded for the rounding of intersect()'s hit point.
+    Bounds3 bounds() const {
+        Bounds3 b;
+        for (const Point3 p : {corner, corner + edge1, corner + edge2, corner + edge1 + edge2}) b.extend(p);
+        return padded_for_rounding(b);
     }
 
     Normal3 normal() const { return Normal3(n_raw * std::sqrt(inv_len2)); }
