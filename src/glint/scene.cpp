@@ -117,11 +117,23 @@ void Scene::commit() {
     std::vector<std::uint32_t> refs;
     boxes.reserve(bounded_count());
     refs.reserve(bounded_count());
+    // The scene's extent is the union of the exact boxes; the tree's boxes of spheres, quads and
+    // disks are padded for their tests' rounding (math/bounds.h), so that the tree culls no hit
+    // the shape's own test accepts.
+    Bounds3 extent;
+    const auto include = [&](const Bounds3& b) {
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a]) || b.lo[a] > b.hi[a]) return;  // as the tree skips it
+        extent.extend(b.lo);
+        extent.extend(b.hi);
+    };
     // A moving shape enters once, as a moving reference bounded over the whole shutter.
     const auto add = [&](ShapeKind k, std::uint32_t i, const Bounds3& b) {
         if (k != ShapeKind::kMesh && motion_of(k, i)) return;
-        boxes.push_back(b);
+        const bool analytic = k == ShapeKind::kSphere || k == ShapeKind::kQuad || k == ShapeKind::kDisk;
+        boxes.push_back(analytic ? padded_for_rounding(b) : b);
         refs.push_back(make_ref(k, i));
+        include(b);
     };
     for (std::uint32_t i = 0; i < spheres.size(); ++i)
         add(ShapeKind::kSphere, i, ball_bounds(spheres[i].center, spheres[i].radius));
@@ -146,6 +158,7 @@ void Scene::commit() {
     for (std::uint32_t m = 0; m < moving_shapes.size(); ++m) {
         boxes.push_back(moving_bounds(m));
         refs.push_back(kMovingRef << kRefShift | m);
+        include(moving_bounds(m, false));
     }
     BvhBuildOptions top_options;
     // An instance costs far more to enter than a node test: one per leaf, so that its box is
@@ -154,7 +167,7 @@ void Scene::commit() {
     top_.build(boxes, top_options);
     top_refs_.resize(top_.order().size());
     for (std::size_t i = 0; i < top_refs_.size(); ++i) top_refs_[i] = refs[top_.order()[i]];
-    bounds_ = top_.bounds();
+    bounds_ = extent;
 
     embree_.reset();
     if (accel == AccelKind::kEmbree) {

@@ -146,8 +146,10 @@ struct Scene {
     /// and sets best for a hit nearer than it (scene_motion.cpp; both backends use it).
     void closest_moving(std::uint32_t m, Ray& ray, std::optional<Hit>& best) const;
     bool any_moving(std::uint32_t m, const Ray& ray) const;
-    /// Moving shape m's box over the whole shutter.
-    Bounds3 moving_bounds(std::uint32_t m) const;
+    /// Moving shape m's box over the whole shutter: with `padded`, the box the trees use (a
+    /// sphere's, quad's or disk's grown for its test's rounding, math/bounds.h); without, the exact
+    /// one (the scene's extent).
+    Bounds3 moving_bounds(std::uint32_t m, bool padded = true) const;
     /// Light i of `lights` where it is and where it points at `time`: its keys carry a light at
     /// the origin with its stored direction (math/motion.h, light_keys).
     Light light_at(std::size_t i, Float time) const {

@@ -69,7 +69,7 @@ void Scene::index_motion() {
     }
 }
 
-Bounds3 Scene::moving_bounds(std::uint32_t m) const {
+Bounds3 Scene::moving_bounds(std::uint32_t m, bool padded) const {
     const MovingShape& ms = moving_shapes[m];
     Bounds3 b;
     switch (ms.kind) {
@@ -81,6 +81,8 @@ Bounds3 Scene::moving_bounds(std::uint32_t m) const {
             break;
         default: break;
     }
+    // Padded where the shape's test runs, in its own frame, then swept.
+    if (padded && ms.kind != ShapeKind::kTriangle) b = padded_for_rounding(b);
     return motions[ms.motion].swept_bounds(b);
 }
 

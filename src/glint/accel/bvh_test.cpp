@@ -600,6 +600,15 @@ TEST(Bvh, QuadHitsAtTheirEdgesAreTheBruteForceHits) {
     }
     EXPECT_GT(hits, testing::scaled(150000));
     EXPECT_GT(quad_edge_hits, testing::scaled(50000));
+    // The padding is the tree's alone: the scene's extent (which sizes distant and environment
+    // lights) is the exact box of the corners.
+    Scene light;
+    light.materials = s.materials;
+    light.textures = s.textures;
+    light.quads.push_back(s.quads[0]);
+    light.commit();
+    EXPECT_EQ(light.bounds().lo, (Point3{213, 548.7f, 227}));
+    EXPECT_EQ(light.bounds().hi, (Point3{343, 548.7f, 332}));
 }
 
 #if GLINT_EMBREE

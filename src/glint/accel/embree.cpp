@@ -96,8 +96,8 @@ void shape_bounds(const RTCBoundsFunctionArguments* args) {
     const auto* u = static_cast<const UserShapes<Shape>*>(args->geometryUserPtr);
     const Shape& s = (*u->shapes)[args->primID];
     Bounds3 bb;
-    if constexpr (std::is_same_v<Shape, Quad>) bb = s.bounds();
-    else bb = ball_bounds(s.center, s.radius);
+    if constexpr (std::is_same_v<Shape, Quad>) bb = padded_for_rounding(s.bounds());
+    else bb = padded_for_rounding(ball_bounds(s.center, s.radius));
     RTCBounds* b = args->bounds_o;
     b->lower_x = bb.lo.x, b->lower_y = bb.lo.y, b->lower_z = bb.lo.z;
     b->upper_x = bb.hi.x, b->upper_y = bb.hi.y, b->upper_z = bb.hi.z;

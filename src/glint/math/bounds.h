@@ -42,28 +42,30 @@ struct Bounds3 {
 
 inline Vector3 reciprocal(Vector3 d) { return {1 / d.x, 1 / d.y, 1 / d.z}; }
 
-/// The box grown on every side by 1e-5 of its largest coordinate magnitude or extent: the box of
-/// a shape whose own test accepts a hit from a rounded hit point (a quad's edge coordinates, a
-/// disk's radius, a sphere's discriminant), which can lie a rounding error outside the shape's
-/// exact box. The BVH's slab test is exact about the box, so without the margin it could cull a
-/// hit the shape's test accepts (a ray from the ceiling grazing the Cornell box light's edge met the
-/// wall behind through the tree). 1e-5 is about 170 ulps, several times the tests' error.
+/// The box grown on every side by 2e-5 of its largest coordinate magnitude (clamped to the float
+/// range): what the trees use for a shape whose own test accepts a hit from a rounded hit point
+/// (a quad's edge coordinates, a disk's radius, a sphere's discriminant), which can lie a rounding
+/// error outside the shape's exact box. The BVH's slab test is exact about the box, so without
+/// the margin it could cull a hit the shape's test accepts (a ray from the ceiling grazing the
+/// Cornell box light's edge met the wall behind through the tree). 2e-5 is 170 to 340 ulps of the
+/// largest coordinate, several times the tests' error. The scene's extent keeps the exact boxes.
 inline Bounds3 padded_for_rounding(Bounds3 b) {
-    if (b.empty()) return b;
     Float size = 0;
-    for (int a = 0; a < 3; ++a) size = std::max({size, std::abs(b.lo[a]), std::abs(b.hi[a]), b.hi[a] - b.lo[a]});
-    const Float m = size * Float(1e-5);
-    b.lo = b.lo - Vector3{m, m, m};
-    b.hi = b.hi + Vector3{m, m, m};
+    for (int a = 0; a < 3; ++a) size = std::max({size, std::abs(b.lo[a]), std::abs(b.hi[a])});
+    const Float m = size * Float(2e-5);
+    for (int a = 0; a < 3; ++a) {  // a NaN or an empty box stays what it was
+        b.lo[a] = std::max(b.lo[a] - m, std::numeric_limits<Float>::lowest());
+        b.hi[a] = std::min(b.hi[a] + m, std::numeric_limits<Float>::max());
+    }
     return b;
 }
 
-/// The padded box of the ball of radius r at c: a sphere's, or a disk's (a disk lies in its ball).
+/// The box of the ball of radius r at c: a sphere's, or a disk's (a disk lies in its ball).
 inline Bounds3 ball_bounds(Point3 c, Float r) {
     Bounds3 b;
     b.extend(c - Vector3{r, r, r});
     b.extend(c + Vector3{r, r, r});
-    return padded_for_rounding(b);
+    return b;
 }
 
 }  // namespace glint

@@ -1,6 +1,6 @@
 // The padded Sobol sampler sixteen pairs at a time (sobol_lanes.inl), compiled with AVX-512:
 // one call spans four bounces of a path where the eight-lane kernel spans two, for about the same
-// latency (docs/performance.md, step 15).
+// latency (docs/performance.md, step 14).
 #include <bit>
 #include <cstdint>
 #include <utility>

@@ -45,11 +45,11 @@ struct Quad {
         return {dot(cross(w, edge2), n_raw) * inv_len2, dot(cross(edge1, w), n_raw) * inv_len2};
     }
 
-    /// The box of the four corners, padded for the rounding of intersect()'s hit point.
+    /// The box of the four corners (a tree pads it: padded_for_rounding).
     Bounds3 bounds() const {
         Bounds3 b;
         for (const Point3 p : {corner, corner + edge1, corner + edge2, corner + edge1 + edge2}) b.extend(p);
-        return padded_for_rounding(b);
+        return b;
     }
 
     Normal3 normal() const { return Normal3(n_raw * std::sqrt(inv_len2)); }
