@@ -53,7 +53,7 @@ inline Bounds3 padded_for_rounding(Bounds3 b) {
     Float size = 0;
     for (int a = 0; a < 3; ++a) size = std::max({size, std::abs(b.lo[a]), std::abs(b.hi[a])});
     const Float m = size * Float(2e-5);
-    for (int a = 0; a < 3; ++a) {  // a NaN or an empty box stays what it was
+    for (int a = 0; a < 3; ++a) {  // a NaN or empty box stays non-finite (the trees skip it)
         b.lo[a] = std::max(b.lo[a] - m, std::numeric_limits<Float>::lowest());
         b.hi[a] = std::min(b.hi[a] + m, std::numeric_limits<Float>::max());
     }
