@@ -13,6 +13,13 @@ struct RayDifferential;  // ray.h
 
 enum class ShapeKind : std::uint8_t { kSphere, kPlane, kQuad, kDisk, kTriangle, kMesh };
 
+/// Whether a kind's test accepts a hit from a rounded hit point, so that the trees pad its box
+/// (padded_for_rounding, math/bounds.h): spheres, quads and disks. Triangles' watertight test
+/// accepts only rays through the exact triangle; planes are unbounded.
+constexpr bool padded_for_rounding(ShapeKind k) {
+    return k == ShapeKind::kSphere || k == ShapeKind::kQuad || k == ShapeKind::kDisk;
+}
+
 struct Hit {
     Float t;
     ShapeKind kind;

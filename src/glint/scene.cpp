@@ -122,16 +122,14 @@ void Scene::commit() {
     // the shape's own test accepts.
     Bounds3 extent;
     const auto include = [&](const Bounds3& b) {
-        for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a]) || b.lo[a] > b.hi[a]) return;  // as the tree skips it
+        if (!b.finite()) return;  // as the tree skips it
         extent.extend(b.lo);
         extent.extend(b.hi);
     };
     // A moving shape enters once, as a moving reference bounded over the whole shutter.
     const auto add = [&](ShapeKind k, std::uint32_t i, const Bounds3& b) {
         if (k != ShapeKind::kMesh && motion_of(k, i)) return;
-        const bool analytic = k == ShapeKind::kSphere || k == ShapeKind::kQuad || k == ShapeKind::kDisk;
-        boxes.push_back(analytic ? padded_for_rounding(b) : b);
+        boxes.push_back(padded_for_rounding(k) ? padded_for_rounding(b) : b);
         refs.push_back(make_ref(k, i));
         include(b);
     };

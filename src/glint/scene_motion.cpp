@@ -82,7 +82,7 @@ Bounds3 Scene::moving_bounds(std::uint32_t m, bool padded) const {
         default: break;
     }
     // Padded where the shape's test runs, in its own frame, then swept.
-    if (padded && ms.kind != ShapeKind::kTriangle) b = padded_for_rounding(b);
+    if (padded && padded_for_rounding(ms.kind)) b = padded_for_rounding(b);
     return motions[ms.motion].swept_bounds(b);
 }
 

@@ -41,12 +41,6 @@ Bounds3 intersection(const Bounds3& a, const Bounds3& b) {
     return r;
 }
 
-bool finite_box(const Bounds3& b) {
-    for (int a = 0; a < 3; ++a)
-        if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a]) || b.lo[a] > b.hi[a]) return false;
-    return true;
-}
-
 // Halves first: hi - lo overflows to infinity for a box near float max (a sphere of radius 1e38).
 Point3 centre(const Bounds3& b) {
     return {b.lo.x * 0.5f + b.hi.x * 0.5f, b.lo.y * 0.5f + b.hi.y * 0.5f, b.lo.z * 0.5f + b.hi.z * 0.5f};
@@ -560,7 +554,7 @@ void Bvh<W>::build(std::span<const Bounds3> bounds, const BvhBuildOptions& optio
     depth_ = 0;
     order_.reserve(bounds.size());
     for (std::uint32_t i = 0; i < bounds.size(); ++i)
-        if (finite_box(bounds[i])) order_.push_back(i);
+        if (bounds[i].finite()) order_.push_back(i);
     skipped_ = bounds.size() - order_.size();
     if (order_.empty()) return;
     // Leaves address primitives with 27 bits (BvhNode::make_leaf).

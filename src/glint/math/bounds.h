@@ -15,6 +15,12 @@ struct Bounds3 {
               -std::numeric_limits<Float>::infinity()};
 
     bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    /// Finite and not empty: what a BVH builds over (it skips every other box).
+    bool finite() const {
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || lo[a] > hi[a]) return false;
+        return true;
+    }
     void extend(Point3 p) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};

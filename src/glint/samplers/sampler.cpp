@@ -117,6 +117,9 @@ const bool kAvx512 = [] {
 
 }  // namespace
 
+bool cpu_runs_sobol_avx2() { return kAvx2; }
+bool cpu_runs_sobol_avx512() { return kAvx512; }
+
 void PixelSampler::get_2d_x4(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[4]) const {
     static_assert(sizeof(Sample2) == 2 * sizeof(float));
     if (type_ == SamplerType::kSobol && spp_ >= 4 && (spp_ & (spp_ - 1)) == 0) {

@@ -129,11 +129,7 @@ TEST(Sampler, PairsComputedAtOnceAreTheScalarPairsBitForBit) {
     // small ones the SIMD path leaves to the loop), every index, dimensions near 0 and near the
     // time pair, and many pixels.
     const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
-    __builtin_cpu_init();
-    const bool avx2 = __builtin_cpu_supports("avx2");
-    const bool avx512 = avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-                        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
-                        __builtin_cpu_supports("avx512cd");
+    const bool avx2 = cpu_runs_sobol_avx2(), avx512 = cpu_runs_sobol_avx512();
     int kernel_checks = 0;
     for (const SamplerType type : {SamplerType::kSobol, SamplerType::kStratified, SamplerType::kIndependent}) {
         for (const std::uint32_t spp : {1u, 2u, 3u, 4u, 8u, 12u, 64u, 100u, 256u, 4096u, 1u << 20}) {

@@ -8,6 +8,10 @@
 
 namespace glint {
 
+/// Whether this CPU runs each kernel (asked once, at start-up): what PixelSampler dispatches on.
+bool cpu_runs_sobol_avx2();
+bool cpu_runs_sobol_avx512();
+
 /// Pairs first_dimension .. first_dimension + 7 of sample `index` of the pixel with seed
 /// `pixel_seed`, for a power-of-two spp >= 4: PixelSampler::get_2d's bits.
 void sobol_pairs_avx2(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
