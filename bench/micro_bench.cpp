@@ -43,6 +43,44 @@ void BM_SobolPairsChained(benchmark::State& state) {
 }
 BENCHMARK(BM_SobolPairsChained)->Arg(0)->Arg(1);
 
+// As a pixel's samples draw them: one sampler for all 64 samples of a pixel (with AVX-512 the
+// pixel's kept keys serve its later samples). Arg 1: each call's sample chained to the last
+// call's result (latency); 0: not (throughput). ns per 64 calls.
+void BM_SobolPairsInPixel(benchmark::State& state) {
+    const bool chained = state.range(0) == 1;
+    Sample2 out[16];
+    std::uint32_t chain = 1, pixel = 0;
+    int pairs = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(1, pixel++ & 1023u, 7));
+        state.ResumeTiming();
+        for (std::uint32_t index = 0; index < 64; ++index) {
+            pairs += s.get_2d_batch((index + chain) & 63, 2, out);
+            if (chained) chain = std::bit_cast<std::uint32_t>(out[7].y) & 1u;
+            benchmark::DoNotOptimize(out);
+        }
+    }
+    state.counters["pairs/call"] = static_cast<double>(pairs) / static_cast<double>(state.iterations() * 64);
+}
+BENCHMARK(BM_SobolPairsInPixel)->Arg(1)->Arg(0);
+
+// The same calls with nothing chaining them (each pixel known in advance), so that calls can
+// overlap: their throughput. Arg as BM_SobolPairsChained's.
+void BM_SobolPairsIndependent(benchmark::State& state) {
+    const bool batch = state.range(0) == 1;
+    Sample2 out[16];
+    std::uint32_t pixel = 0, index = 0;
+    int pairs = 0;
+    for (auto _ : state) {
+        const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(1, pixel++ & 1023u, 7));
+        pairs += batch ? s.get_2d_batch(index++ & 63, 2, out) : (s.get_2d_x8(index++ & 63, 2, out), 8);
+        benchmark::DoNotOptimize(out);
+    }
+    state.counters["pairs/call"] = static_cast<double>(pairs) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_SobolPairsIndependent)->Arg(0)->Arg(1);
+
 void BM_SphereIntersect(benchmark::State& state) {
     const Sphere s{{0, 0, 4}, 1};
     const auto rays = random_rays(4096, {0, 0, 0});  // about a third hit

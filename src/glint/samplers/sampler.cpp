@@ -140,7 +140,19 @@ void PixelSampler::get_2d_x8(std::uint32_t index, std::uint32_t first_dimension,
 
 int PixelSampler::get_2d_batch(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[16]) const {
     if (kAvx512 && type_ == SamplerType::kSobol && spp_ >= 4 && (spp_ & (spp_ - 1)) == 0) {
-        sobol_pairs_avx512(seed_, spp_, index, first_dimension, out);
+        for (int b = 0; b < kept_; ++b) {
+            if (kept_first_[b] == first_dimension) {
+                sobol_pairs_keyed_avx512(keys_[b], spp_, index, out);
+                return 16;
+            }
+        }
+        if (kept_ == kKeptBatches) {
+            sobol_pairs_avx512(seed_, spp_, index, first_dimension, out);
+            return 16;
+        }
+        kept_first_[kept_] = first_dimension;
+        sobol_keys_avx512(seed_, first_dimension, keys_[kept_]);
+        sobol_pairs_keyed_avx512(keys_[kept_++], spp_, index, out);
         return 16;
     }
     get_2d_x8(index, first_dimension, out);

@@ -43,7 +43,9 @@ public:
     /// The pairs first_dimension, first_dimension + 1, ... of sample `index`, as many as one call
     /// computes best on this CPU: sixteen in the lanes of one 512-bit vector where the CPU has
     /// AVX-512 (sampler_avx512.cpp; the Sobol sampler at a power-of-two spp), else get_2d_x8's
-    /// eight. Returns how many it wrote; each is get_2d's bits.
+    /// eight. Returns how many it wrote; each is get_2d's bits. With AVX-512, what the first
+    /// kKeptBatches distinct batches depend on besides the index is kept for the pixel's later
+    /// samples (so a PixelSampler is for one thread).
     [[gnu::noinline]] int get_2d_batch(std::uint32_t index, std::uint32_t first_dimension, Sample2 out[16]) const;
     std::uint32_t seed() const { return seed_; }
 
@@ -51,6 +53,10 @@ private:
     SamplerType type_;
     std::uint32_t spp_;
     std::uint32_t seed_;
+    static constexpr int kKeptBatches = 2;
+    mutable int kept_ = 0;  ///< batches whose keys are in keys_
+    mutable std::uint32_t kept_first_[kKeptBatches];
+    alignas(64) mutable std::uint32_t keys_[kKeptBatches][7 * 16];  ///< sobol_keys_avx512's rows
 };
 
 /// The dimension pair whose first number is a camera sample's time over the shutter, drawn only

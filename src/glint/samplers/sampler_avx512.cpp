@@ -19,4 +19,13 @@ void sobol_pairs_avx512(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32
     sobol_pairs_lanes<16>(pixel_seed, spp, index, first_dimension, out);
 }
 
+void sobol_keys_avx512(std::uint32_t pixel_seed, std::uint32_t first_dimension, std::uint32_t keys[7 * 16]) {
+    sobol_keys_lanes<16>(pixel_seed, first_dimension, keys);
+}
+
+void sobol_pairs_keyed_avx512(const std::uint32_t keys[7 * 16], std::uint32_t spp, std::uint32_t index,
+                              Sample2 out[16]) {
+    sobol_pairs_keyed_lanes<16>(keys, spp, index, out);
+}
+
 }  // namespace glint

@@ -123,8 +123,10 @@ TEST(Sobol, DimensionsAndPixelsAreDecorrelated) {
 
 TEST(Sampler, PairsComputedAtOnceAreTheScalarPairsBitForBit) {
     // get_2d_x4, get_2d_x8 and get_2d_batch (SIMD for the Sobol sampler at power-of-two spp, a
-    // loop otherwise), and the eight- and sixteen-lane kernels called directly where this CPU has
-    // their instruction sets (so that each is checked whichever one the dispatch picks), against
+    // loop otherwise; one sampler for all of a pixel's indices, so that its kept keys serve later
+    // calls, and six first dimensions, more than it keeps), and the eight- and sixteen-lane
+    // kernels (the latter also from kept keys) called directly where this CPU has their
+    // instruction sets (so that each is checked whichever one the dispatch picks), against
     // get_2d, the reference: every sampler, counts that are and are not powers of two (and the
     // small ones the SIMD path leaves to the loop), every index, dimensions near 0 and near the
     // time pair, and many pixels.
@@ -163,6 +165,10 @@ TEST(Sampler, PairsComputedAtOnceAreTheScalarPairsBitForBit) {
                         if (simd && avx512) {
                             sobol_pairs_avx512(seed, spp, index, first, batch);
                             check(batch, 16, "avx512");
+                            alignas(64) std::uint32_t keys[7 * 16];
+                            sobol_keys_avx512(seed, first, keys);
+                            sobol_pairs_keyed_avx512(keys, spp, index, batch);
+                            check(batch, 16, "avx512 keyed");
                             ++kernel_checks;
                         }
                     }

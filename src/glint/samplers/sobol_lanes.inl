@@ -89,12 +89,12 @@ V owen_scramble_reversed_lanes(V v, V seed) {
 }
 
 // permute_index(i, n, seed) for a power of two n >= 2, where the Feistel network's output is
-// always below n and no cycle walk is needed.
+// always below n and no cycle walk is needed; its round keys are seed and mix32(seed).
 template <class V>
-V permute_index_pow2_lanes(V i, std::uint32_t n, V seed) {
+V permute_index_pow2_keyed_lanes(V i, std::uint32_t n, V key0, V key1) {
     const auto bits = static_cast<unsigned>(std::bit_width(n - 1));
     const unsigned a = bits / 2, c = bits - a;
-    const V keys[2] = {seed, mix32_lanes(seed)};
+    const V keys[2] = {key0, key1};
     V left = i >> c, right = i & ((1U << c) - 1U);
     unsigned left_bits = a, right_bits = c;
     for (unsigned round = 0; round < 4; ++round) {
@@ -108,10 +108,36 @@ V permute_index_pow2_lanes(V i, std::uint32_t n, V seed) {
     return (left << right_bits) | right;
 }
 
+template <class V>
+V permute_index_pow2_lanes(V i, std::uint32_t n, V seed) {
+    return permute_index_pow2_keyed_lanes(i, n, seed, mix32_lanes(seed));
+}
+
+// The last steps of get_2d in every lane: from the permuted index i, the two Owen-scrambled
+// Sobol coordinates (scramble seeds sx and sy) as floats.
+template <int N>
+[[gnu::always_inline]] inline void sobol_pairs_finish(typename Lanes<N>::U i, std::uint32_t spp, typename Lanes<N>::U sx, typename Lanes<N>::U sy,
+                        Sample2* out) {
+    using V = typename Lanes<N>::U;
+    // sobol_1_reversed(i): the columns v = 1, 3, 5, 15, ... xored where i has a bit.
+    V sobol1{};
+    std::uint32_t column = 1;
+    for (unsigned b = 0, n = static_cast<unsigned>(std::bit_width(spp - 1)); b < n; ++b, column ^= column << 1)
+        sobol1 ^= lanes_of<V>(column) & -((i >> b) & 1U);
+    const V xs = reverse_bits_lanes<N>(owen_scramble_reversed_lanes(i, sx));
+    const V ys = reverse_bits_lanes<N>(owen_scramble_reversed_lanes(sobol1, sy));
+    // The top 24 bits of each, as floats in [0, 1) (exact: below 2^24, so signed conversion).
+    using I = typename Lanes<N>::I;
+    using F = typename Lanes<N>::F;
+    const F x = __builtin_convertvector(std::bit_cast<I>(V(xs >> 8)), F) * (1.0f / 16777216.0f);
+    const F y = __builtin_convertvector(std::bit_cast<I>(V(ys >> 8)), F) * (1.0f / 16777216.0f);
+    for (int k = 0; k < N; ++k) out[k] = Sample2{x[k], y[k]};
+}
+
 // The pairs first_dimension .. first_dimension + lanes - 1 of sample `index` of a pixel, for a
 // power-of-two spp >= 4: get_2d's steps (sobol_index, the Owen scrambles, sobol_1) in every lane.
 template <int N>
-void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
+[[gnu::always_inline]] inline void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
                        Sample2* out) {
     using V = typename Lanes<N>::U;
     constexpr int kLanes = N;
@@ -123,17 +149,43 @@ void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_
     const V side = (lanes_of<V>(index) ^ (index_seed >> 31)) & 1U;
     const std::uint32_t half = spp / 2;
     const V i = side * half + permute_index_pow2_lanes(lanes_of<V>(index >> 1), half, hash_combine_lanes(index_seed, side));
-    // sobol_1_reversed(i): the columns v = 1, 3, 5, 15, ... xored where i has a bit.
-    V sobol1{};
-    std::uint32_t column = 1;
-    for (unsigned b = 0, n = static_cast<unsigned>(std::bit_width(spp - 1)); b < n; ++b, column ^= column << 1)
-        sobol1 ^= lanes_of<V>(column) & -((i >> b) & 1U);
-    const V xs = reverse_bits_lanes<N>(owen_scramble_reversed_lanes(i, hash_combine_lanes(seed, lanes_of<V>(1U))));
-    const V ys = reverse_bits_lanes<N>(owen_scramble_reversed_lanes(sobol1, hash_combine_lanes(seed, lanes_of<V>(2U))));
-    // The top 24 bits of each, as floats in [0, 1) (exact: below 2^24, so signed conversion).
-    using I = typename Lanes<N>::I;
-    using F = typename Lanes<N>::F;
-    const F x = __builtin_convertvector(std::bit_cast<I>(V(xs >> 8)), F) * (1.0f / 16777216.0f);
-    const F y = __builtin_convertvector(std::bit_cast<I>(V(ys >> 8)), F) * (1.0f / 16777216.0f);
-    for (int k = 0; k < kLanes; ++k) out[k] = Sample2{x[k], y[k]};
+    sobol_pairs_finish<N>(i, spp, hash_combine_lanes(seed, lanes_of<V>(1U)), hash_combine_lanes(seed, lanes_of<V>(2U)),
+                          out);
+}
+
+// What sobol_pairs_lanes computes from the pixel and the dimensions alone, kept to serve every
+// sample of a pixel: per lane, the index seed's top bit (which half the even samples take), the
+// permutation's two round keys for either half, and the two scramble seeds. N lanes each, in
+// the order of the SobolKeys fields.
+template <int N>
+[[gnu::always_inline]] inline void sobol_keys_lanes(std::uint32_t pixel_seed, std::uint32_t first_dimension, std::uint32_t* keys) {
+    using V = typename Lanes<N>::U;
+    V dims;
+    for (int k = 0; k < N; ++k) dims[k] = first_dimension + static_cast<std::uint32_t>(k);
+    const V seed = hash_combine_lanes(lanes_of<V>(pixel_seed), dims);
+    const V index_seed = hash_combine_lanes(seed, lanes_of<V>(0x5eedU));
+    const V key0_even = hash_combine_lanes(index_seed, lanes_of<V>(0U));
+    const V key0_odd = hash_combine_lanes(index_seed, lanes_of<V>(1U));
+    const V rows[7] = {index_seed >> 31,
+                       key0_even,
+                       mix32_lanes(key0_even),
+                       key0_odd,
+                       mix32_lanes(key0_odd),
+                       hash_combine_lanes(seed, lanes_of<V>(1U)),
+                       hash_combine_lanes(seed, lanes_of<V>(2U))};
+    for (int r = 0; r < 7; ++r) __builtin_memcpy(keys + r * N, &rows[r], sizeof(V));
+}
+
+// sobol_pairs_lanes from kept keys (sobol_keys_lanes): the same bits, with only the steps that
+// depend on the sample index left.
+template <int N>
+[[gnu::always_inline]] inline void sobol_pairs_keyed_lanes(const std::uint32_t* keys, std::uint32_t spp, std::uint32_t index, Sample2* out) {
+    using V = typename Lanes<N>::U;
+    V rows[7];
+    for (int r = 0; r < 7; ++r) __builtin_memcpy(&rows[r], keys + r * N, sizeof(V));
+    const V side = (lanes_of<V>(index) ^ rows[0]) & 1U;
+    const V odd = -side;  // all ones where the half is the other one
+    const V key0 = (rows[1] & ~odd) | (rows[3] & odd), key1 = (rows[2] & ~odd) | (rows[4] & odd);
+    const V i = side * (spp / 2) + permute_index_pow2_keyed_lanes(lanes_of<V>(index >> 1), spp / 2, key0, key1);
+    sobol_pairs_finish<N>(i, spp, rows[5], rows[6], out);
 }
