@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <type_traits>
+
+#include <xmmintrin.h>
 
 #include "glint/accel/embree.h"
 #include "glint/math/snap.h"
@@ -339,18 +342,19 @@ namespace {
 
 // The ray a query works on, read field by field and written whole: its caller has just written
 // it in pieces (spawn_ray's fields, then the path's time), and a 16-byte load across several of
-// those stores cannot take their data until they reach the cache (a failed store forward, about
-// 7 % of Scene::intersect's samples on the bunny). Each volatile read is one 4-byte load, which
-// takes its data from the store that wrote it; the copy is written as two 16-byte halves, which
-// the set-ups' loads (WatertightRaySse's origin) then take whole.
+// those stores cannot take their data until they reach the cache (a failed store forward, 7-8 %
+// of Scene::intersect's samples on the Cornell box and the bunny; docs/performance.md, step 16).
+// Each volatile read is one 4-byte load, which takes its data from the store that wrote it; the
+// copy is written as two 16-byte halves, which the set-ups' loads (WatertightRaySse's origin)
+// then take whole.
 Ray read_ray(const Ray& r) {
     static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, time) == 7 * sizeof(float));
-    const volatile float* f = &r.origin.x;
+    const auto* f = reinterpret_cast<const volatile float*>(&r);
     const __m128 lo = _mm_setr_ps(f[0], f[1], f[2], f[3]);
     const __m128 hi = _mm_setr_ps(f[4], f[5], f[6], f[7]);
     Ray out;
-    _mm_storeu_ps(&out.origin.x, lo);
-    _mm_storeu_ps(&out.direction.y, hi);
+    _mm_storeu_ps(reinterpret_cast<float*>(&out), lo);
+    _mm_storeu_ps(reinterpret_cast<float*>(&out) + 4, hi);
     return out;
 }
 

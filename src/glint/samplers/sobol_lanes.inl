@@ -3,7 +3,9 @@
 // (wrapping multiplies, logical shifts), so every lane gives get_2d's bits. Included by
 // sampler.cpp (4 lanes, SSE4.1), sampler_avx2.cpp (8 lanes, AVX2) and sampler_avx512.cpp (16
 // lanes, AVX-512) inside their namespaces;
-// each includes <bit>, <utility> and the header of Sample2 first.
+// each includes <bit>, <utility> and the header of Sample2 first. The entry functions are
+// always_inline: GCC otherwise kept some of them apart and passed 512-bit vectors between them
+// through the stack (19 % slower renders; docs/performance.md, step 15).
 
 // The vector types of N lanes (spelled out per N: GCC ignores vector_size on a dependent type).
 template <int N>
@@ -116,8 +118,9 @@ V permute_index_pow2_lanes(V i, std::uint32_t n, V seed) {
 // The last steps of get_2d in every lane: from the permuted index i, the two Owen-scrambled
 // Sobol coordinates (scramble seeds sx and sy) as floats.
 template <int N>
-[[gnu::always_inline]] inline void sobol_pairs_finish(typename Lanes<N>::U i, std::uint32_t spp, typename Lanes<N>::U sx, typename Lanes<N>::U sy,
-                        Sample2* out) {
+[[gnu::always_inline]] inline void sobol_pairs_finish(typename Lanes<N>::U i, std::uint32_t spp,
+                                                      typename Lanes<N>::U sx, typename Lanes<N>::U sy,
+                                                      Sample2* out) {
     using V = typename Lanes<N>::U;
     // sobol_1_reversed(i): the columns v = 1, 3, 5, 15, ... xored where i has a bit.
     V sobol1{};
@@ -137,8 +140,8 @@ template <int N>
 // The pairs first_dimension .. first_dimension + lanes - 1 of sample `index` of a pixel, for a
 // power-of-two spp >= 4: get_2d's steps (sobol_index, the Owen scrambles, sobol_1) in every lane.
 template <int N>
-[[gnu::always_inline]] inline void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index, std::uint32_t first_dimension,
-                       Sample2* out) {
+[[gnu::always_inline]] inline void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index,
+                                                     std::uint32_t first_dimension, Sample2* out) {
     using V = typename Lanes<N>::U;
     constexpr int kLanes = N;
     V dims;
@@ -155,10 +158,11 @@ template <int N>
 
 // What sobol_pairs_lanes computes from the pixel and the dimensions alone, kept to serve every
 // sample of a pixel: per lane, the index seed's top bit (which half the even samples take), the
-// permutation's two round keys for either half, and the two scramble seeds. N lanes each, in
-// the order of the SobolKeys fields.
+// permutation's two round keys for either half, and the two scramble seeds: seven rows of N
+// lanes, in that order (the even half's keys before the odd half's).
 template <int N>
-[[gnu::always_inline]] inline void sobol_keys_lanes(std::uint32_t pixel_seed, std::uint32_t first_dimension, std::uint32_t* keys) {
+[[gnu::always_inline]] inline void sobol_keys_lanes(std::uint32_t pixel_seed, std::uint32_t first_dimension,
+                                                    std::uint32_t* keys) {
     using V = typename Lanes<N>::U;
     V dims;
     for (int k = 0; k < N; ++k) dims[k] = first_dimension + static_cast<std::uint32_t>(k);
@@ -179,7 +183,8 @@ template <int N>
 // sobol_pairs_lanes from kept keys (sobol_keys_lanes): the same bits, with only the steps that
 // depend on the sample index left.
 template <int N>
-[[gnu::always_inline]] inline void sobol_pairs_keyed_lanes(const std::uint32_t* keys, std::uint32_t spp, std::uint32_t index, Sample2* out) {
+[[gnu::always_inline]] inline void sobol_pairs_keyed_lanes(const std::uint32_t* keys, std::uint32_t spp,
+                                                           std::uint32_t index, Sample2* out) {
     using V = typename Lanes<N>::U;
     V rows[7];
     for (int r = 0; r < 7; ++r) __builtin_memcpy(&rows[r], keys + r * N, sizeof(V));
