@@ -26,22 +26,28 @@ std::vector<Ray> random_rays(std::size_t n, Point3 origin) {
     return rays;
 }
 
-// The Sobol sampler's pairs as a path draws them: each call's pixel depends on the last call's
-// result, so a call's latency is measured, not its throughput. Arg 0: get_2d_x8 (eight pairs);
-// 1: get_2d_batch (sixteen where the CPU has AVX-512). ns per call, and pairs per call.
-void BM_SobolPairsChained(benchmark::State& state) {
+// The Sobol sampler's pairs, a new pixel each call (as a pixel's first call pays). Arg 0:
+// get_2d_x8 (eight pairs); 1: get_2d_batch (sixteen where the CPU has AVX-512). Chained: each
+// call's pixel depends on the last call's result, as a path's draws do, so a call's latency is
+// measured; independent: each pixel known in advance, so that calls overlap: their throughput.
+// ns per call, and pairs per call.
+void sobol_pairs_per_pixel(benchmark::State& state, bool chained) {
     const bool batch = state.range(0) == 1;
     Sample2 out[16];
-    std::uint32_t chain = 1, index = 0;
+    std::uint32_t pixel = 1, index = 0;
     int pairs = 0;
     for (auto _ : state) {
-        const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(1, chain, 7));
+        const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(1, pixel, 7));
         pairs += batch ? s.get_2d_batch(index++ & 63, 2, out) : (s.get_2d_x8(index++ & 63, 2, out), 8);
-        chain = std::bit_cast<std::uint32_t>(out[7].y) & 1023u;
+        pixel = chained ? std::bit_cast<std::uint32_t>(out[7].y) & 1023u : (pixel + 1) & 1023u;
+        benchmark::DoNotOptimize(out);
     }
     state.counters["pairs/call"] = static_cast<double>(pairs) / static_cast<double>(state.iterations());
 }
+void BM_SobolPairsChained(benchmark::State& state) { sobol_pairs_per_pixel(state, true); }
 BENCHMARK(BM_SobolPairsChained)->Arg(0)->Arg(1);
+void BM_SobolPairsIndependent(benchmark::State& state) { sobol_pairs_per_pixel(state, false); }
+BENCHMARK(BM_SobolPairsIndependent)->Arg(0)->Arg(1);
 
 // As a pixel's samples draw them: one sampler for all 64 samples of a pixel (with AVX-512 the
 // pixel's kept keys serve its later samples). Arg 1: each call's sample chained to the last
@@ -64,22 +70,6 @@ void BM_SobolPairsInPixel(benchmark::State& state) {
     state.counters["pairs/call"] = static_cast<double>(pairs) / static_cast<double>(state.iterations() * 64);
 }
 BENCHMARK(BM_SobolPairsInPixel)->Arg(1)->Arg(0);
-
-// The same calls with nothing chaining them (each pixel known in advance), so that calls can
-// overlap: their throughput. Arg as BM_SobolPairsChained's.
-void BM_SobolPairsIndependent(benchmark::State& state) {
-    const bool batch = state.range(0) == 1;
-    Sample2 out[16];
-    std::uint32_t pixel = 0, index = 0;
-    int pairs = 0;
-    for (auto _ : state) {
-        const PixelSampler s(SamplerType::kSobol, 64, pixel_seed(1, pixel++ & 1023u, 7));
-        pairs += batch ? s.get_2d_batch(index++ & 63, 2, out) : (s.get_2d_x8(index++ & 63, 2, out), 8);
-        benchmark::DoNotOptimize(out);
-    }
-    state.counters["pairs/call"] = static_cast<double>(pairs) / static_cast<double>(state.iterations());
-}
-BENCHMARK(BM_SobolPairsIndependent)->Arg(0)->Arg(1);
 
 void BM_SphereIntersect(benchmark::State& state) {
     const Sphere s{{0, 0, 4}, 1};
