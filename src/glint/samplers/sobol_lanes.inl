@@ -137,18 +137,27 @@ template <int N>
     for (int k = 0; k < N; ++k) out[k] = Sample2{x[k], y[k]};
 }
 
+// Per lane, get_2d's seed of dimension first_dimension + lane, hash_combine(pixel_seed, dimension),
+// and the seed its sample indices are permuted with, hash_combine(seed, 0x5eed).
+template <int N>
+[[gnu::always_inline]] inline void dimension_seeds_lanes(std::uint32_t pixel_seed, std::uint32_t first_dimension,
+                                                         typename Lanes<N>::U& seed, typename Lanes<N>::U& index_seed) {
+    using V = typename Lanes<N>::U;
+    V dims;
+    for (int k = 0; k < N; ++k) dims[k] = first_dimension + static_cast<std::uint32_t>(k);
+    seed = hash_combine_lanes(lanes_of<V>(pixel_seed), dims);
+    index_seed = hash_combine_lanes(seed, lanes_of<V>(0x5eedU));
+}
+
 // The pairs first_dimension .. first_dimension + lanes - 1 of sample `index` of a pixel, for a
 // power-of-two spp >= 4: get_2d's steps (sobol_index, the Owen scrambles, sobol_1) in every lane.
 template <int N>
 [[gnu::always_inline]] inline void sobol_pairs_lanes(std::uint32_t pixel_seed, std::uint32_t spp, std::uint32_t index,
                                                      std::uint32_t first_dimension, Sample2* out) {
     using V = typename Lanes<N>::U;
-    constexpr int kLanes = N;
-    V dims;
-    for (int k = 0; k < kLanes; ++k) dims[k] = first_dimension + static_cast<std::uint32_t>(k);
-    const V seed = hash_combine_lanes(lanes_of<V>(pixel_seed), dims);
-    // sobol_index(index, spp, hash_combine(seed, 0x5eed)), lane by lane.
-    const V index_seed = hash_combine_lanes(seed, lanes_of<V>(0x5eedU));
+    V seed, index_seed;
+    dimension_seeds_lanes<N>(pixel_seed, first_dimension, seed, index_seed);
+    // sobol_index(index, spp, index_seed), lane by lane.
     const V side = (lanes_of<V>(index) ^ (index_seed >> 31)) & 1U;
     const std::uint32_t half = spp / 2;
     const V i = side * half + permute_index_pow2_lanes(lanes_of<V>(index >> 1), half, hash_combine_lanes(index_seed, side));
@@ -164,10 +173,8 @@ template <int N>
 [[gnu::always_inline]] inline void sobol_keys_lanes(std::uint32_t pixel_seed, std::uint32_t first_dimension,
                                                     std::uint32_t* keys) {
     using V = typename Lanes<N>::U;
-    V dims;
-    for (int k = 0; k < N; ++k) dims[k] = first_dimension + static_cast<std::uint32_t>(k);
-    const V seed = hash_combine_lanes(lanes_of<V>(pixel_seed), dims);
-    const V index_seed = hash_combine_lanes(seed, lanes_of<V>(0x5eedU));
+    V seed, index_seed;
+    dimension_seeds_lanes<N>(pixel_seed, first_dimension, seed, index_seed);
     const V key0_even = hash_combine_lanes(index_seed, lanes_of<V>(0U));
     const V key0_odd = hash_combine_lanes(index_seed, lanes_of<V>(1U));
     const V rows[7] = {index_seed >> 31,
