@@ -162,9 +162,14 @@ void Scene::commit() {
         include(moving_bounds(m, false));
     }
     BvhBuildOptions top_options;
-    // An instance costs far more to enter than a node test: one per leaf, so that its box is
+    // Leaves of two (measured best on the Cornell box, docs/performance.md), but an instance
+    // costs far more to enter than a node test: it has a leaf of its own, so that its box is
     // tested before its transform and traversal set-up are paid.
-    top_options.max_leaf_size = instances.empty() ? 2 : 1;
+    top_options.max_leaf_size = 2;
+    std::vector<std::uint8_t> alone(refs.size());
+    for (std::size_t i = 0; i < refs.size(); ++i)
+        alone[i] = (refs[i] >> kRefShift) == static_cast<std::uint32_t>(ShapeKind::kMesh);
+    top_options.alone = alone;
     top_.build(boxes, top_options);
     top_refs_.resize(top_.order().size());
     for (std::size_t i = 0; i < top_refs_.size(); ++i) top_refs_[i] = refs[top_.order()[i]];

@@ -222,7 +222,8 @@ private:
     /// The binned-SAH split of r, or nullopt when a leaf is cheaper (and allowed).
     std::optional<std::pair<Range, Range>> split(const Range& r, int depth) {
         const std::uint32_t count = r.count();
-        const bool must_split = count > static_cast<std::uint32_t>(options_.max_leaf_size);
+        const bool must_split = count > static_cast<std::uint32_t>(options_.max_leaf_size) ||
+                                (count > 1 && holds_one_alone(r));
         if (depth < bvh_detail::kMaxDepth - 20) {
             const ObjectSplit s = find_object_split(r.centroids, count, options_.block_size, [&](auto&& f) {
                 for (std::uint32_t i = r.begin; i < r.end; ++i) f(centroid_[order_[i]], bounds_[order_[i]]);
@@ -248,6 +249,14 @@ private:
                                     (centroid_[a][axis] == centroid_[b][axis] && a < b);
                          });
         return std::pair{make_range(r.begin, m), make_range(m, r.end)};
+    }
+
+    /// Whether r holds a primitive that must have a leaf of its own (BvhBuildOptions::alone).
+    bool holds_one_alone(const Range& r) const {
+        if (options_.alone.empty()) return false;
+        for (std::uint32_t i = r.begin; i < r.end; ++i)
+            if (order_[i] < options_.alone.size() && options_.alone[order_[i]]) return true;
+        return false;
     }
 
     std::span<const Bounds3> bounds_;

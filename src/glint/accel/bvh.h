@@ -44,6 +44,11 @@ struct BvhBuildOptions {
     bool spatial_splits = false;
     float split_alpha = 1e-4f;  ///< Stich et al. suggest 1e-5; 1e-4 builds twice as fast (docs/benchmarks.md)
     float max_duplication = 1.0f;  ///< at most (1 + this) x n references in all
+    /// Per primitive id (empty: none), whether it must have a leaf of its own, however large
+    /// max_leaf_size: the scene's top level keeps a mesh instance alone, so that its box is
+    /// tested before its transform and traversal set-up are paid, while the lone shapes around
+    /// it share leaves. Honoured by the object-split builder (not with spatial splits).
+    std::span<const std::uint8_t> alone;
 };
 
 /// Clips primitive `prim`, whose part in the node is bounded by `box`, by the plane

@@ -311,6 +311,48 @@ TEST(Bvh, TreeInvariants) {
     EXPECT_LT(bvh.depth(), 20);
 }
 
+// BvhBuildOptions::alone (the scene's top level keeps each mesh instance in a leaf of its own):
+// every marked primitive sits alone in its leaf, the others still share leaves, and without
+// the marks the same boxes put marked ones in shared leaves (so the marks are what holds).
+TEST(Bvh, PrimitivesMarkedAloneHaveLeavesOfTheirOwn) {
+    auto g = rng(11);
+    const std::vector<Bounds3> boxes = random_boxes(g, 600, 0.5f);
+    std::vector<std::uint8_t> alone(boxes.size());
+    for (std::size_t i = 0; i < alone.size(); i += 7) alone[i] = 1;
+    const auto leaves = [&](bool marked) {
+        BvhBuildOptions options;
+        options.max_leaf_size = 4;
+        options.traversal_cost = 4;  // so that leaves of several are worth it
+        if (marked) options.alone = alone;
+        Bvh4 bvh;
+        bvh.build(boxes, options);
+        int shared_marked = 0, shared_leaves = 0;
+        std::vector<int> seen(boxes.size());
+        std::function<void(std::uint32_t)> walk = [&](std::uint32_t ref) {
+            if (ref & Bvh4Node::kLeaf) {
+                const std::uint32_t count = Bvh4Node::leaf_count(ref);
+                shared_leaves += count > 1;
+                for (std::uint32_t i = 0; i < count; ++i) {
+                    const std::uint32_t p = bvh.order()[Bvh4Node::leaf_first(ref) + i];
+                    ++seen[p];
+                    shared_marked += count > 1 && alone[p];
+                }
+                return;
+            }
+            for (std::uint32_t c : bvh.nodes()[ref].child)
+                if (c != Bvh4Node::kEmpty) walk(c);
+        };
+        walk(bvh.root());
+        for (int n : seen) EXPECT_EQ(n, 1);
+        return std::pair{shared_marked, shared_leaves};
+    };
+    const auto [marked_shared, marked_leaves] = leaves(true);
+    EXPECT_EQ(marked_shared, 0);
+    EXPECT_GT(marked_leaves, 20);
+    const auto [unmarked_shared, unmarked_leaves] = leaves(false);
+    EXPECT_GT(unmarked_shared, 10);
+}
+
 // The nodes lie as a traversal meets them (bvh.cpp, lay_out_nodes): each node's inner children
 // side by side, and every subtree below a node in one stretch, also when two threads built the
 // tree (whose builders number nodes as they make them, the two halves interleaved).
