@@ -92,6 +92,8 @@ void Scene::commit() {
     constant_reflectance_.assign(textures.size(), std::nullopt);
     for (std::size_t t = 0; t < textures.size(); ++t)
         if (const auto* c = std::get_if<ConstantTexture>(&textures[t])) constant_reflectance_[t].emplace(c->value);
+    triangle_normals_.resize(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t) triangle_normals_[t] = triangles[t].normal();
     // Bottom level: one BVH per mesh (not built when Embree replaces both levels, so that what
     // the Embree backend's build costs is Embree's alone).
     const bool ours = accel != AccelKind::kEmbree;
@@ -698,7 +700,7 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
         }
         case ShapeKind::kTriangle: {
             const Triangle& t = triangles[hit.index];
-            const Normal3 n = t.normal();
+            const Normal3 n = hit.index < triangle_normals_.size() ? triangle_normals_[hit.index] : t.normal();
             return {snap_to_plane(p, t.p0, n), n, t.material, hit.kind, hit.index};
         }
         case ShapeKind::kMesh: {

@@ -295,6 +295,9 @@ private:
     std::vector<MeshBvh> mesh_bvhs_;
     SphereSet sphere_set_;  ///< replaces top_ for scenes of spheres (and planes) alone
     std::vector<std::optional<RgbReflectance>> constant_reflectance_;  ///< per texture (commit())
+    /// Per lone triangle, its normal() (commit()): a hit's interaction reads it instead of a
+    /// cross product, a square root and a division per hit.
+    std::vector<Normal3> triangle_normals_;
     std::shared_ptr<const EmbreeAccel> embree_;  ///< immutable once built; copies share it
     /// texture() for the textures that are neither constants nor checkers (out of line, so that
     /// the two common cases stay small enough to inline).
