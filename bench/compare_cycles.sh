@@ -10,6 +10,8 @@
 #   bench/compare_cycles.sh [BUILD_DIR] [RUNS]
 #   env: SPPS="64 1024", THREADS="1 2", THREADS_HIGH (threads for spp >= 1024; default THREADS),
 #        REF_SPP=1024, OUT (keep the images in this folder), REPORT_ONLY=1 (reuse OUT's runs),
+#        EQUAL_THREADS=2 (whose 64-spp medians set the equal-time spp: a one-thread series with
+#        EQUAL_THREADS=1 and the OUT of a two-thread one reuses its references),
 #        SCENE=cornell (default) or bunny (scenes/bunny.yaml, the bunny in the box; Cycles' twin
 #        from bench/cornell_cycles.py with CYCLES_SCENE=bunny) or materials (scenes/materials.yaml,
 #        800x400; Cycles' twin from bench/materials_cycles.py, whose materials are Cycles' nearest
@@ -83,13 +85,15 @@ else
   ref_glint=$out/ref.exr ref_cycles=$out/ref.exr
 fi
 
-# Equal time: the spp glint renders in Cycles' median 64-spp time (2 threads).
-equal_spp=$(python3 - "$out" <<'PY'
+# Equal time: the spp glint renders in Cycles' median 64-spp time on EQUAL_THREADS threads (the
+# image is the same for any thread count, so it is rendered on 2).
+equal_threads=${EQUAL_THREADS:-2}
+equal_spp=$(python3 - "$out" "$equal_threads" <<'PY'
 import statistics, sys
-out = sys.argv[1]
+out, threads = sys.argv[1], sys.argv[2]
 def med(name, col):
     rows = [l.split() for l in open(f"{out}/{name}.txt")]
-    return statistics.median(float(r[col]) for r in rows if r[0] == "64" and r[1] == "2")
+    return statistics.median(float(r[col]) for r in rows if r[0] == "64" and r[1] == threads)
 print(max(1, round(64 * med("cycles", 2) / med("glint", 2))))
 PY
 )
@@ -111,9 +115,9 @@ stats() { oiiotool "$1" --ch R,G,B "$2" --sub --dup --mul --printstats 2>&1 | se
 mean() { oiiotool "$1" --printstats 2>&1 | sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p'; }
 echo "$(mean "$out/ref-g.exr") $(mean "$out/ref-c.exr")" > "$out/means.txt"
 
-python3 - "$out" "$ref_spp" "$equal_spp" "$scene_name" <<'PY'
+python3 - "$out" "$ref_spp" "$equal_spp" "$scene_name" "$equal_threads" <<'PY'
 import math, statistics, sys
-out, ref_spp, equal_spp, scene_name = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+out, ref_spp, equal_spp, scene_name, equal_threads = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
 
 def rows(name):
@@ -146,7 +150,7 @@ print(f"\nError against the reference ({against} {ref_spp}-spp images), 2 thread
 print("| image | RMSE | relative RMSE |")
 print("|---|---|---|")
 labels = {"glint-64": "glint, 64 spp", "cycles-64": "Cycles, 64 spp",
-          "glint-equal": f"glint, {equal_spp} spp (Cycles' 64-spp time)",
+          "glint-equal": f"glint, {equal_spp} spp (Cycles' 64-spp time, {equal_threads} thread{'s' if equal_threads != '1' else ''})",
           "glint-vs-cycles-ref": f"glint {ref_spp} spp against Cycles {ref_spp} spp"}
 for key, label in labels.items():
     e = errs[key]
