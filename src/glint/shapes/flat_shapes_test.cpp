@@ -355,5 +355,32 @@ TEST(FlatShapes, HitPointsAreSnappedOntoAxisAlignedPlanes) {
     EXPECT_GT(hits, 1000);
 }
 
+// A lone triangle's normal is kept at commit (Scene::triangle_normals_): each hit's interaction
+// carries its own triangle's normal(), bit for bit. The triangles all face different ways, so a
+// normal read for the wrong triangle fails.
+TEST(FlatShapes, EachLoneTriangleHitCarriesItsOwnNormal) {
+    Scene scene;
+    for (int k = 0; k < 12; ++k) {
+        const float x = 3.0f * static_cast<float>(k % 4) - 4.5f, y = 3.0f * static_cast<float>(k / 4) - 3;
+        const float tilt = 0.1f * static_cast<float>(k) - 0.55f;
+        scene.triangles.push_back(Triangle{{x - 1, y - 1, tilt}, {x + 1, y - 1, -tilt}, {x, y + 1, 0.3f * tilt}});
+    }
+    scene.commit();
+    std::vector<int> hits(scene.triangles.size());
+    for (std::uint32_t i = 0; i < 6000; ++i) {
+        const Point3 target{to_unit_float(mix32(i)) * 12 - 6, to_unit_float(mix32(i + 99999)) * 9 - 4.5f, 0};
+        const Ray r = ray({0.1f, 0.2f, -9.0f}, target - Point3{0.1f, 0.2f, -9.0f});
+        const auto h = scene.intersect(r);
+        if (!h) continue;
+        ASSERT_EQ(h->kind, ShapeKind::kTriangle);
+        ++hits[h->index];
+        const Normal3 n = scene.interaction(r, *h).n, want = scene.triangles[h->index].normal();
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(n.x), std::bit_cast<std::uint32_t>(want.x)) << i;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(n.y), std::bit_cast<std::uint32_t>(want.y)) << i;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(n.z), std::bit_cast<std::uint32_t>(want.z)) << i;
+    }
+    for (int c : hits) EXPECT_GT(c, 20);
+}
+
 }  // namespace
 }  // namespace glint
