@@ -700,6 +700,8 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
         }
         case ShapeKind::kTriangle: {
             const Triangle& t = triangles[hit.index];
+            // The normal kept at commit (the same floats); a hit found before commit (the
+            // brute-force reference needs none) computes it.
             const Normal3 n = hit.index < triangle_normals_.size() ? triangle_normals_[hit.index] : t.normal();
             return {snap_to_plane(p, t.p0, n), n, t.material, hit.kind, hit.index};
         }
