@@ -133,7 +133,15 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
         if (!remember) return upsample_illuminant(rgb, *wl);
         // Black (every surface that emits nothing) upsamples to 0 and would push the lamp's out.
         if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0)) return Color{0};
-        if (!last_emitter.valid || !(last_emitter.rgb == rgb)) last_emitter = {rgb, upsample_illuminant(rgb, *wl), true};
+        if (!last_emitter.valid || !(last_emitter.rgb == rgb)) {
+            // The table lookup is paid once per thread for each new colour, not once per path.
+            thread_local struct {
+                Color rgb{-1};
+                RgbIlluminant ready;
+            } kept;
+            if (!(kept.rgb == rgb)) kept = {rgb, RgbIlluminant(rgb)};
+            last_emitter = {rgb, kept.ready.at(*wl), true};
+        }
         return last_emitter.value;
     };
 

@@ -96,10 +96,21 @@ Color upsample_unbounded(Color rgb, const Wavelengths& wl) {
     return upsample_reflectance(rgb / scale, wl) * scale;
 }
 
-Color upsample_illuminant(Color rgb, const Wavelengths& wl) {
-    const Color s = upsample_unbounded(rgb, wl);
+RgbIlluminant::RgbIlluminant(Color rgb) {
+    // upsample_unbounded's steps, the wavelength-independent ones here.
+    const float m = std::max({rgb.r, rgb.g, rgb.b});
+    if (!(m > 0)) return;
+    scale_ = 2 * m;
+    shape_ = RgbReflectance(rgb / scale_);
+}
+
+Color RgbIlluminant::at(const Wavelengths& wl) const {
+    if (!(scale_ > 0)) return Color{0};
+    const Color s = shape_.at(wl) * scale_;
     if (s.is_black()) return s;
     return s * d65_at(wl);
 }
+
+Color upsample_illuminant(Color rgb, const Wavelengths& wl) { return RgbIlluminant(rgb).at(wl); }
 
 }  // namespace glint

@@ -34,6 +34,20 @@ private:
     float grey_ = -1;  ///< a grey's value (its own at every wavelength); -1 for a colour
 };
 
+/// A light's RGB made ready to be read at any wavelengths: RgbIlluminant(rgb).at(wl) is
+/// upsample_illuminant(rgb, wl) bit for bit, with the table lookup paid once (the path
+/// integrator keeps the last one per thread, so a path meeting the lamp pays the polynomial).
+class RgbIlluminant {
+public:
+    RgbIlluminant() = default;
+    explicit RgbIlluminant(Color rgb);
+    Color at(const Wavelengths& wl) const;
+
+private:
+    RgbReflectance shape_;  ///< the reflectance of rgb / scale_
+    float scale_ = 0;       ///< 2 max(rgb); 0 for a light with no positive channel
+};
+
 Color upsample_reflectance(Color rgb, const Wavelengths& wl);
 Color upsample_unbounded(Color rgb, const Wavelengths& wl);
 Color upsample_illuminant(Color rgb, const Wavelengths& wl);

@@ -385,6 +385,32 @@ TEST(Spectra, ConstantColoursAreUpsampledOnceAtCommit) {
     EXPECT_GE(others, 1);
 }
 
+TEST(Spectra, AnIlluminantMadeReadyOnceIsItsFormula) {
+    // A light's RGB made ready once (the path tracer keeps one per thread) and read at many
+    // wavelengths: m = 2 max(rgb), m times the scalar sigmoid of rgb / m, times D65 (the
+    // formula in rgb_spectrum.h, evaluated here by the scalar model); nothing for a light with
+    // no positive channel; a grey is flat before D65.
+    for (const Color rgb : {Color{17, 12, 4}, Color{0.8f, 0.3f, 0.1f}, Color{2, 2, 2}, Color{0, 0, 0},
+                            Color{-1, 0, 0}, Color{-1, 3, 0.5f}}) {
+        const RgbIlluminant ready(rgb);
+        const float m = 2 * std::max({rgb.r, rgb.g, rgb.b});
+        const Color shape = m > 0 ? rgb / m : Color{0};
+        const bool grey = shape.r == shape.g && shape.g == shape.b;
+        const RgbSigmoid sigmoid = rgb_sigmoid(shape);
+        for (float u : {0.01f, 0.3f, 0.5f, 0.93f}) {
+            const Wavelengths wl = sample_wavelengths(u);
+            const Color v = ready.at(wl);
+            for (int i = 0; i < 3; ++i) {
+                const float l = wl.lambda[i];
+                const float s = grey ? std::clamp(shape.r, 0.0f, 1.0f) : sigmoid(l);
+                const float expected = m > 0 ? m * s * d65()(l) : 0.0f;
+                EXPECT_NEAR(v[i], expected, 1e-5f * std::max(1.0f, expected)) << rgb.r << " " << rgb.g << " " << rgb.b << " at " << l;
+            }
+            EXPECT_EQ(v, upsample_illuminant(rgb, wl));
+        }
+    }
+}
+
 TEST(Spectra, TwoLightsOfDifferentColoursKeepTheirColours) {
     // A grey floor lit by a red and a blue sphere: paths sample one light and meet the other
     // (the path tracer keeps the last RGB emitter's upsampling). The spectral image's mean is
