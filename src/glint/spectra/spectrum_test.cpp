@@ -404,7 +404,8 @@ TEST(Spectra, AnIlluminantMadeReadyOnceIsItsFormula) {
                 const float l = wl.lambda[i];
                 const float s = grey ? std::clamp(shape.r, 0.0f, 1.0f) : sigmoid(l);
                 const float expected = m > 0 ? m * s * d65()(l) : 0.0f;
-                EXPECT_NEAR(v[i], expected, 1e-5f * std::max(1.0f, expected)) << rgb.r << " " << rgb.g << " " << rgb.b << " at " << l;
+                EXPECT_NEAR(v[i], expected, 1e-5f * std::max(1.0f, expected))
+                    << rgb.r << " " << rgb.g << " " << rgb.b << " at " << l;
             }
             EXPECT_EQ(v, upsample_illuminant(rgb, wl));
         }
