@@ -89,19 +89,34 @@ Color RgbReflectance::at(const Wavelengths& wl) const {
 
 Color upsample_reflectance(Color rgb, const Wavelengths& wl) { return RgbReflectance(rgb).at(wl); }
 
-Color upsample_unbounded(Color rgb, const Wavelengths& wl) {
+namespace {
+
+// An unbounded value as scale times a reflectance: scale = 2 max(rgb) (0 when no channel is
+// positive, and then nothing is upsampled), shape = rgb / scale.
+struct UnboundedSplit {
+    float scale = 0;
+    Color shape{0};
+};
+UnboundedSplit split_unbounded(Color rgb) {
     const float m = std::max({rgb.r, rgb.g, rgb.b});
-    if (!(m > 0)) return Color{0};
+    if (!(m > 0)) return {};
     const float scale = 2 * m;
-    return upsample_reflectance(rgb / scale, wl) * scale;
+    return {scale, rgb / scale};
+}
+
+}  // namespace
+
+Color upsample_unbounded(Color rgb, const Wavelengths& wl) {
+    const UnboundedSplit u = split_unbounded(rgb);
+    if (!(u.scale > 0)) return Color{0};
+    return upsample_reflectance(u.shape, wl) * u.scale;
 }
 
 RgbIlluminant::RgbIlluminant(Color rgb) {
-    // upsample_unbounded's steps, the wavelength-independent ones here.
-    const float m = std::max({rgb.r, rgb.g, rgb.b});
-    if (!(m > 0)) return;
-    scale_ = 2 * m;
-    shape_ = RgbReflectance(rgb / scale_);
+    // upsample_unbounded's split, its table lookup done here.
+    const UnboundedSplit u = split_unbounded(rgb);
+    scale_ = u.scale;
+    if (scale_ > 0) shape_ = RgbReflectance(u.shape);
 }
 
 Color RgbIlluminant::at(const Wavelengths& wl) const {
