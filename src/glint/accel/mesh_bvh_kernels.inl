@@ -72,8 +72,11 @@ inline void prefetch(const MeshTraversal& m, const Node* nodes, std::uint32_t re
     for (int off = 0; off < bytes; off += 64) _mm_prefetch(p + off, _MM_HINT_T0);
 }
 
+constexpr float kWiden = bvh_detail::kWiden;  // the far slabs' robust widening (accel/bvh.h)
+
 struct BoxRay {
     VecW o[3], inv[3];
+    VecW inv_far[3];  ///< inv times kWiden: the far planes' robust widening, made once a ray
     int near_offset[3], far_offset[3];
 };
 
@@ -96,6 +99,7 @@ inline void make_rays(const Ray& ray, BoxRay& br, TriRay& tr) {
     for (int a = 0; a < 3; ++a) {
         br.o[a] = set1(o[a]);
         br.inv[a] = set1(inv[a]);
+        br.inv_far[a] = set1(inv[a] * kWiden);
         const bool negative = __builtin_signbit(inv[a]);
         br.near_offset[a] = 2 * W * a + (negative ? W : 0);
         br.far_offset[a] = 2 * W * a + (negative ? 0 : W);
@@ -125,17 +129,12 @@ inline void make_rays(const Ray& ray, BoxRay& br, TriRay& tr) {
     tr.ray = &ray;
 }
 
-// 1 + 2 gamma(3), as in bvh_detail::hit_boxes.
-constexpr float kWiden = 1 + 2 * 3 * 0.5f * std::numeric_limits<float>::epsilon() /
-                                 (1 - 3 * 0.5f * std::numeric_limits<float>::epsilon());
-
 inline unsigned hit_boxes(const Node& n, const BoxRay& r, float t_max, float* tnear) {
     const float* base = n.lo_x;
     VecW t0 = set1(0), t1 = set1(t_max);
-    const VecW widen = set1(kWiden);
     for (int a = 0; a < 3; ++a) {
         const VecW tn = mul(sub(load(base + r.near_offset[a]), r.o[a]), r.inv[a]);
-        const VecW tf = mul(mul(sub(load(base + r.far_offset[a]), r.o[a]), r.inv[a]), widen);
+        const VecW tf = mul(sub(load(base + r.far_offset[a]), r.o[a]), r.inv_far[a]);
         t0 = vmax(tn, t0);  // a NaN slab distance leaves the running bound (second operand)
         t1 = vmin(tf, t1);
     }
