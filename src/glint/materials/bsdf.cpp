@@ -488,24 +488,20 @@ float clearcoat_albedo(float mu, float roughness) {
 
 // ------------------------------------------------------------------------------- composite
 
-Bsdf::Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes) {
+void Bsdf::set_frame(Normal3 n) {
     n_ = to_vector(n);
     orthonormal_basis(n_, t_, b_);
+}
+
+Bsdf::Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes) {
+    set_frame(n);
     float total = 0;
     for (const auto& [lobe, weight] : lobes) {
         if (!(weight > 0) || count_ == 3) continue;
         std::construct_at(&lobes_[static_cast<std::size_t>(count_)], lobe);  // raw storage until now
         weight_[static_cast<std::size_t>(count_)] = weight;
         total += weight;
-        has_non_delta_ |= std::visit(
-            [](const auto& l) {
-                using T = std::decay_t<decltype(l)>;
-                if constexpr (std::is_same_v<T, ConductorLobe>) return !l.ggx.smooth();
-                if constexpr (std::is_same_v<T, DielectricLobe>)
-                    return !(l.thin || l.ggx.smooth() || l.eta == 1);
-                return true;
-            },
-            lobe);
+        has_non_delta_ |= std::visit([](const auto& l) { return non_delta(l); }, lobe);
         ++count_;
     }
     for (int i = 0; i < count_; ++i) select_[static_cast<std::size_t>(i)] =

@@ -11,6 +11,7 @@
 // built per hit from a material (materials/material.h).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <type_traits>
 #include <variant>
@@ -186,6 +187,16 @@ class Bsdf {
 public:
     Bsdf() {}  // user-provided: the lobes' storage (below) is left as it is
     Bsdf(Normal3 n, std::initializer_list<std::pair<Lobe, float>> lobes);
+    /// One lobe of weight 1: what Bsdf(n, {{lobe, 1}}) makes, the lobe built in place (the
+    /// list's pair and its copy cost a hit as much as the rest of the constructor).
+    template <typename L>
+    Bsdf(Normal3 n, const L& lobe) {
+        set_frame(n);
+        std::construct_at(&lobes_[0], std::in_place_type<L>, lobe);
+        weight_[0] = select_[0] = 1;
+        count_ = 1;
+        has_non_delta_ = non_delta(lobe);
+    }
 
     Vector3 to_local(Vector3 v) const { return {dot(v, t_), dot(v, b_), dot(v, n_)}; }
     Vector3 to_world(Vector3 v) const { return t_ * v.x + b_ * v.y + n_ * v.z; }
@@ -227,6 +238,15 @@ private:
     float coat_weight_ = 0;
     float coat_roughness_ = 0;  ///< the coat's lobe is clearcoat_lobe(coat_roughness_), made when used
     SheenLobe sheen_;
+
+    void set_frame(Normal3 n);
+    /// Whether a lobe has a part that is not a delta (light sampling can reach it).
+    template <typename L>
+    static bool non_delta(const L& l) {
+        if constexpr (std::is_same_v<L, ConductorLobe>) return !l.ggx.smooth();
+        if constexpr (std::is_same_v<L, DielectricLobe>) return !(l.thin || l.ggx.smooth() || l.eta == 1);
+        return true;
+    }
 
     Vector3 t_{1, 0, 0}, b_{0, 1, 0}, n_{0, 0, 1};
     // lobes_[0, count_) are the lobes; the rest is storage never read. A union, so that nothing

@@ -351,5 +351,43 @@ TEST(Bsdf, SmoothGlassSplitsByFresnelAndBendsBySnell) {
     EXPECT_NEAR(throughput, 1 / 2.25f, 1e-5f);
 }
 
+// The one-lobe constructor (make_bsdf's) against the list one with that lobe at weight 1: the
+// same frame, selection and kind, so the same bits from every query, on a tilted normal.
+TEST(Bsdf, OneLobeIsTheListOfThatLobe) {
+    const Normal3 n = normalize(Normal3{0.3f, -0.5f, 0.8f});
+    DielectricLobe glass_rough;
+    glass_rough.ggx = Ggx{0.3f};
+    DielectricLobe sheet;
+    sheet.thin = true;
+    const auto same = [&](const auto& lobe, const std::string& name) {
+        SCOPED_TRACE(name);
+        const Bsdf list(n, {{lobe, 1.0f}}), one(n, lobe);
+        EXPECT_EQ(one.has_smooth_part(), list.has_smooth_part());
+        EXPECT_EQ(one.lobe_count(), 1);
+        for (std::uint32_t i = 0; i < 64; ++i) {
+            const Vector3 wo = to_vector(normalize(Normal3{2 * rnd(1, i) - 1, 2 * rnd(2, i) - 1, 2 * rnd(3, i) - 1}));
+            const Vector3 wi = to_vector(normalize(Normal3{2 * rnd(4, i) - 1, 2 * rnd(5, i) - 1, 2 * rnd(6, i) - 1}));
+            EXPECT_EQ(one.eval(wo, wi), list.eval(wo, wi));
+            EXPECT_EQ(one.pdf(wo, wi), list.pdf(wo, wi));
+            const auto a = one.sample(wo, rnd(7, i), rnd2(8, i)), b = list.sample(wo, rnd(7, i), rnd2(8, i));
+            ASSERT_EQ(a.has_value(), b.has_value());
+            if (a) {
+                EXPECT_EQ(a->f, b->f);
+                EXPECT_EQ(a->wi, b->wi);
+                EXPECT_EQ(a->pdf, b->pdf);
+                EXPECT_EQ(a->specular, b->specular);
+            }
+        }
+    };
+    same(DiffuseLobe{Color{0.7f, 0.5f, 0.2f}}, "diffuse");
+    same(make_conductor(ConductorLobe::FresnelKind::kComplex, kMetals[3].eta, kMetals[3].k, 0.09f), "gold");
+    same(ConductorLobe{}, "mirror");
+    same(glass_rough, "rough glass");
+    same(DielectricLobe{}, "smooth glass");
+    same(sheet, "thin sheet");
+    same(make_plastic(Color{0.8f, 0.3f, 0.2f}, 1.5f, 0.2f), "rough plastic");
+    same(DiffuseTransmissionLobe{Color{1, 0.6f, 0.6f}}, "diffuse transmission");
+}
+
 }  // namespace
 }  // namespace glint

@@ -52,13 +52,13 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                 mirror.eta = k;
                 return Bsdf(si.ns, {{DiffuseLobe{k}, 1 - s}, {mirror, s}});
             } else if constexpr (std::is_same_v<T, DiffuseMaterial>) {
-                return Bsdf(si.ns, {{DiffuseLobe{tex(m.albedo)}, 1.0f}});
+                return Bsdf(si.ns, DiffuseLobe{tex(m.albedo)});
             } else if constexpr (std::is_same_v<T, ConductorMaterial>) {
                 if (!m.reflectance) {
                     if (!wl || m.lobe.kind == ConductorLobe::FresnelKind::kSchlick) {
                         ConductorLobe lobe = m.lobe;
                         if (wl) lobe.eta = R(lobe.eta), lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);
-                        return Bsdf(si.ns, {{lobe, 1.0f}});
+                        return Bsdf(si.ns, lobe);
                     }
                     // The complex index at the path's wavelengths: measured, or the RGB upsampled.
                     ConductorLobe lobe = m.lobe;
@@ -70,15 +70,15 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                     }
                     if (!lobe.ggx.smooth())
                         lobe.f_avg = m.f_avg_spectrum ? m.f_avg_spectrum->at(*wl) : conductor_f_avg(lobe);
-                    return Bsdf(si.ns, {{lobe, 1.0f}});
+                    return Bsdf(si.ns, lobe);
                 }
                 ConductorLobe lobe = m.lobe;
                 lobe.kind = ConductorLobe::FresnelKind::kSchlick;
                 lobe.eta = tex(*m.reflectance);
                 lobe.f_avg = lobe.eta + (Color{1} - lobe.eta) * (1.0f / 21);  // closed form
-                return Bsdf(si.ns, {{lobe, 1.0f}});
+                return Bsdf(si.ns, lobe);
             } else if constexpr (std::is_same_v<T, DielectricMaterial>) {
-                if (!wl) return Bsdf(si.ns, {{m.lobe, 1.0f}});
+                if (!wl) return Bsdf(si.ns, m.lobe);
                 DielectricLobe lobe = m.lobe;
                 lobe.tint = R(lobe.tint);
                 if (m.ior && !m.ior->constant()) {
@@ -86,11 +86,11 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                     lobe.eta = (*m.ior)(wl->lambda[0]);
                     if (dispersive) *dispersive = true;
                 }
-                return Bsdf(si.ns, {{lobe, 1.0f}});
+                return Bsdf(si.ns, lobe);
             } else if constexpr (std::is_same_v<T, PlasticMaterial>) {
                 PlasticLobe lobe = m.coat;
                 lobe.albedo = tex(m.albedo);
-                return Bsdf(si.ns, {{lobe, 1.0f}});
+                return Bsdf(si.ns, lobe);
             } else if constexpr (std::is_same_v<T, CoatedMaterial>) {
                 LayeredLobe lobe{&m.layer, m.eta, m.k, wl ? R(m.layer.albedo) : m.layer.albedo};
                 if (!m.layer.conductor_base) {
@@ -107,7 +107,7 @@ Bsdf make_bsdf(const Scene& scene, const SurfaceInteraction& si, const Wavelengt
                     lobe.base = (m.eta_spectrum ? m.eta_spectrum->at(*wl) : upsample_unbounded(m.eta * m.layer.eta, *wl)) / m.layer.eta;
                     lobe.k = (m.k_spectrum ? m.k_spectrum->at(*wl) : upsample_unbounded(m.k * m.layer.eta, *wl)) / m.layer.eta;
                 }
-                return Bsdf(si.ns, {{lobe, 1.0f}});  // alone: see LayeredLobe
+                return Bsdf(si.ns, lobe);  // alone: see LayeredLobe
             } else if constexpr (std::is_same_v<T, InterfaceMaterial> || std::is_same_v<T, MixMaterial>) {
                 return Bsdf();  // no lobes: nothing scatters (the integrators pass through)
             } else if constexpr (std::is_same_v<T, DiffuseTransmissionMaterial>) {
