@@ -632,8 +632,11 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const Hit& hit, const RayD
     SurfaceInteraction si = moving ? moving_interaction(*moving, ray, hit) : base_interaction(ray, hit);
     si.time = ray.time;
     si.differential = differential;
-    if (hit.kind != ShapeKind::kMesh) si.ns = si.n;
-    else if (si.material < normal_maps.size() && normal_maps[si.material]) apply_normal_map(si, ray);
+    // base_interaction gave every shape its shading normal (ns = n but on meshes): copying n
+    // here read back whole the floats it had just stored one by one (a failed store forward on
+    // every bounce).
+    if (hit.kind == ShapeKind::kMesh && si.material < normal_maps.size() && normal_maps[si.material])
+        apply_normal_map(si, ray);
     return si;
 }
 
@@ -682,28 +685,29 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
     switch (hit.kind) {
         case ShapeKind::kSphere: {
             const Sphere& s = spheres[hit.index];
-            return {p, s.normal_at(p), s.material, hit.kind, hit.index};
+            const Normal3 n = s.normal_at(p);
+            return {p, n, s.material, hit.kind, hit.index, n};
         }
         case ShapeKind::kPlane: {
             const Plane& pl = planes[hit.index];
-            return {pl.project(p), pl.normal, pl.material, hit.kind, hit.index};
+            return {pl.project(p), pl.normal, pl.material, hit.kind, hit.index, pl.normal};
         }
         // Flat shapes snap the point onto their plane, like planes (math/snap.h).
         case ShapeKind::kQuad: {
             const Quad& q = quads[hit.index];
             const Normal3 n = q.normal();
-            return {snap_to_plane(p, q.corner, n), n, q.material, hit.kind, hit.index};
+            return {snap_to_plane(p, q.corner, n), n, q.material, hit.kind, hit.index, n};
         }
         case ShapeKind::kDisk: {
             const Disk& d = disks[hit.index];
-            return {snap_to_plane(p, d.center, d.normal), d.normal, d.material, hit.kind, hit.index};
+            return {snap_to_plane(p, d.center, d.normal), d.normal, d.material, hit.kind, hit.index, d.normal};
         }
         case ShapeKind::kTriangle: {
             const Triangle& t = triangles[hit.index];
             // The normal kept at commit (the same floats); a hit found before commit (the
             // brute-force reference needs none) computes it.
             const Normal3 n = hit.index < triangle_normals_.size() ? triangle_normals_[hit.index] : t.normal();
-            return {snap_to_plane(p, t.p0, n), n, t.material, hit.kind, hit.index};
+            return {snap_to_plane(p, t.p0, n), n, t.material, hit.kind, hit.index, n};
         }
         case ShapeKind::kMesh: {
             const Instance& inst = instances[hit.index];
@@ -740,7 +744,7 @@ SurfaceInteraction Scene::base_interaction(const Ray& ray, const Hit& hit) const
             return si;
         }
     }
-    return {p, Normal3{0, 1, 0}, 0, hit.kind, hit.index};  // unreachable: every kind is covered
+    return {p, Normal3{0, 1, 0}, 0, hit.kind, hit.index, Normal3{0, 1, 0}};  // unreachable: every kind is covered
 }
 
 Color Scene::vertex_color(const SurfaceInteraction& si) const {

@@ -282,6 +282,7 @@ private:
     void index_motion();
     std::optional<MeshHit> closest_instance(std::uint32_t inst, const Ray& ray) const;
     bool any_instance(std::uint32_t inst, const Ray& ray) const;
+    /// A still shape's interaction, shading normal included (a mesh's interpolated one, else n).
     SurfaceInteraction base_interaction(const Ray& ray, const Hit& hit) const;
     /// Bends si.ns by the material's normal map (meshes with texture coordinates).
     void apply_normal_map(SurfaceInteraction& si, const Ray& ray) const;

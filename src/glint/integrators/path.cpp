@@ -111,12 +111,9 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
     const int hero = media ? std::min(2, static_cast<int>(rng.next() * 3)) : 0;
     // Spectral mode (spectra/spectrum.h): three wavelengths in the channels of every Color, the
     // scene's RGB values upsampled where the path reads them, the radiance to RGB at the end.
-    Wavelengths wl_storage;
-    const Wavelengths* wl = nullptr;
-    if (settings_.spectral) {
-        wl_storage = sample_wavelengths(samples.next_1d());
-        wl = &wl_storage;
-    }
+    // Built in place (assigned, it was copied over in 16-byte pieces across the fields' stores).
+    Wavelengths wl_storage = settings_.spectral ? sample_wavelengths(samples.next_1d()) : Wavelengths{};
+    const Wavelengths* wl = settings_.spectral ? &wl_storage : nullptr;
     // An emitter's radiance at the path's wavelengths: its own spectrum (Y = 1) times its RGB
     // stand-in's luminance, or its RGB upsampled as an illuminant.
     // The last RGB emitter's radiance at the path's wavelengths is kept (upsample_illuminant's
@@ -140,7 +137,13 @@ Color PathIntegrator::li(const Scene& scene, const Ray& camera_ray, SampleStream
                 RgbIlluminant ready;
             } kept;
             if (!(kept.rgb == rgb)) kept = {rgb, RgbIlluminant(rgb)};
-            last_emitter = {rgb, kept.ready.at(*wl), true};
+            // Field by field, the value returned from the register it was made in: the struct
+            // written whole went through the stack and was read back across its pieces.
+            const Color value = kept.ready.at(*wl);
+            last_emitter.rgb = rgb;
+            last_emitter.value = value;
+            last_emitter.valid = true;
+            return value;
         }
         return last_emitter.value;
     };

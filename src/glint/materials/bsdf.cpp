@@ -631,7 +631,7 @@ std::optional<BsdfSample> Bsdf::sample(Vector3 wo_w, float uc, Sample2 u) const 
     // One named result returned on every path, so that it is built in the caller's object
     // (returning a temporary on one path made GCC copy the sample, read back over its pieces).
     std::optional<BsdfSample> s = layered() ? sample_layered(wo, uc, u) : sample_lobes(wo, uc, u);
-    if (s) s->wi = to_world(s->wi);
+    if (s) s->wi = to_world(reload(s->wi));
     return s;
 }
 

@@ -84,4 +84,12 @@ inline Vector3 reflect(Vector3 d, Normal3 n) { return d - to_vector(n) * (2 * do
 /// n flipped, if needed, to lie in the hemisphere opposite the incoming direction d.
 inline Normal3 face_forward(Normal3 n, Vector3 d) { return dot(n, d) > 0 ? -n : n; }
 
+/// v read float by float (three 4-byte loads), for a vector that a callee has just stored in
+/// pieces that straddle it: an 8-byte load across two of those stores cannot take its data from
+/// them and waits for the cache (a failed store forward; docs/performance.md, step 20).
+inline Vector3 reload(const Vector3& v) {
+    const volatile Float &x = v.x, &y = v.y, &z = v.z;
+    return {x, y, z};
+}
+
 }  // namespace glint
