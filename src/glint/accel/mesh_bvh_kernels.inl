@@ -94,15 +94,17 @@ struct TriRay {
 inline void make_rays(const Ray& ray, BoxRay& br, TriRay& tr) {
     const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-    alignas(16) float inv[4];
-    _mm_store_ps(inv, _mm_div_ps(_mm_set1_ps(1), _mm_setr_ps(d[0], d[1], d[2], 1)));
+    alignas(16) float inv[4], inv_far[4];
+    const __m128 r = _mm_div_ps(_mm_set1_ps(1), _mm_setr_ps(d[0], d[1], d[2], 1));
+    _mm_store_ps(inv, r);
+    _mm_store_ps(inv_far, _mm_mul_ps(r, _mm_set1_ps(kWiden)));
+    const int negative = _mm_movemask_ps(r);  // bit a: the sign of 1 / d_a
     for (int a = 0; a < 3; ++a) {
         br.o[a] = set1(o[a]);
         br.inv[a] = set1(inv[a]);
-        br.inv_far[a] = set1(inv[a] * kWiden);
-        const bool negative = __builtin_signbit(inv[a]);
-        br.near_offset[a] = 2 * W * a + (negative ? W : 0);
-        br.far_offset[a] = 2 * W * a + (negative ? 0 : W);
+        br.inv_far[a] = set1(inv_far[a]);
+        br.near_offset[a] = 2 * W * a + W * ((negative >> a) & 1);
+        br.far_offset[a] = br.near_offset[a] ^ W;  // the other half of the axis' 2W floats
     }
     // As WatertightRay::WatertightRay: the largest direction component becomes z.
     int kz = 0;
