@@ -173,6 +173,29 @@ TEST(Triangle, RaysAtRandomSharedEdgesNeverSlipThrough) {
     EXPECT_GT(mt_cracks, n / 100);  // the rays really are hard
 }
 
+TEST(Triangle, SseOrdersAreTheScalarAxes) {
+    // WatertightRaySse's byte order (read from kWatertightOrders) against WatertightRay's axes,
+    // which the test above checks against the rule: lane i of the order holds bytes 4 k_i .. 4 k_i + 3.
+    const float values[] = {-2.0f, -1.0f, -0.5f, -0.0f, 0.0f, 0.5f, 1.0f, 2.0f};
+    int seen[6] = {};
+    for (const float x : values)
+        for (const float y : values)
+            for (const float z : values) {
+                if (x == 0 && y == 0 && z == 0) continue;
+                const Ray r{{0, 0, 0}, Vector3{x, y, z}};
+                const WatertightRay w(r);
+                const WatertightRaySse sse(r);
+                alignas(16) std::uint32_t lanes[4];
+                _mm_store_si128(reinterpret_cast<__m128i*>(lanes), sse.order);
+                const int k[4] = {w.kx, w.ky, w.kz, 3};
+                for (int i = 0; i < 4; ++i)
+                    EXPECT_EQ(lanes[i], 0x03020100u + 0x04040404u * static_cast<std::uint32_t>(k[i]))
+                        << x << " " << y << " " << z << " lane " << i;
+                ++seen[2 * w.kz + (w.kx != (w.kz + 1) % 3)];
+            }
+    for (int i = 0; i < 6; ++i) EXPECT_GT(seen[i], 0) << "order " << i << " never chosen";
+}
+
 TEST(Triangle, TheSseTestGivesTheScalarTestsBits) {
     // intersect_triangle_sse (the scene's lone triangles) against intersect_triangle, the
     // reference it replaces: the same hit or miss, t and barycentrics to the bit, for random

@@ -24,6 +24,15 @@ namespace glint {
 /// WatertightRay's set-up as SSE vectors: the ray's origin, its axis permutation as a byte
 /// shuffle, its shear, computed from the ray with the same choice of axes and the same
 /// divisions (so the same bits), without WatertightRay's round trip through memory.
+/// pshufb masks for (kx, ky, kz, 3), indexed by 2 kz + (d[kz] < 0), as watertight_axes chooses
+/// them: kx and ky are kz's next two axes, swapped when d[kz] is negative. Byte j of lane i is
+/// 4 k_i + j. (Test: Triangle.SseOrdersAreTheScalarAxes.)
+alignas(16) inline constexpr std::uint32_t kWatertightOrders[6][4] = {
+    {0x07060504, 0x0b0a0908, 0x03020100, 0x0f0e0d0c}, {0x0b0a0908, 0x07060504, 0x03020100, 0x0f0e0d0c},
+    {0x0b0a0908, 0x03020100, 0x07060504, 0x0f0e0d0c}, {0x03020100, 0x0b0a0908, 0x07060504, 0x0f0e0d0c},
+    {0x03020100, 0x07060504, 0x0b0a0908, 0x0f0e0d0c}, {0x07060504, 0x03020100, 0x0b0a0908, 0x0f0e0d0c},
+};
+
 struct WatertightRaySse {
     __m128 origin;  ///< (ox, oy, oz, *): the fourth lane is never read
     __m128i order;  ///< lane i of a permuted vector is lane k[i] of the original: kx, ky, kz, 3
@@ -33,11 +42,13 @@ struct WatertightRaySse {
     /// `r` must outlive this.
     explicit WatertightRaySse(const Ray& r) : ray(&r) {
         const __m128 d = _mm_setr_ps(r.direction.x, r.direction.y, r.direction.z, 0);
-        int kx, ky, kz;
-        watertight_axes(std::abs(r.direction.x), std::abs(r.direction.y), std::abs(r.direction.z),
-                        _mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())), kx, ky, kz);
-        const auto lane = [](int k) { return static_cast<int>(0x03020100u + 0x04040404u * static_cast<std::uint32_t>(k)); };
-        order = _mm_setr_epi32(lane(kx), lane(ky), lane(kz), lane(3));
+        // watertight_axes' choice (kz the largest |d|, kx and ky the next two, swapped where
+        // d[kz] < 0) as one of six byte orders, read from a table rather than built lane by lane.
+        const float ax = std::abs(r.direction.x), ay = std::abs(r.direction.y), az = std::abs(r.direction.z);
+        const int y_wins = ay > ax, z_wins = az > (ay > ax ? ay : ax);
+        const int kz = y_wins + z_wins * (2 - y_wins);
+        const int flip = (_mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())) >> kz) & 1;
+        order = _mm_load_si128(reinterpret_cast<const __m128i*>(kWatertightOrders[2 * kz + flip]));
         origin = _mm_loadu_ps(&r.origin.x);
         // (d[kx], d[ky], 1, 1) / d[kz]: the three divisions as one, each correctly rounded.
         const __m128 permuted = _mm_castsi128_ps(_mm_shuffle_epi8(_mm_castps_si128(d), order));
