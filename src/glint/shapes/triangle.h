@@ -26,9 +26,13 @@ struct WatertightRay {
 /// follow cyclically and swap when that component is negative, to keep the triangle's winding.
 /// Selects, not branches: a diffuse bounce's direction is random, and branches here mispredicted
 /// their way to 6 % of a Cornell box render.
-inline void watertight_axes(Float ax, Float ay, Float az, int negative, int& kx, int& ky, int& kz) {
+/// The first axis of largest |d| (the rule's z), from |d|'s components.
+inline int watertight_kz(Float ax, Float ay, Float az) {
     const int y_wins = ay > ax, z_wins = az > (ay > ax ? ay : ax);
-    kz = y_wins + z_wins * (2 - y_wins);
+    return y_wins + z_wins * (2 - y_wins);
+}
+inline void watertight_axes(Float ax, Float ay, Float az, int negative, int& kx, int& ky, int& kz) {
+    kz = watertight_kz(ax, ay, az);
     const int next = kz == 2 ? 0 : kz + 1, after = 3 - kz - next;
     const int swap = (next ^ after) & -((negative >> kz) & 1);  // next ^ after, or 0
     kx = next ^ swap;

@@ -44,9 +44,7 @@ struct WatertightRaySse {
         const __m128 d = _mm_setr_ps(r.direction.x, r.direction.y, r.direction.z, 0);
         // watertight_axes' choice (kz the largest |d|, kx and ky the next two, swapped where
         // d[kz] < 0) as one of six byte orders, read from a table rather than built lane by lane.
-        const float ax = std::abs(r.direction.x), ay = std::abs(r.direction.y), az = std::abs(r.direction.z);
-        const int y_wins = ay > ax, z_wins = az > (ay > ax ? ay : ax);
-        const int kz = y_wins + z_wins * (2 - y_wins);
+        const int kz = watertight_kz(std::abs(r.direction.x), std::abs(r.direction.y), std::abs(r.direction.z));
         const int flip = (_mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())) >> kz) & 1;
         order = _mm_load_si128(reinterpret_cast<const __m128i*>(kWatertightOrders[2 * kz + flip]));
         origin = _mm_loadu_ps(&r.origin.x);
